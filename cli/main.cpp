@@ -1,0 +1,245 @@
+// dla3d: grows a DLA structure and writes it as a POV-Ray scene, CSV, PLY and a JSON sidecar.
+
+#include "dla/csv_writer.h"
+#include "dla/growth.h"
+#include "dla/ply_writer.h"
+#include "dla/pov_writer.h"
+#include "dla/run_report.h"
+#include "dla/version.h"
+
+#include <CLI/CLI.hpp>
+#include <unistd.h>
+
+#include <chrono>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <new>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+//! "x,y,z" (or more numbers for a box) as doubles; throws InvalidInput naming the flag.
+std::vector<double> parse_numbers(const std::string& flag, const std::string& text, std::size_t count) {
+  std::vector<double> values;
+  bool numbers = true;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    std::size_t used = 0;
+    try {
+      values.push_back(std::stod(item, &used));
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    numbers = numbers && used > 0 && used == item.size();
+  }
+  if (!numbers || values.size() != count)
+    throw dla::InvalidInput(flag + " '" + text + "' is not " + std::to_string(count) +
+                            " comma-separated numbers");
+  return values;
+}
+
+dla::Vec3 parse_vec3(const std::string& flag, const std::string& text) {
+  const std::vector<double> v = parse_numbers(flag, text, 3);
+  return {v[0], v[1], v[2]};
+}
+
+std::string with_commas(double value) {
+  std::string digits = std::to_string(static_cast<long long>(value + 0.5));
+  for (int i = static_cast<int>(digits.size()) - 3; i > 0; i -= 3) digits.insert(static_cast<std::size_t>(i), ",");
+  return digits;
+}
+
+//! A one-line progress bar on stderr, drawn only on a terminal and only once a run has taken
+//! a second.
+class ProgressBar {
+ public:
+  ProgressBar(std::size_t total, bool enabled) : total_(total), enabled_(enabled), start_(Clock::now()) {}
+
+  void update(std::size_t done) {
+    if (!enabled_) return;
+    const Clock::time_point now = Clock::now();
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    if (elapsed < 1.0 || now - last_ < std::chrono::milliseconds(100)) return;
+    last_ = now;
+    const double fraction = total_ ? static_cast<double>(done) / total_ : 1.0;
+    const double rate = done / elapsed;
+    const double eta = rate > 0 ? (total_ - done) / rate : 0.0;
+    constexpr int width = 30;
+    const int filled = static_cast<int>(fraction * width);
+    std::string bar(static_cast<std::size_t>(filled), '=');
+    bar.resize(width, ' ');
+    std::fprintf(stderr, "\r\033[K%3d%% [%s] %s/%s  %s/s  ETA %d:%02d", static_cast<int>(fraction * 100),
+                 bar.c_str(), with_commas(done).c_str(), with_commas(total_).c_str(),
+                 with_commas(rate).c_str(), static_cast<int>(eta) / 60, static_cast<int>(eta) % 60);
+    drawn_ = true;
+  }
+
+  void clear() {
+    if (drawn_) std::fprintf(stderr, "\r\033[K");
+    drawn_ = false;
+  }
+
+ private:
+  std::size_t total_;
+  bool enabled_;
+  bool drawn_ = false;
+  Clock::time_point start_;
+  Clock::time_point last_{};
+};
+
+//! Fails early, before a long run, if PREFIX.* cannot be created.
+void check_writable(const std::string& prefix) {
+  const std::string probe = prefix + ".json.tmp";
+  {
+    std::ofstream out(probe);
+    if (!out) throw dla::IOError("cannot write '" + prefix + ".json': " + std::strerror(errno));
+  }
+  std::remove(probe.c_str());
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{"Grows a branching structure by off-lattice diffusion-limited aggregation and writes\n"
+               "it as a POV-Ray scene (PREFIX.pov, PREFIX.inc), PREFIX.csv, PREFIX.ply and PREFIX.json.",
+               "dla3d"};
+  app.set_version_flag("--version", std::string("dla3d ") + dla::version);
+  app.get_formatter()->column_width(34);
+
+  dla::GrowthOptions options;
+  dla::PovOptions pov;
+  long long particles = static_cast<long long>(options.particles);
+  std::string output = "dla";
+  std::vector<std::string> seed_at;
+  std::string spawn = std::string(to_string(options.spawn));
+  std::string spawn_axis = std::string(to_string(options.spawn_axis));
+  std::string box, drift, index = std::string(to_string(options.index));
+  bool quiet = false;
+
+  const char* growth = "Growth";
+  app.add_option("-n,--particles", particles, "particles to attach, seeds not counted")
+      ->capture_default_str()->group(growth);
+  app.add_option("--spacing", options.spacing, "distance between a particle and its parent; also the contact distance")
+      ->capture_default_str()->group(growth);
+  app.add_option("--stickiness", options.stickiness, "probability of sticking at a contact, in (0, 1]")
+      ->capture_default_str()->group(growth);
+  app.add_option("--dimensions", options.dimensions, "3, or 2 for growth in the plane z = 0")
+      ->capture_default_str()->group(growth);
+  app.add_option("--seed-at", seed_at, "a seed at x,y,z (repeat for several); default: one at the origin")
+      ->type_name("X,Y,Z")->allow_extra_args(false)->group(growth);
+  app.add_option("--rng-seed", options.rng_seed, "seed of the random generator: the same seed gives the same files")
+      ->capture_default_str()->group(growth);
+  app.add_option("--min-step", options.min_step, "step length next to the structure, in spacings, (0, 1]")
+      ->capture_default_str()->group(growth);
+  app.add_option("--index", index, "nearest-particle look-up: grid, kdtree or brute")
+      ->capture_default_str()->group(growth);
+
+  const char* spawning = "Spawn";
+  app.add_option("--spawn", spawn, "where walkers start: sphere, disk or box")->capture_default_str()->group(spawning);
+  app.add_option("--spawn-axis", spawn_axis, "disk: the axis the disk sits on, x, y or z")
+      ->capture_default_str()->group(spawning);
+  app.add_option("--disk-radius", options.disk_radius, "disk: radius as a fraction of the launch radius")
+      ->capture_default_str()->group(spawning);
+  app.add_option("--box", box, "box: a fixed box; default: the cube around the launch sphere")
+      ->type_name("X0,Y0,Z0,X1,Y1,Z1")->group(spawning);
+  app.add_option("--drift", drift, "bias of every step, per unit step length, length < 1")
+      ->type_name("X,Y,Z")->group(spawning);
+
+  const char* outputs = "Output";
+  app.add_option("-o,--output", output, "prefix of the files written")->capture_default_str()->group(outputs);
+  app.add_option("--base-radius", pov.base_radius, "POV-Ray: branch radius at a strand's start, in spacings")
+      ->capture_default_str()->group(outputs);
+  app.add_option("--tip-radius", pov.tip_radius, "POV-Ray: branch radius at a strand's tip, in spacings")
+      ->capture_default_str()->group(outputs);
+  app.add_flag("-q,--quiet", quiet, "no progress bar and no summary")->group(outputs);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "dla3d: error: %s (see dla3d --help)\n", e.what());
+    return 2;
+  }
+
+  try {
+    if (particles < 0) throw dla::InvalidInput("--particles " + std::to_string(particles) + " is negative");
+    options.particles = static_cast<std::size_t>(particles);
+    if (!seed_at.empty()) {
+      options.seeds.clear();
+      for (const std::string& s : seed_at) options.seeds.push_back(parse_vec3("--seed-at", s));
+    }
+    options.spawn = dla::parse_spawn_mode(spawn);
+    options.spawn_axis = dla::parse_axis(spawn_axis);
+    options.index = dla::parse_index_kind(index);
+    if (!box.empty()) {
+      const std::vector<double> b = parse_numbers("--box", box, 6);
+      options.spawn_box = dla::Box{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}};
+      if (options.spawn != dla::SpawnMode::box)
+        throw dla::InvalidInput("--box is for --spawn box, not --spawn " + spawn);
+    }
+    if (!drift.empty()) options.drift = parse_vec3("--drift", drift);
+    if (output.empty()) throw dla::InvalidInput("--output is empty");
+    dla::validate(options);
+    dla::validate(pov);
+  } catch (const dla::InvalidInput& e) {
+    std::fprintf(stderr, "dla3d: error: %s\n", e.what());
+    return 2;
+  }
+
+  check_writable(output);
+
+  ProgressBar bar(options.particles, !quiet && isatty(STDERR_FILENO));
+  const Clock::time_point start = Clock::now();
+  const dla::Cluster cluster = dla::grow(options, [&](std::size_t done) {
+    bar.update(done);
+    return true;
+  });
+  bar.clear();
+  dla::RunTimings timings;
+  timings.grow_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+
+  std::string command = "dla3d";
+  for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+  pov.comment = command;
+  const Clock::time_point write_start = Clock::now();
+  dla::write_csv(cluster, output + ".csv");
+  dla::write_ply(cluster, output + ".ply");
+  dla::write_pov(cluster, output, pov);
+  timings.write_seconds = std::chrono::duration<double>(Clock::now() - write_start).count();
+  dla::write_run_report(cluster, options, pov, timings, output + ".json");
+
+  if (!quiet) {
+    const double attached = static_cast<double>(cluster.particles.size() - cluster.seed_count);
+    std::fprintf(stderr,
+                 "dla3d: grew %s particles in %.2f s (%s particles/s); bounding radius %.1f, "
+                 "radius of gyration %.1f\n"
+                 "dla3d: wrote %s.pov %s.inc %s.csv %s.ply %s.json; render: povray +W1280 +H960 +A %s.pov\n",
+                 with_commas(attached).c_str(), timings.grow_seconds,
+                 with_commas(timings.grow_seconds > 0 ? attached / timings.grow_seconds : 0.0).c_str(),
+                 dla::bounding_radius(cluster), dla::radius_of_gyration(cluster), output.c_str(),
+                 output.c_str(), output.c_str(), output.c_str(), output.c_str(), output.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "dla3d: error: out of memory\n");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "dla3d: error: %s\n", e.what());
+  }
+  return 1;
+}

@@ -1,0 +1,214 @@
+#pragma once
+//! \file growth.h
+//! Off-lattice diffusion-limited aggregation: walkers launched one after another walk in
+//! continuous space until they touch the structure and stick. See docs/algorithm.md.
+
+#include "dla/cluster.h"
+#include "dla/options.h"
+#include "dla/random.h"
+#include "dla/spatial_index.h"
+#include "dla/walk.h"
+
+#include <cmath>
+#include <cstddef>
+#include <functional>
+
+namespace dla {
+
+//! Called as growth goes on with the number of particles attached so far (seeds not counted);
+//! returning false stops growth early and the cluster comes back marked incomplete.
+using ProgressFn = std::function<bool(std::size_t attached)>;
+
+//! Grows a structure with the index chosen in options.index. Validates the options first.
+//! Defined in libdla (it instantiates grow_with for every index).
+Cluster grow(const GrowthOptions& options, const ProgressFn& progress = {});
+
+//! Grows a structure with a given index type (see spatial_index.h). Does not validate.
+template <class Index>
+Cluster grow_with(const GrowthOptions& options, const ProgressFn& progress = {});
+
+// ---------------------------------------------------------------------------------------------
+
+namespace detail {
+
+template <class Index>
+class Aggregation {
+ public:
+  explicit Aggregation(const GrowthOptions& options)
+      : opt_(options),
+        contact_(options.spacing),
+        near_step_(options.min_step * options.spacing),
+        drift_scale_(1.0 / (1.0 + options.drift.norm())),
+        index_(cluster_.particles, options.spacing, options.dimensions) {
+    cluster_.spacing = options.spacing;
+    cluster_.dimensions = options.dimensions;
+    cluster_.seed_count = options.seeds.size();
+    cluster_.particles.reserve(options.seeds.size() + options.particles);
+    for (const Vec3& s : options.seeds) cluster_.center += s;
+    cluster_.center /= static_cast<double>(options.seeds.size());
+    for (std::size_t i = 0; i < options.seeds.size(); ++i)
+      add({options.seeds[i], -1, static_cast<std::int32_t>(i)});
+  }
+
+  Cluster run(const ProgressFn& progress) {
+    constexpr std::size_t report_every = 256;
+    for (std::size_t k = 0; k < opt_.particles; ++k) {
+      add(walk(k));
+      if (progress && ((k + 1) % report_every == 0 || k + 1 == opt_.particles) && !progress(k + 1)) {
+        cluster_.complete = k + 1 == opt_.particles;
+        break;
+      }
+    }
+    return std::move(cluster_);
+  }
+
+ private:
+  bool drifting() const { return opt_.drift.squaredNorm() > 0.0; }
+
+  void add(const Particle& p) {
+    cluster_.particles.push_back(p);
+    index_.insert(static_cast<std::int32_t>(cluster_.particles.size() - 1));
+    cluster_radius_ = std::max(cluster_radius_, (p.position - cluster_.center).norm());
+    // Walkers are put back on this sphere from outside; two spacings of margin keep a returned
+    // walker clear of every contact ball.
+    return_radius_ = cluster_radius_ + 2.0 * contact_;
+    index_.cover(cluster_.center, return_radius_);
+  }
+
+  //! Runs walker number k from launch to contact and returns the particle it becomes.
+  Particle walk(std::size_t k) {
+    WalkStats& stats = cluster_.stats;
+    ++stats.walkers;
+    Rng rng(opt_.rng_seed, k);
+    const Vec3& center = cluster_.center;
+    Vec3 x = launch(rng);
+    for (;;) {
+      ++stats.steps;
+      const Vec3 offset = x - center;
+      const double r2 = offset.squaredNorm();
+      // Walkers put on the return sphere sit on it up to rounding: they count as inside.
+      if (r2 > return_radius_ * return_radius_ * (1.0 + 1e-9)) {
+        if (!drifting()) {
+          const ReturnPoint back = return_to_sphere(offset, return_radius_, rng, opt_.dimensions);
+          if (back.returned) {
+            ++stats.returns;
+            x = center + back.offset;
+          } else {
+            ++stats.relaunches;
+            x = launch(rng);
+          }
+          continue;
+        }
+        // With drift there is no closed-form return: walk on, with the distance to the
+        // bounding sphere as the free radius, and start afresh far away.
+        const double kill = std::max(3.0 * return_radius_, return_radius_ + 64.0 * contact_);
+        if (r2 > kill * kill) {
+          ++stats.relaunches;
+          x = launch(rng);
+          continue;
+        }
+        x += jump(rng, std::sqrt(r2) - cluster_radius_ - contact_);
+        continue;
+      }
+
+      // Outside the sphere around every particle, its distance is a bound the index may not beat.
+      const double free = std::max(index_.probe(x).distance, std::sqrt(r2) - cluster_radius_) - contact_;
+      if (free > near_step_) {
+        x += jump(rng, free);
+        continue;
+      }
+
+      // Next to the structure: a short straight step, stopped at the first contact.
+      ++stats.near_steps;
+      const Vec3 step = near_step_ * (random_direction(rng, opt_.dimensions) + opt_.drift);
+      double first = 2.0;
+      std::int32_t touched = -1;
+      index_.for_each_within(x, contact_ + step.norm(), [&](std::int32_t id, double) {
+        const double t = contact_along(x, step, position(id), contact_);
+        if (t >= 0.0 && t < first) {
+          first = t;
+          touched = id;
+        }
+      });
+      if (touched < 0) {
+        x += step;
+        continue;
+      }
+      ++stats.contacts;
+      x += first * step;
+      if (opt_.stickiness < 1.0 && rng.uniform() >= opt_.stickiness) continue;
+      const Vec3& parent = position(touched);
+      return {parent + (x - parent).normalized() * opt_.spacing, touched,
+              cluster_.particles[static_cast<std::size_t>(touched)].seed};
+    }
+  }
+
+  //! A step to a uniform point on the sphere of radius `free` (less any drift), which lies in
+  //! a ball free of contacts: the walk-on-spheres move.
+  Vec3 jump(Rng& rng, double free) {
+    return free * drift_scale_ * (random_direction(rng, opt_.dimensions) + opt_.drift);
+  }
+
+  const Vec3& position(std::int32_t id) const {
+    return cluster_.particles[static_cast<std::size_t>(id)].position;
+  }
+
+  //! A walker's start, drawn from the spawn distribution. Starts beyond the return sphere are
+  //! fine: the walk's first step applies the return rule.
+  Vec3 launch(Rng& rng) {
+    const Vec3& center = cluster_.center;
+    const double R = return_radius_;
+    const int dims = opt_.dimensions;
+    switch (opt_.spawn) {
+      case SpawnMode::sphere:
+        return center + R * random_direction(rng, dims);
+      case SpawnMode::disk: {
+        const int a = static_cast<int>(opt_.spawn_axis);
+        Vec3 along = Vec3::Zero(), u = Vec3::Zero(), v = Vec3::Zero();
+        along[a] = 1.0;
+        const double rho = opt_.disk_radius * R;
+        if (dims == 2) {
+          u[1 - a] = 1.0;  // the in-plane axis across x or y
+          return center + R * along + rho * (2.0 * rng.uniform() - 1.0) * u;
+        }
+        u[(a + 1) % 3] = 1.0;
+        v[(a + 2) % 3] = 1.0;
+        const double r = rho * std::sqrt(rng.uniform());
+        const double phi = 6.283185307179586 * rng.uniform();
+        return center + R * along + r * (std::cos(phi) * u + std::sin(phi) * v);
+      }
+      case SpawnMode::box: {
+        const Vec3 lo = opt_.spawn_box ? opt_.spawn_box->min : Vec3(center.array() - R);
+        const Vec3 hi = opt_.spawn_box ? opt_.spawn_box->max : Vec3(center.array() + R);
+        constexpr int max_tries = 1'000'000;
+        for (int tries = 0; tries < max_tries; ++tries) {
+          Vec3 x;
+          for (int i = 0; i < 3; ++i) x[i] = lo[i] + (hi[i] - lo[i]) * rng.uniform();
+          if (dims == 2) x.z() = 0.0;
+          if ((x - center).squaredNorm() > R * R || index_.probe(x).distance >= contact_) return x;
+        }
+        throw GrowthError("the spawn box is filled by the structure: no free start in " +
+                          std::to_string(max_tries) + " draws");
+      }
+    }
+    return center;
+  }
+
+  const GrowthOptions& opt_;
+  const double contact_;      // centre distance at which a walker touches a particle
+  const double near_step_;    // step length next to the structure
+  const double drift_scale_;  // keeps a drifted jump inside its free ball
+  Cluster cluster_;
+  Index index_;
+  double cluster_radius_ = 0.0;  // largest particle distance from the centre
+  double return_radius_ = 0.0;
+};
+
+}  // namespace detail
+
+template <class Index>
+Cluster grow_with(const GrowthOptions& options, const ProgressFn& progress) {
+  return detail::Aggregation<Index>(options).run(progress);
+}
+
+}  // namespace dla

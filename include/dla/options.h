@@ -1,0 +1,182 @@
+#pragma once
+//! \file options.h
+//! What a growth run is asked to do, with defaults, and the one place it is checked.
+
+#include "dla/errors.h"
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace dla {
+
+using Vec3 = Eigen::Vector3d;
+
+//! Where walkers start. The words are the CLI's (`--spawn sphere|disk|box`).
+enum class SpawnMode {
+  sphere,  //!< uniform on a sphere just outside the structure: the classical launch
+  disk,    //!< uniform in a disk across the spawn axis, just outside the structure: directed growth
+  box,     //!< uniform in a box
+};
+
+//! A coordinate axis, for the disk spawn.
+enum class Axis { x, y, z };
+
+//! The nearest-particle look-up behind the walk (`--index grid|kdtree|brute`); see docs/index.md.
+enum class IndexKind {
+  grid,    //!< cell grid with a pyramid of occupancy bits: the fastest, the default
+  kdtree,  //!< nanoflann's dynamic k-d tree
+  brute,   //!< a linear scan: a reference for tests, slow
+};
+
+//! An axis-aligned box given by two opposite corners.
+struct Box {
+  Vec3 min = Vec3::Zero();
+  Vec3 max = Vec3::Zero();
+};
+
+//! Options of one growth run. Lengths are in scene units; the spacing sets the scale.
+struct GrowthOptions {
+  std::size_t particles = 10000;     //!< particles to attach, seeds not counted
+  double spacing = 1.0;              //!< distance between a particle and its parent, and the
+                                     //!< contact distance: no two particles come closer
+  double stickiness = 1.0;           //!< probability of sticking at a contact, in (0, 1]
+  std::uint64_t rng_seed = 1;        //!< seeds every random choice of the run
+  int dimensions = 3;                //!< 3, or 2 for growth in the plane z = 0
+  std::vector<Vec3> seeds = {Vec3::Zero()};  //!< where the structure starts, one tree per seed
+  SpawnMode spawn = SpawnMode::sphere;       //!< where walkers start
+  Axis spawn_axis = Axis::z;         //!< disk spawn: the disk sits on the + side of this axis
+  double disk_radius = 0.25;         //!< disk spawn: radius as a fraction of the launch radius
+  std::optional<Box> spawn_box;      //!< box spawn: a fixed box; unset, the cube around the
+                                     //!< launch sphere, growing with the structure
+  Vec3 drift = Vec3::Zero();         //!< bias added to every step, per unit step length,
+                                     //!< |drift| < 1 (gravity, wind)
+  double min_step = 0.5;             //!< step length near the structure, in spacings, (0, 1]
+  IndexKind index = IndexKind::grid; //!< nearest-particle look-up
+};
+
+std::string_view to_string(SpawnMode mode);
+std::string_view to_string(Axis axis);
+std::string_view to_string(IndexKind kind);
+
+//! Parses the CLI's words; throws InvalidInput naming the accepted ones.
+SpawnMode parse_spawn_mode(std::string_view word);
+Axis parse_axis(std::string_view word);
+IndexKind parse_index_kind(std::string_view word);
+
+//! Throws InvalidInput with a one-line message at the first option that cannot work.
+void validate(const GrowthOptions& options);
+
+// ---------------------------------------------------------------------------------------------
+
+inline std::string_view to_string(SpawnMode mode) {
+  switch (mode) {
+    case SpawnMode::sphere: return "sphere";
+    case SpawnMode::disk: return "disk";
+    case SpawnMode::box: return "box";
+  }
+  return "?";
+}
+
+inline std::string_view to_string(Axis axis) {
+  switch (axis) {
+    case Axis::x: return "x";
+    case Axis::y: return "y";
+    case Axis::z: return "z";
+  }
+  return "?";
+}
+
+inline std::string_view to_string(IndexKind kind) {
+  switch (kind) {
+    case IndexKind::grid: return "grid";
+    case IndexKind::kdtree: return "kdtree";
+    case IndexKind::brute: return "brute";
+  }
+  return "?";
+}
+
+namespace detail {
+template <class Enum, std::size_t N>
+Enum parse_word(std::string_view word, const Enum (&values)[N], std::string_view what) {
+  std::string accepted;
+  for (Enum value : values) {
+    if (word == to_string(value)) return value;
+    accepted += (accepted.empty() ? "" : ", ") + std::string(to_string(value));
+  }
+  throw InvalidInput(std::string(what) + " '" + std::string(word) + "' is not one of " + accepted);
+}
+
+inline std::string format_number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", value);
+  return buffer;
+}
+}  // namespace detail
+
+inline SpawnMode parse_spawn_mode(std::string_view word) {
+  constexpr SpawnMode values[] = {SpawnMode::sphere, SpawnMode::disk, SpawnMode::box};
+  return detail::parse_word(word, values, "spawn mode");
+}
+
+inline Axis parse_axis(std::string_view word) {
+  constexpr Axis values[] = {Axis::x, Axis::y, Axis::z};
+  return detail::parse_word(word, values, "axis");
+}
+
+inline IndexKind parse_index_kind(std::string_view word) {
+  constexpr IndexKind values[] = {IndexKind::grid, IndexKind::kdtree, IndexKind::brute};
+  return detail::parse_word(word, values, "index");
+}
+
+inline void validate(const GrowthOptions& o) {
+  using detail::format_number;
+  const auto finite = [](const Vec3& v) { return v.allFinite(); };
+  // Parents are stored as 32-bit indices.
+  if (o.particles + o.seeds.size() > 2'000'000'000u)
+    throw InvalidInput("particles " + std::to_string(o.particles) + " is more than 2e9");
+  if (!(o.spacing > 0.0) || !std::isfinite(o.spacing))
+    throw InvalidInput("spacing " + format_number(o.spacing) + " is not a positive number");
+  if (!(o.stickiness > 0.0 && o.stickiness <= 1.0))
+    throw InvalidInput("stickiness " + format_number(o.stickiness) + " is not in (0, 1]");
+  if (o.dimensions != 2 && o.dimensions != 3)
+    throw InvalidInput("dimensions " + std::to_string(o.dimensions) + " is not 2 or 3");
+  if (o.seeds.empty()) throw InvalidInput("there is no seed");
+  for (std::size_t i = 0; i < o.seeds.size(); ++i) {
+    const Vec3& s = o.seeds[i];
+    if (!finite(s)) throw InvalidInput("seed " + std::to_string(i + 1) + " is not finite");
+    if (o.dimensions == 2 && s.z() != 0.0)
+      throw InvalidInput("seed " + std::to_string(i + 1) + " has z = " + format_number(s.z()) +
+                         " but growth in 2 dimensions is in the plane z = 0");
+    for (std::size_t j = 0; j < i; ++j)
+      if ((o.seeds[j] - s).norm() < o.spacing)
+        throw InvalidInput("seeds " + std::to_string(j + 1) + " and " + std::to_string(i + 1) +
+                           " are closer than the spacing " + format_number(o.spacing));
+  }
+  if (o.dimensions == 2 && o.spawn == SpawnMode::disk && o.spawn_axis == Axis::z)
+    throw InvalidInput("the disk spawn axis must be x or y in 2 dimensions");
+  if (!(o.disk_radius > 0.0) || !std::isfinite(o.disk_radius))
+    throw InvalidInput("disk radius " + format_number(o.disk_radius) + " is not a positive number");
+  if (o.spawn_box) {
+    const Box& b = *o.spawn_box;
+    if (!finite(b.min) || !finite(b.max)) throw InvalidInput("spawn box is not finite");
+    const int axes = o.dimensions;
+    for (int a = 0; a < axes; ++a)
+      if (!(b.min[a] < b.max[a]))
+        throw InvalidInput("spawn box is empty: its min corner is not below its max corner");
+  }
+  if (!finite(o.drift) || !(o.drift.norm() < 1.0))
+    throw InvalidInput("drift length " + format_number(o.drift.norm()) + " is not below 1");
+  if (o.dimensions == 2 && o.drift.z() != 0.0)
+    throw InvalidInput("drift has a z component but growth in 2 dimensions is in the plane z = 0");
+  if (!(o.min_step > 0.0 && o.min_step <= 1.0))
+    throw InvalidInput("min step " + format_number(o.min_step) + " is not in (0, 1]");
+}
+
+}  // namespace dla

@@ -1,0 +1,26 @@
+#pragma once
+//! \file pov_writer.h
+//! POV-Ray scene: PREFIX.pov (camera, lights, look) that includes PREFIX.inc (the geometry,
+//! one sphere_sweep per strand). See docs/formats.md.
+
+#include "dla/cluster.h"
+
+#include <string>
+
+namespace dla {
+
+struct PovOptions {
+  double base_radius = 0.5;   //!< radius at each strand's start, in spacings, > 0
+  double tip_radius = 0.25;   //!< radius at each strand's tip, in spacings, > 0
+  std::string comment;        //!< one line written at the top of the .pov (the command, say)
+};
+
+//! Throws InvalidInput for a radius that is not positive (POV-Ray renders a negative one wrong
+//! without a word).
+void validate(const PovOptions& options);
+
+//! Writes PREFIX.pov and PREFIX.inc; the .pov includes the .inc by its file name, so the two
+//! stay side by side. Throws IOError if a file cannot be written.
+void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptions& options = {});
+
+}  // namespace dla

@@ -1,0 +1,75 @@
+#pragma once
+//! \file spatial_index.h
+//! The nearest-particle look-up that the walk asks at every step, and the brute-force
+//! reference implementation.
+//!
+//! An index reads positions from the particle store it was built on (it never copies them)
+//! and must offer:
+//!
+//! \code
+//!   Index(const std::vector<Particle>& particles, double spacing, int dimensions);
+//!   void insert(std::int32_t id);                 // particles[id] was appended; ids come in order
+//!   void cover(const Vec3& center, double radius); // later queries lie in this ball
+//!   Probe probe(const Vec3& x) const;
+//!   template <class Visit> void for_each_within(const Vec3& x, double radius, Visit&& visit) const;
+//!                                                  // visit(id, squared distance) for every
+//!                                                  // particle centre within radius of x
+//! \endcode
+//!
+//! GridIndex (grid_index.h) is the default; KdTreeIndex (kdtree_index.h) and BruteForceIndex
+//! are there to compare against (tests, bench/).
+
+#include "dla/cluster.h"
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace dla {
+
+//! What a probe knows of the nearest particle to a point.
+struct Probe {
+  std::int32_t nearest = -1;  //!< the nearest particle, or -1 if the index only has a bound
+  double distance = std::numeric_limits<double>::infinity();  //!< exact distance to `nearest`,
+                                                              //!< else a lower bound
+};
+
+//! Checks every particle: exact, O(n) per query. The reference the fast indexes are tested
+//! against.
+class BruteForceIndex {
+ public:
+  BruteForceIndex(const std::vector<Particle>& particles, double /*spacing*/, int /*dimensions*/)
+      : particles_(particles) {}
+
+  void insert(std::int32_t id) { count_ = static_cast<std::size_t>(id) + 1; }
+  void cover(const Vec3& /*center*/, double /*radius*/) {}
+
+  Probe probe(const Vec3& x) const {
+    Probe result;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < count_; ++i) {
+      const double d2 = (particles_[i].position - x).squaredNorm();
+      if (d2 < best) {
+        best = d2;
+        result.nearest = static_cast<std::int32_t>(i);
+      }
+    }
+    if (result.nearest >= 0) result.distance = std::sqrt(best);
+    return result;
+  }
+
+  template <class Visit>
+  void for_each_within(const Vec3& x, double radius, Visit&& visit) const {
+    const double r2 = radius * radius;
+    for (std::size_t i = 0; i < count_; ++i) {
+      const double d2 = (particles_[i].position - x).squaredNorm();
+      if (d2 <= r2) visit(static_cast<std::int32_t>(i), d2);
+    }
+  }
+
+ private:
+  const std::vector<Particle>& particles_;
+  std::size_t count_ = 0;
+};
+
+}  // namespace dla

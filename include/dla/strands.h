@@ -1,0 +1,46 @@
+#pragma once
+//! \file strands.h
+//! The structure as strands: chains of particles from a branch point or a seed to a tip, the
+//! unit the POV-Ray exporter turns into one sphere_sweep each.
+
+#include "dla/cluster.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace dla {
+
+//! Particle ids from the strand's start to its tip. A strand that leaves a branch point starts
+//! with that branch point, so strands join; a seed with no children is a strand of one.
+using Strand = std::vector<std::int32_t>;
+
+//! Splits the tree into strands. At a branch point the strand goes on into the child with the
+//! largest subtree (ties: the earliest), so the long trunks stay whole; every other child
+//! starts a new strand. Strands come in the order of their first new particle.
+inline std::vector<Strand> decompose_strands(const Cluster& cluster) {
+  const auto& ps = cluster.particles;
+  const std::size_t n = ps.size();
+  std::vector<std::int64_t> subtree(n, 1);
+  for (std::size_t i = n; i-- > 0;)
+    if (ps[i].parent >= 0) subtree[static_cast<std::size_t>(ps[i].parent)] += subtree[i];
+  std::vector<std::int32_t> heavy(n, -1);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (ps[i].parent < 0) continue;
+    std::int32_t& h = heavy[static_cast<std::size_t>(ps[i].parent)];
+    if (h < 0 || subtree[i] > subtree[static_cast<std::size_t>(h)]) h = static_cast<std::int32_t>(i);
+  }
+  std::vector<Strand> strands;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::int32_t parent = ps[i].parent;
+    if (parent >= 0 && heavy[static_cast<std::size_t>(parent)] == static_cast<std::int32_t>(i))
+      continue;
+    Strand strand;
+    if (parent >= 0) strand.push_back(parent);
+    for (auto j = static_cast<std::int32_t>(i); j >= 0; j = heavy[static_cast<std::size_t>(j)])
+      strand.push_back(j);
+    strands.push_back(std::move(strand));
+  }
+  return strands;
+}
+
+}  // namespace dla

@@ -1,0 +1,91 @@
+#pragma once
+// A text file written under a temporary name and renamed into place on commit(), so a failed
+// or interrupted write never leaves a half-written file under the final name. Buffered, with
+// locale-free number formatting so the same data gives the same bytes everywhere.
+
+#include "dla/errors.h"
+
+#include <cerrno>
+#include <charconv>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <string_view>
+
+namespace dla::detail {
+
+class OutputFile {
+ public:
+  explicit OutputFile(std::string path) : path_(std::move(path)), temp_(path_ + ".tmp") {
+    file_ = std::fopen(temp_.c_str(), "wb");
+    if (!file_) fail();
+    buffer_.reserve(kFlushAt + 256);
+  }
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+  ~OutputFile() {
+    if (file_) {
+      std::fclose(file_);
+      std::remove(temp_.c_str());
+    }
+  }
+
+  OutputFile& operator<<(std::string_view text) {
+    buffer_ += text;
+    if (buffer_.size() >= kFlushAt) flush();
+    return *this;
+  }
+  OutputFile& operator<<(char c) {
+    buffer_ += c;
+    return *this;
+  }
+  //! A double in the shortest form that reads back exactly, or with `digits` significant digits.
+  OutputFile& number(double value, int digits = 0) {
+    char text[40];
+    const auto end = digits > 0 ? std::to_chars(text, text + sizeof text, value,
+                                                std::chars_format::general, digits)
+                                : std::to_chars(text, text + sizeof text, value);
+    return *this << std::string_view(text, static_cast<std::size_t>(end.ptr - text));
+  }
+  OutputFile& integer(long long value) {
+    char text[24];
+    const auto end = std::to_chars(text, text + sizeof text, value);
+    return *this << std::string_view(text, static_cast<std::size_t>(end.ptr - text));
+  }
+
+  //! Writes what is left, closes and renames the file into place.
+  void commit() {
+    flush();
+    std::FILE* file = file_;
+    file_ = nullptr;
+    if (std::fclose(file) != 0) {
+      std::remove(temp_.c_str());
+      fail();
+    }
+    if (std::rename(temp_.c_str(), path_.c_str()) != 0) {
+      const int error = errno;
+      std::remove(temp_.c_str());
+      errno = error;
+      fail();
+    }
+  }
+
+ private:
+  static constexpr std::size_t kFlushAt = 1 << 16;
+
+  void flush() {
+    if (!buffer_.empty() && std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size())
+      fail();
+    buffer_.clear();
+  }
+  [[noreturn]] void fail() const {
+    throw IOError("cannot write '" + path_ + "': " + std::strerror(errno));
+  }
+
+  std::string path_;
+  std::string temp_;
+  std::FILE* file_ = nullptr;
+  std::string buffer_;
+};
+
+}  // namespace dla::detail

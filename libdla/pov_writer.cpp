@@ -1,0 +1,131 @@
+#include "dla/pov_writer.h"
+
+#include "dla/strands.h"
+#include "dla/version.h"
+#include "output_file.h"
+
+#include <cmath>
+
+namespace dla {
+
+namespace {
+
+std::string file_name(const std::string& path) {
+  const std::size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+void vector(detail::OutputFile& out, const Vec3& v) {
+  out << '<';
+  out.number(v.x(), 7) << ", ";
+  out.number(v.y(), 7) << ", ";
+  out.number(v.z(), 7) << '>';
+}
+
+// Centre and radius of a sphere around every particle centre (the box's centre, not the
+// smallest sphere: close enough for framing).
+std::pair<Vec3, double> bounding_sphere(const Cluster& cluster) {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const Particle& p : cluster.particles) {
+    lo = lo.cwiseMin(p.position);
+    hi = hi.cwiseMax(p.position);
+  }
+  const Vec3 center = 0.5 * (lo + hi);
+  double r2 = 0.0;
+  for (const Particle& p : cluster.particles) r2 = std::max(r2, (p.position - center).squaredNorm());
+  return {center, std::sqrt(r2)};
+}
+
+void write_geometry(const Cluster& cluster, const std::string& path) {
+  const std::vector<Strand> strands = decompose_strands(cluster);
+  detail::OutputFile out(path);
+  out << "// dla3d " << version << " geometry: ";
+  out.integer(static_cast<long long>(cluster.particles.size())) << " particles in ";
+  out.integer(static_cast<long long>(strands.size()))
+      << " strands.\n// Declares DLA_Structure; uses DLA_R and DLA_BaseRadius from the .pov.\n";
+  out << "#declare DLA_Structure = union {\n";
+  for (std::size_t s = 0; s < cluster.seed_count; ++s) {
+    out << "  sphere { ";
+    vector(out, cluster.particles[s].position);
+    out << ", DLA_BaseRadius }\n";
+  }
+  for (const Strand& strand : strands) {
+    if (strand.size() < 2) continue;  // a lone seed: its sphere is above
+    out << "  sphere_sweep { linear_spline, ";
+    out.integer(static_cast<long long>(strand.size())) << ",\n";
+    const double last = static_cast<double>(strand.size() - 1);
+    for (std::size_t i = 0; i < strand.size(); ++i) {
+      out << "    ";
+      vector(out, cluster.particles[static_cast<std::size_t>(strand[i])].position);
+      out << ", DLA_R(";
+      out.number(1.0 - static_cast<double>(i) / last, 4) << ")\n";
+    }
+    out << "  }\n";
+  }
+  out << "}\n";
+  out.commit();
+}
+
+}  // namespace
+
+void validate(const PovOptions& options) {
+  if (!(options.base_radius > 0.0) || !std::isfinite(options.base_radius))
+    throw InvalidInput("base radius " + detail::format_number(options.base_radius) +
+                       " is not a positive number");
+  if (!(options.tip_radius > 0.0) || !std::isfinite(options.tip_radius))
+    throw InvalidInput("tip radius " + detail::format_number(options.tip_radius) +
+                       " is not a positive number");
+}
+
+void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptions& options) {
+  validate(options);
+  const std::string include = prefix + ".inc";
+  write_geometry(cluster, include);
+
+  const auto [center, radius] = bounding_sphere(cluster);
+  const double base = options.base_radius * cluster.spacing;
+  detail::OutputFile out(prefix + ".pov");
+  if (!options.comment.empty()) out << "// " << options.comment << '\n';
+  out << "// dla3d " << version << " scene: ";
+  out.integer(static_cast<long long>(cluster.particles.size()))
+      << " particles. Render with: povray +W1280 +H960 +A " << file_name(prefix) << ".pov\n"
+      << "#version 3.7;\n"
+         "global_settings { assumed_gamma 1.0 }\n\n"
+         "// The look: change these and render again, no need to grow again.\n"
+         "#declare DLA_BaseRadius = ";
+  out.number(base, 7) << ";  // radius at each strand's start\n#declare DLA_TipRadius = ";
+  out.number(options.tip_radius * cluster.spacing, 7)
+      << ";  // radius at each strand's tip\n"
+         "#declare DLA_Texture = texture {\n"
+         "  pigment { color rgb <0.90, 0.80, 0.62> }\n"
+         "  finish { ambient 0.06 diffuse 0.8 specular 0.4 roughness 0.015 }\n"
+         "}\n"
+         "#declare DLA_Background = rgb <0.04, 0.05, 0.07>;\n"
+         "#declare DLA_R = function(F) { DLA_TipRadius + (DLA_BaseRadius - DLA_TipRadius) * F }\n\n"
+         "// Framing: a sphere around the structure, seen from DLA_View.\n"
+         "#declare DLA_Center = ";
+  vector(out, center);
+  out << ";\n#declare DLA_Radius = ";
+  out.number(radius + base, 7) << ";\n#declare DLA_View = "
+                               << (cluster.dimensions == 2 ? "<0, 0, -1>" : "<0.35, 0.45, -1>")
+                               << ";  // from the centre towards the camera\n"
+         "#declare DLA_Angle = 40;  // horizontal field of view, degrees\n"
+         "#declare DLA_Aspect = image_width / image_height;\n"
+         "#declare DLA_HalfAngle = min(DLA_Angle / 2, degrees(atan(tan(radians(DLA_Angle / 2)) / DLA_Aspect)));\n"
+         "#declare DLA_Distance = 1.05 * DLA_Radius / sin(radians(DLA_HalfAngle));\n\n"
+         "background { color DLA_Background }\n"
+         "camera {\n"
+         "  perspective\n"
+         "  location DLA_Center + DLA_Distance * vnormalize(DLA_View)\n"
+         "  look_at DLA_Center\n"
+         "  right x * DLA_Aspect\n"
+         "  angle DLA_Angle\n"
+         "}\n"
+         "light_source { DLA_Center + 3 * DLA_Distance * <-0.6, 1.0, -0.8> color rgb 1.0 }\n"
+         "light_source { DLA_Center + 3 * DLA_Distance * <0.8, 0.3, -0.4> color rgb 0.3 shadowless }\n\n"
+         "#include \""
+      << file_name(include) << "\"\nobject { DLA_Structure texture { DLA_Texture } }\n";
+  out.commit();
+}
+
+}  // namespace dla
