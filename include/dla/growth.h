@@ -6,6 +6,7 @@
 #include "dla/cluster.h"
 #include "dla/options.h"
 #include "dla/random.h"
+#include "dla/spawn.h"
 #include "dla/spatial_index.h"
 #include "dla/walk.h"
 
@@ -153,45 +154,18 @@ class Aggregation {
     return cluster_.particles[static_cast<std::size_t>(id)].position;
   }
 
-  //! A walker's start, drawn from the spawn distribution. Starts beyond the return sphere are
-  //! fine: the walk's first step applies the return rule.
+  //! A walker's start. Starts beyond the return sphere are fine: the walk's first step applies
+  //! the return rule. A start within contact of the structure is drawn again.
   Vec3 launch(Rng& rng) {
     const Vec3& center = cluster_.center;
-    const double R = return_radius_;
-    const int dims = opt_.dimensions;
-    switch (opt_.spawn) {
-      case SpawnMode::sphere:
-        return center + R * random_direction(rng, dims);
-      case SpawnMode::disk: {
-        const int a = static_cast<int>(opt_.spawn_axis);
-        Vec3 along = Vec3::Zero(), u = Vec3::Zero(), v = Vec3::Zero();
-        along[a] = 1.0;
-        const double rho = opt_.disk_radius * R;
-        if (dims == 2) {
-          u[1 - a] = 1.0;  // the in-plane axis across x or y
-          return center + R * along + rho * (2.0 * rng.uniform() - 1.0) * u;
-        }
-        u[(a + 1) % 3] = 1.0;
-        v[(a + 2) % 3] = 1.0;
-        const double r = rho * std::sqrt(rng.uniform());
-        const double phi = 6.283185307179586 * rng.uniform();
-        return center + R * along + r * (std::cos(phi) * u + std::sin(phi) * v);
-      }
-      case SpawnMode::box: {
-        const Vec3 lo = opt_.spawn_box ? opt_.spawn_box->min : Vec3(center.array() - R);
-        const Vec3 hi = opt_.spawn_box ? opt_.spawn_box->max : Vec3(center.array() + R);
-        constexpr int max_tries = 1'000'000;
-        for (int tries = 0; tries < max_tries; ++tries) {
-          Vec3 x;
-          for (int i = 0; i < 3; ++i) x[i] = lo[i] + (hi[i] - lo[i]) * rng.uniform();
-          if (dims == 2) x.z() = 0.0;
-          if ((x - center).squaredNorm() > R * R || index_.probe(x).distance >= contact_) return x;
-        }
-        throw GrowthError("the spawn box is filled by the structure: no free start in " +
-                          std::to_string(max_tries) + " draws");
-      }
+    const double R2 = return_radius_ * return_radius_;
+    constexpr int max_draws = 1'000'000;
+    for (int draw = 0; draw < max_draws; ++draw) {
+      const Vec3 x = draw_spawn(opt_, center, return_radius_, rng);
+      if ((x - center).squaredNorm() >= R2 || index_.probe(x).distance >= contact_) return x;
     }
-    return center;
+    throw GrowthError("the spawn region is filled by the structure: no free start in " +
+                      std::to_string(max_draws) + " draws");
   }
 
   const GrowthOptions& opt_;

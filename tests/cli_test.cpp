@@ -1,0 +1,95 @@
+// dla3d as a user meets it: `dla3d -n N -o PREFIX` writes every file; every bad flag or value
+// is one line on stderr, a non-zero exit and no files.
+
+#include "test_util.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+namespace {
+
+using dla::testing::ScratchDir;
+using dla::testing::read_file;
+
+struct CliRun {
+  int exit_code;
+  std::string err;
+};
+
+CliRun dla3d(const ScratchDir& dir, const std::string& args) {
+  const std::string command =
+      "cd '" + dir.path().string() + "' && '" DLA3D_PATH "' " + args + " > out.txt 2> err.txt";
+  const int status = std::system(command.c_str());
+  CliRun run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(dir / "err.txt")};
+  std::filesystem::remove(dir / "out.txt");
+  std::filesystem::remove(dir / "err.txt");
+  return run;
+}
+
+TEST(Cli, WritesEveryFile) {
+  ScratchDir dir;
+  const CliRun run = dla3d(dir, "-n 2000 -o out --rng-seed 5");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  for (const char* name : {"out.pov", "out.inc", "out.csv", "out.ply", "out.json"})
+    EXPECT_TRUE(std::filesystem::exists(dir / name)) << name;
+  EXPECT_NE(run.err.find("grew 2,000 particles"), std::string::npos) << run.err;
+  const std::string json = read_file(dir / "out.json");
+  EXPECT_NE(json.find("\"rng_seed\": 5"), std::string::npos);
+  EXPECT_NE(read_file(dir / "out.pov").find("// dla3d -n 2000 -o out --rng-seed 5"), std::string::npos);
+}
+
+TEST(Cli, SameSeedSameFiles) {
+  ScratchDir dir;
+  ASSERT_EQ(dla3d(dir, "-n 1000 -o a -q --seed-at=-5,0,0 --seed-at 5,0,0").exit_code, 0);
+  ASSERT_EQ(dla3d(dir, "-n 1000 -o b -q --seed-at=-5,0,0 --seed-at 5,0,0").exit_code, 0);
+  for (const char* ext : {".csv", ".ply", ".inc"})
+    EXPECT_EQ(read_file(dir / (std::string("a") + ext)), read_file(dir / (std::string("b") + ext)));
+}
+
+TEST(Cli, QuietPrintsNothing) {
+  ScratchDir dir;
+  const CliRun run = dla3d(dir, "-n 300 -o q --quiet --dimensions 2 --spawn disk --spawn-axis y");
+  EXPECT_EQ(run.exit_code, 0);
+  EXPECT_EQ(run.err, "");
+}
+
+TEST(Cli, HelpAndVersion) {
+  ScratchDir dir;
+  EXPECT_EQ(dla3d(dir, "--help").exit_code, 0);
+  EXPECT_EQ(dla3d(dir, "--version").exit_code, 0);
+}
+
+TEST(Cli, BadInputIsOneLineAndNoFiles) {
+  const char* cases[] = {
+      "-n -5",
+      "-n lots",
+      "--stickiness 1.7",
+      "--stickiness 0",
+      "--spacing 0",
+      "--spawn cube",
+      "--index octree",
+      "--dimensions 4",
+      "--seed-at 1,2",
+      "--seed-at 0,0,0 --seed-at 0.5,0,0",
+      "--box 0,0,0,1,1,1",
+      "--spawn box --box 1,1,1,0,0,0",
+      "--drift 0,0,2",
+      "--tip-radius -1",
+      "--no-such-flag",
+      "-o missing-folder/out",
+      "-o ''",
+  };
+  for (const char* args : cases) {
+    ScratchDir dir;
+    const CliRun run = dla3d(dir, std::string("-n 100 -q -o out ") + args);
+    EXPECT_NE(run.exit_code, 0) << args;
+    EXPECT_EQ(run.err.rfind("dla3d: error: ", 0), 0u) << args << ": " << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << args << ": " << run.err;
+    EXPECT_TRUE(std::filesystem::is_empty(dir.path())) << args << " left files";
+  }
+}
+
+}  // namespace

@@ -1,0 +1,211 @@
+// Growth end to end: the invariants of the grown tree under every option that changes the
+// walk, determinism, the fractal dimension, and that bad options are refused.
+
+#include "dla/analysis.h"
+#include "dla/growth.h"
+#include "dla/kdtree_index.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+namespace dla {
+namespace {
+
+// Parent earlier and one spacing away, seed ids inherited, no two particles closer than the
+// spacing (checked against every particle with a k-d tree), 2D stays in its plane.
+void expect_valid_tree(const Cluster& c, const GrowthOptions& o) {
+  const auto& ps = c.particles;
+  ASSERT_EQ(ps.size(), o.seeds.size() + o.particles);
+  ASSERT_EQ(c.seed_count, o.seeds.size());
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const Particle& p = ps[i];
+    ASSERT_TRUE(p.position.allFinite());
+    if (i < c.seed_count) {
+      ASSERT_EQ(p.parent, -1);
+      ASSERT_EQ(p.seed, static_cast<std::int32_t>(i));
+      continue;
+    }
+    ASSERT_GE(p.parent, 0);
+    ASSERT_LT(p.parent, static_cast<std::int32_t>(i)) << "parent must come earlier";
+    const Particle& parent = ps[static_cast<std::size_t>(p.parent)];
+    ASSERT_NEAR((p.position - parent.position).norm(), o.spacing, 1e-9 * o.spacing);
+    ASSERT_EQ(p.seed, parent.seed);
+    if (o.dimensions == 2) {
+      ASSERT_EQ(p.position.z(), 0.0);
+    }
+  }
+  KdTreeIndex all(ps, o.spacing, o.dimensions);
+  for (std::size_t i = 0; i < ps.size(); ++i) all.insert(static_cast<std::int32_t>(i));
+  double closest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    all.for_each_within(ps[i].position, o.spacing * 1.5, [&](std::int32_t j, double d2) {
+      if (static_cast<std::size_t>(j) != i) closest = std::min(closest, std::sqrt(d2));
+    });
+  EXPECT_GE(closest, o.spacing * (1 - 1e-9)) << "two particles overlap";
+}
+
+GrowthOptions small(std::size_t n = 3000) {
+  GrowthOptions o;
+  o.particles = n;
+  return o;
+}
+
+TEST(Growth, TreeInvariantsDefault) {
+  const GrowthOptions o = small();
+  expect_valid_tree(grow(o), o);
+}
+
+TEST(Growth, TreeInvariantsPlanar) {
+  GrowthOptions o = small();
+  o.dimensions = 2;
+  expect_valid_tree(grow(o), o);
+}
+
+TEST(Growth, TreeInvariantsLowStickinessAndShortSteps) {
+  GrowthOptions o = small(2000);
+  o.stickiness = 0.2;
+  o.min_step = 0.2;
+  o.spacing = 2.5;
+  const Cluster c = grow(o);
+  expect_valid_tree(c, o);
+  EXPECT_GT(c.stats.contacts, 2 * c.stats.walkers) << "refused contacts must happen";
+}
+
+TEST(Growth, TreeInvariantsEveryIndex) {
+  for (IndexKind kind : {IndexKind::kdtree, IndexKind::brute}) {
+    GrowthOptions o = small(800);
+    o.index = kind;
+    expect_valid_tree(grow(o), o);
+  }
+}
+
+TEST(Growth, DiskSpawnGrowsTowardsTheDisk) {
+  GrowthOptions o = small();
+  o.spawn = SpawnMode::disk;
+  o.spawn_axis = Axis::z;
+  const Cluster c = grow(o);
+  expect_valid_tree(c, o);
+  double mean_z = 0.0;
+  for (const Particle& p : c.particles) mean_z += p.position.z() / c.particles.size();
+  EXPECT_GT(mean_z, 0.3 * radius_of_gyration(c));
+}
+
+TEST(Growth, DriftBiasesGrowthAgainstIt) {
+  // Walkers falling along -z land on the top of the structure, which grows up towards them.
+  GrowthOptions o = small();
+  o.drift = Vec3(0, 0, -0.5);
+  const Cluster c = grow(o);
+  expect_valid_tree(c, o);
+  double mean_z = 0.0;
+  for (const Particle& p : c.particles) mean_z += p.position.z() / c.particles.size();
+  EXPECT_GT(mean_z, 0.3 * radius_of_gyration(c));
+}
+
+TEST(Growth, BoxSpawn) {
+  GrowthOptions o = small(1500);
+  o.spawn = SpawnMode::box;
+  expect_valid_tree(grow(o), o);
+  o.spawn_box = Box{Vec3(-20, -20, -20), Vec3(20, 20, 20)};
+  expect_valid_tree(grow(o), o);
+}
+
+TEST(Growth, SeveralSeedsAllGrow) {
+  GrowthOptions o = small(3000);
+  o.seeds = {Vec3(-30, 0, 0), Vec3(30, 0, 0), Vec3(0, 40, 0)};
+  const Cluster c = grow(o);
+  expect_valid_tree(c, o);
+  std::vector<int> per_seed(3, 0);
+  for (const Particle& p : c.particles) ++per_seed[static_cast<std::size_t>(p.seed)];
+  for (int count : per_seed) EXPECT_GT(count, 100);
+  EXPECT_NEAR(c.center.x(), 0.0, 1e-12);
+  EXPECT_NEAR(c.center.y(), 40.0 / 3, 1e-12);
+}
+
+TEST(Growth, SameSeedSameStructureOtherSeedOther) {
+  GrowthOptions o = small(2000);
+  o.rng_seed = 42;
+  const Cluster a = grow(o), b = grow(o);
+  ASSERT_EQ(a.particles.size(), b.particles.size());
+  for (std::size_t i = 0; i < a.particles.size(); ++i) {
+    ASSERT_EQ(std::memcmp(a.particles[i].position.data(), b.particles[i].position.data(), 3 * sizeof(double)), 0);
+    ASSERT_EQ(a.particles[i].parent, b.particles[i].parent);
+  }
+  o.rng_seed = 43;
+  const Cluster other = grow(o);
+  EXPECT_NE(other.particles.back().position, a.particles.back().position);
+}
+
+TEST(Growth, ProgressCanStopGrowth) {
+  GrowthOptions o = small(5000);
+  std::size_t calls = 0;
+  const Cluster c = grow(o, [&](std::size_t done) {
+    ++calls;
+    return done < 1024;
+  });
+  EXPECT_FALSE(c.complete);
+  EXPECT_EQ(c.particles.size(), 1 + 1024u);
+  EXPECT_EQ(calls, 4u);
+}
+
+TEST(Growth, FilledSpawnBoxIsAnErrorNotAHang) {
+  GrowthOptions o = small(10);
+  o.spawn = SpawnMode::box;
+  o.spawn_box = Box{Vec3(-0.5, -0.5, -0.5), Vec3(0.5, 0.5, 0.5)};
+  EXPECT_THROW(grow(o), GrowthError);
+}
+
+// Radius of gyration against n over the growth history: 3D off-lattice DLA has D close to 2.5
+// (Tolman & Meakin 1989: 2.495), 2D close to 1.71. The bands allow for one cluster's noise.
+TEST(Growth, FractalDimension3D) {
+  GrowthOptions o = small(20000);
+  const FractalFit fit = fractal_dimension_by_gyration(grow(o), 200);
+  EXPECT_GE(fit.dimension, 2.3);
+  EXPECT_LE(fit.dimension, 2.7);
+}
+
+TEST(Growth, FractalDimension2D) {
+  GrowthOptions o = small(10000);
+  o.dimensions = 2;
+  const FractalFit fit = fractal_dimension_by_gyration(grow(o), 200);
+  EXPECT_GE(fit.dimension, 1.55);
+  EXPECT_LE(fit.dimension, 1.87);
+}
+
+TEST(Options, BadValuesAreRefusedWithAClearMessage) {
+  const auto message = [](auto change) {
+    GrowthOptions o;
+    change(o);
+    try {
+      validate(o);
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(message([](GrowthOptions& o) { o.stickiness = 1.7; }), "stickiness 1.7 is not in (0, 1]");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.stickiness = 0; }), "stickiness 0 is not in (0, 1]");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = -1; }), "spacing -1 is not a positive number");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = NAN; }), "spacing nan is not a positive number");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.dimensions = 4; }), "dimensions 4 is not 2 or 3");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.seeds.clear(); }), "there is no seed");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.seeds.push_back(Vec3(0.5, 0, 0)); }),
+            "seeds 1 and 2 are closer than the spacing 1");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.dimensions = 2, o.seeds = {Vec3(0, 0, 1)}; }),
+            "seed 1 has z = 1 but growth in 2 dimensions is in the plane z = 0");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.drift = Vec3(0, 0, 1); }), "drift length 1 is not below 1");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.min_step = 2; }), "min step 2 is not in (0, 1]");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.spawn_box = Box{Vec3(1, 0, 0), Vec3(0, 1, 1)}; }),
+            "spawn box is empty: its min corner is not below its max corner");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.dimensions = 2, o.spawn = SpawnMode::disk; }),
+            "the disk spawn axis must be x or y in 2 dimensions");
+  EXPECT_EQ(message([](GrowthOptions&) {}), "accepted");
+  EXPECT_THROW(parse_spawn_mode("cube"), InvalidInput);
+  EXPECT_EQ(parse_spawn_mode("disk"), SpawnMode::disk);
+  EXPECT_EQ(parse_index_kind(to_string(IndexKind::kdtree)), IndexKind::kdtree);
+}
+
+}  // namespace
+}  // namespace dla

@@ -1,0 +1,100 @@
+// Every index against brute force: probes never overshoot the nearest distance and are exact
+// when they name a particle; radius visits find exactly the particles within the radius.
+
+#include "dla/grid_index.h"
+#include "dla/kdtree_index.h"
+#include "dla/random.h"
+#include "dla/spatial_index.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+#include <vector>
+
+namespace dla {
+namespace {
+
+// Points in clumps plus a spread, like a growing structure, inserted as they come; spread
+// grows so the grid has to enlarge its domain on the way.
+std::vector<Particle> points(int dimensions, std::size_t count, std::uint64_t seed) {
+  Rng rng(seed);
+  std::vector<Particle> ps;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double scale = 2.0 + 0.2 * static_cast<double>(i);
+    Vec3 p = scale * random_direction(rng, dimensions) * rng.uniform();
+    if (i > 0 && rng.uniform() < 0.5)
+      p = ps[static_cast<std::size_t>(rng() % i)].position + 1.0 * random_direction(rng, dimensions);
+    ps.push_back({p, -1, 0});
+  }
+  return ps;
+}
+
+template <class Index>
+void check_against_brute_force(int dimensions) {
+  std::vector<Particle> store;
+  Index index(store, 1.0, dimensions);
+  BruteForceIndex brute(store, 1.0, dimensions);
+  const std::vector<Particle> all = points(dimensions, 3000, 7);
+  Rng rng(11);
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    store.push_back(all[i]);
+    index.insert(static_cast<std::int32_t>(i));
+    brute.insert(static_cast<std::int32_t>(i));
+    if (i % 100 != 99) continue;
+    double reach = 0.0;
+    for (const Particle& p : store) reach = std::max(reach, p.position.norm());
+    index.cover(Vec3::Zero(), reach + 2.0);
+    for (int q = 0; q < 200; ++q) {
+      Vec3 x = (reach + 2.0) * random_direction(rng, dimensions) * std::cbrt(rng.uniform());
+      if (q % 2) x = store[rng() % store.size()].position + 3.0 * rng.uniform() * random_direction(rng, dimensions);
+      const Probe expected = brute.probe(x);
+      const Probe got = index.probe(x);
+      ASSERT_LE(got.distance, expected.distance * (1 + 1e-12)) << "bound above the true distance";
+      if (got.nearest >= 0) {
+        EXPECT_NEAR(got.distance, expected.distance, 1e-12);
+        EXPECT_NEAR((store[static_cast<std::size_t>(got.nearest)].position - x).norm(),
+                    expected.distance, 1e-12);
+      }
+      // Within two spacings the exact nearest must come back (the walk relies on it).
+      if (expected.distance < 2.0) {
+        EXPECT_EQ(got.nearest, expected.nearest);
+      }
+      const double radius = 0.5 + 2.5 * rng.uniform();
+      std::set<std::int32_t> want, have;
+      brute.for_each_within(x, radius, [&](std::int32_t id, double) { want.insert(id); });
+      index.for_each_within(x, radius, [&](std::int32_t id, double d2) {
+        EXPECT_NEAR(d2, (store[static_cast<std::size_t>(id)].position - x).squaredNorm(), 1e-9);
+        have.insert(id);
+      });
+      ASSERT_EQ(want, have) << "radius " << radius;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace dla
+
+TEST(GridIndex, MatchesBruteForce3D) { dla::check_against_brute_force<dla::GridIndex>(3); }
+TEST(GridIndex, MatchesBruteForce2D) { dla::check_against_brute_force<dla::GridIndex>(2); }
+TEST(KdTreeIndex, MatchesBruteForce3D) { dla::check_against_brute_force<dla::KdTreeIndex>(3); }
+TEST(KdTreeIndex, MatchesBruteForce2D) { dla::check_against_brute_force<dla::KdTreeIndex>(2); }
+
+TEST(GridIndex, EmptyIndexKnowsNothing) {
+  std::vector<dla::Particle> store;
+  dla::GridIndex grid(store, 1.0, 3);
+  EXPECT_EQ(grid.probe(dla::Vec3(1, 2, 3)).nearest, -1);
+  grid.cover(dla::Vec3::Zero(), 10.0);
+  const dla::Probe probe = grid.probe(dla::Vec3(1, 2, 3));
+  EXPECT_EQ(probe.nearest, -1);
+  EXPECT_GT(probe.distance, 1.0);
+}
+
+TEST(GridIndex, FarQueriesGetLargeBounds) {
+  // A bound that stays tiny far away would make every walk crawl.
+  std::vector<dla::Particle> store{{dla::Vec3::Zero(), -1, 0}};
+  dla::GridIndex grid(store, 1.0, 3);
+  grid.insert(0);
+  grid.cover(dla::Vec3::Zero(), 200.0);
+  EXPECT_GT(grid.probe(dla::Vec3(150, 0, 0)).distance, 40.0);
+}

@@ -1,0 +1,102 @@
+// POV-Ray renders the emitted scene as it is: the image is not blank and the structure is
+// framed, in 3D and in the plane.
+
+#include "dla/growth.h"
+#include "dla/pov_writer.h"
+#include "test_util.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cctype>
+#include <cstdlib>
+#include <filesystem>
+
+namespace dla {
+namespace {
+
+using testing::ScratchDir;
+using testing::read_file;
+
+struct Image {
+  int width = 0, height = 0;
+  std::string rgb;  // 3 bytes a pixel, rows from the top
+  std::array<int, 3> at(int x, int y) const {
+    const std::size_t i = 3 * (static_cast<std::size_t>(y) * width + x);
+    return {static_cast<unsigned char>(rgb[i]), static_cast<unsigned char>(rgb[i + 1]),
+            static_cast<unsigned char>(rgb[i + 2])};
+  }
+};
+
+// A binary PPM (P6, maxval 255); header comments are skipped.
+Image read_ppm(const std::string& path) {
+  const std::string data = read_file(path);
+  std::size_t at = 0;
+  const auto token = [&] {
+    for (;;) {
+      while (at < data.size() && std::isspace(static_cast<unsigned char>(data[at]))) ++at;
+      if (at >= data.size() || data[at] != '#') break;
+      while (at < data.size() && data[at] != '\n') ++at;
+    }
+    const std::size_t start = at;
+    while (at < data.size() && !std::isspace(static_cast<unsigned char>(data[at]))) ++at;
+    return data.substr(start, at - start);
+  };
+  Image image;
+  if (token() != "P6") return {};
+  image.width = std::atoi(token().c_str());
+  image.height = std::atoi(token().c_str());
+  if (token() != "255" || image.width <= 0 || image.height <= 0) return {};
+  image.rgb = data.substr(at + 1);
+  if (image.rgb.size() != 3u * image.width * image.height) return {};
+  return image;
+}
+
+// Renders PREFIX.pov at 160x120 and checks what it shows.
+void expect_framed_render(const Cluster& cluster, const ScratchDir& dir) {
+  const std::string povray = POVRAY_PATH;
+  ASSERT_FALSE(povray.empty() || povray.find("NOTFOUND") != std::string::npos)
+      << "POV-Ray is not installed: the README's setup command installs the povray package";
+  write_pov(cluster, dir / "scene");
+  const std::string command = "cd '" + dir.path().string() + "' && '" + povray +
+                              "' +Iscene.pov +Oscene.ppm +FP +W160 +H120 -D -V +A0.3 > povray.log 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << read_file(dir / "povray.log");
+  const Image image = read_ppm(dir / "scene.ppm");
+  ASSERT_EQ(image.width, 160) << "no image: " << read_file(dir / "povray.log");
+
+  const std::array<int, 3> background = image.at(0, 0);
+  int lit = 0, x0 = image.width, x1 = -1, y0 = image.height, y1 = -1;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const std::array<int, 3> p = image.at(x, y);
+      if (std::abs(p[0] - background[0]) + std::abs(p[1] - background[1]) + std::abs(p[2] - background[2]) < 60)
+        continue;
+      ++lit;
+      x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    }
+  EXPECT_GT(lit, image.width * image.height / 50) << "the image is (nearly) blank";
+  EXPECT_GT(x0, 0) << "cut at the left";
+  EXPECT_LT(x1, image.width - 1) << "cut at the right";
+  EXPECT_GT(y0, 0) << "cut at the top";
+  EXPECT_LT(y1, image.height - 1) << "cut at the bottom";
+  EXPECT_GT(std::max(x1 - x0, y1 - y0), image.height / 2) << "too small to see";
+}
+
+TEST(Render, PovRayShowsTheStructure3D) {
+  ScratchDir dir;
+  GrowthOptions o;
+  o.particles = 1500;
+  expect_framed_render(grow(o), dir);
+}
+
+TEST(Render, PovRayShowsTheStructurePlanar) {
+  ScratchDir dir;
+  GrowthOptions o;
+  o.particles = 1500;
+  o.dimensions = 2;
+  o.seeds = {Vec3(10, -5, 0)};
+  expect_framed_render(grow(o), dir);
+}
+
+}  // namespace
+}  // namespace dla
