@@ -1,16 +1,19 @@
 #pragma once
 //! \file grid_index.h
-//! The default nearest-particle look-up: a grid of cells two spacings wide, stored in blocks
-//! allocated where particles are, under a pyramid of coarser occupancy bits.
+//! The default nearest-particle look-up: a grid of cells four spacings wide, stored in blocks
+//! allocated where particles are, with an occupancy bit per cell and a pyramid of coarser
+//! occupancy bits above.
 //!
-//! Far from the structure a probe reads one bit per pyramid level and returns a lower bound
-//! on the distance (the walk only needs a ball free of particles); within a few spacings it
-//! scans the 27 cells around the point and returns the exact nearest particle. See
-//! docs/index.md for the layout and the measurements that made it the default.
+//! Within about eight spacings of the structure a probe returns the exact nearest particle,
+//! visiting occupied cells nearest first (the occupancy bits of a row of cells are read in one
+//! word). Farther out it reads one bit per pyramid level and returns a lower bound on the
+//! distance: the walk only needs a ball free of particles. See docs/index.md for the layout
+//! and the measurements that made it the default.
 
 #include "dla/errors.h"
 #include "dla/spatial_index.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -23,7 +26,7 @@ namespace dla {
 class GridIndex {
  public:
   GridIndex(const std::vector<Particle>& particles, double spacing, int dimensions)
-      : particles_(particles), cell_(2.0 * spacing), planar_(dimensions == 2) {}
+      : particles_(particles), cell_(4.0 * spacing), planar_(dimensions == 2) {}
 
   void insert(std::int32_t id) {
     const Vec3& p = particles_[static_cast<std::size_t>(id)].position;
@@ -41,41 +44,22 @@ class GridIndex {
 
   Probe probe(const Vec3& x) const {
     if (cells_ == 0) return {};
-    std::array<double, 3> f;  // position in fine cells from the domain's corner
-    std::array<int, 3> c;
+    std::array<double, 3> f{0.0, 0.0, 0.0};  // position in cells from the domain's corner
+    std::array<int, 3> c{0, 0, 0};
     for (int a = 0; a < axes(); ++a) {
       f[a] = (x[a] - origin_[a]) / cell_;
       if (!(f[a] >= 0.0 && f[a] < dims_[a])) return {-1, distance_to_domain(x)};
       c[a] = static_cast<int>(f[a]);
     }
-    if (planar_) c[2] = 0;
-
-    // The coarsest clear level around x bounds the distance by its cell size plus the
-    // distance from x to its own cell's faces.
+    // Around the coarsest level whose 3x3x3 block about x is empty, the distance to the
+    // nearest occupied cell bounds the distance; that beats what the exact search can promise.
     int clear = -1;
     for (int l = 0; l < static_cast<int>(levels_.size()); ++l) {
-      if (levels_[l].test(c, planar_)) break;
+      if (levels_[l].near.test(levels_[l].up(c, planar_))) break;
       clear = l;
     }
-    if (clear >= 0) {
-      const int shift = levels_[clear].shift;
-      return {-1, ((1 << shift) + face_margin(f, c, shift)) * cell_};
-    }
-
-    std::int32_t best = -1;
-    double best2 = std::numeric_limits<double>::infinity();
-    for_each_cell(c[0] - 1, c[0] + 1, c[1] - 1, c[1] + 1, planar_ ? 0 : c[2] - 1,
-                  planar_ ? 0 : c[2] + 1, [&](std::int32_t id) {
-                    const double d2 = (particles_[static_cast<std::size_t>(id)].position - x)
-                                          .squaredNorm();
-                    if (d2 < best2) {
-                      best2 = d2;
-                      best = id;
-                    }
-                  });
-    const double bound = (1.0 + face_margin(f, c, 0)) * cell_;
-    if (best >= 0 && best2 <= bound * bound) return {best, std::sqrt(best2)};
-    return {-1, bound};
+    if (clear >= 0) return {-1, clearance(levels_[clear], x, f, c)};
+    return nearest_in_rings(x, f, c);
   }
 
   template <class Visit>
@@ -90,56 +74,189 @@ class GridIndex {
       hi[a] = static_cast<int>(std::min(to, dims_[a] - 1.0));
     }
     const double r2 = radius * radius;
-    for_each_cell(lo[0], hi[0], lo[1], hi[1], lo[2], hi[2], [&](std::int32_t id) {
-      const double d2 = (particles_[static_cast<std::size_t>(id)].position - x).squaredNorm();
-      if (d2 <= r2) visit(id, d2);
-    });
+    for (int z = lo[2]; z <= hi[2]; ++z)
+      for (int y = lo[1]; y <= hi[1]; ++y)
+        for (int xx = lo[0]; xx <= hi[0]; ++xx)
+          for_each_in_cell({xx, y, z}, [&](std::int32_t id) {
+            const double d2 = (position(id) - x).squaredNorm();
+            if (d2 <= r2) visit(id, d2);
+          });
   }
 
-  //! Bytes held by the grid (cells, blocks and pyramid), for bench/.
+  //! Bytes held by the grid (cells, blocks, occupancy bits), for bench/.
   std::size_t memory_bytes() const {
     std::size_t bytes = (block_of_.capacity() + heads_.capacity() + next_.capacity()) * 4;
-    for (const Level& level : levels_) bytes += level.bits.capacity() * 8;
+    bytes += occupied_.words.capacity() * 8;
+    for (const Level& level : levels_) bytes += (level.near.words.capacity() + level.occupied.words.capacity()) * 8;
     return bytes;
   }
 
  private:
   static constexpr int kBlockShift = 3;                   // blocks of 8 cells a side
-  static constexpr int kMaxCells = 2048;                  // cells a side at most
+  static constexpr int kMaxCells = 1024;                  // cells a side at most
   static constexpr std::size_t kMaxLevelWords = 1 << 22;  // 32 MiB; finer levels are skipped
 
-  //! One pyramid level: cells of 2^shift fine cells a side; a bit is set when a particle lies
-  //! in the cell or one of its 26 neighbours, so one bit answers "is the 3x3x3 block empty".
-  struct Level {
-    int shift;
-    std::array<int, 3> dims;
-    std::vector<std::uint64_t> bits;
+  using Cell = std::array<int, 3>;
 
-    std::size_t bit(const std::array<int, 3>& c) const {
+  //! One bit per cell of a box of cells, x fastest.
+  struct BitGrid {
+    Cell dims{0, 0, 0};
+    std::vector<std::uint64_t> words;
+
+    void reset(const Cell& size) {
+      dims = size;
+      words.assign((static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] + 63) / 64, 0);
+    }
+    std::size_t bit(const Cell& c) const {
       return (static_cast<std::size_t>(c[2]) * dims[1] + c[1]) * dims[0] + c[0];
     }
-    bool test(const std::array<int, 3>& fine, bool planar) const {
-      const std::array<int, 3> c{fine[0] >> shift, fine[1] >> shift, planar ? 0 : fine[2] >> shift};
+    bool test(const Cell& c) const {
       const std::size_t b = bit(c);
-      return (bits[b >> 6] >> (b & 63)) & 1u;
+      return (words[b >> 6] >> (b & 63)) & 1u;
     }
-    void mark(const std::array<int, 3>& fine, bool planar) {
-      const std::array<int, 3> c{fine[0] >> shift, fine[1] >> shift, planar ? 0 : fine[2] >> shift};
+    void set(const Cell& c) {
+      const std::size_t b = bit(c);
+      words[b >> 6] |= std::uint64_t{1} << (b & 63);
+    }
+    //! The bits of `length` (< 64) cells from `first` along x, lowest bit first.
+    std::uint64_t row(const Cell& first, int length) const {
+      const std::size_t b = bit(first);
+      const std::size_t word = b >> 6, offset = b & 63;
+      std::uint64_t bits = words[word] >> offset;
+      if (offset + static_cast<std::size_t>(length) > 64 && word + 1 < words.size())
+        bits |= words[word + 1] << (64 - offset);
+      return bits & ((std::uint64_t{1} << length) - 1);
+    }
+  };
+
+  //! One pyramid level: cells of 2^shift cells a side. `near` has a bit set when a particle
+  //! lies in the cell or one of its 26 neighbours, so one bit answers "is the 3x3x3 block
+  //! empty"; `occupied` marks the cells that hold particles.
+  struct Level {
+    int shift;
+    BitGrid near, occupied;
+
+    Cell up(const Cell& cell, bool planar) const {
+      return {cell[0] >> shift, cell[1] >> shift, planar ? 0 : cell[2] >> shift};
+    }
+    void mark(const Cell& cell, bool planar) {
+      const Cell c = up(cell, planar);
+      occupied.set(c);
       const int dz = planar ? 0 : 1;
-      for (int z = std::max(c[2] - dz, 0); z <= std::min(c[2] + dz, dims[2] - 1); ++z)
-        for (int y = std::max(c[1] - 1, 0); y <= std::min(c[1] + 1, dims[1] - 1); ++y)
-          for (int x = std::max(c[0] - 1, 0); x <= std::min(c[0] + 1, dims[0] - 1); ++x) {
-            const std::size_t b = bit({x, y, z});
-            bits[b >> 6] |= std::uint64_t{1} << (b & 63);
-          }
+      for (int z = std::max(c[2] - dz, 0); z <= std::min(c[2] + dz, near.dims[2] - 1); ++z)
+        for (int y = std::max(c[1] - 1, 0); y <= std::min(c[1] + 1, near.dims[1] - 1); ++y)
+          for (int x = std::max(c[0] - 1, 0); x <= std::min(c[0] + 1, near.dims[0] - 1); ++x)
+            near.set({x, y, z});
     }
+  };
+
+  //! An occupied cell near the query and the distance from the query to its box.
+  struct Candidate {
+    double gap2;
+    Cell cell;
   };
 
   int axes() const { return planar_ ? 2 : 3; }
 
-  //! Distance from fractional cell position f to the faces of its cell at level `shift`, in
-  //! fine cells.
-  double face_margin(const std::array<double, 3>& f, const std::array<int, 3>& c, int shift) const {
+  //! Squared gap along each axis from x to the cells at offsets -2..2 from `home`, cells of
+  //! `size`; index [axis][offset + 2]. A cell's squared distance to x is the sum over axes.
+  std::array<std::array<double, 5>, 3> axis_gaps(const Vec3& x, const Cell& home, double size) const {
+    std::array<std::array<double, 5>, 3> gaps{};
+    for (int a = 0; a < axes(); ++a)
+      for (int o = -2; o <= 2; ++o) {
+        const double lo = origin_[a] + (home[a] + o) * size;
+        const double gap = std::max({lo - x[a], x[a] - lo - size, 0.0});
+        gaps[a][o + 2] = gap * gap;
+      }
+    return gaps;
+  }
+  const Vec3& position(std::int32_t id) const { return particles_[static_cast<std::size_t>(id)].position; }
+
+  //! The nearest particle, exact when it lies within about one cell of x's cell. The
+  //! particles of the 3x3x3 block of cells about x are searched, nearest ring first, from
+  //! occupied cells read a row at a time from the occupancy bits. Then the rows of the outer
+  //! ring of the 5x5x5 block that could hold something nearer are read, as a bound only: the
+  //! answer is exact when the best particle is nearer than every outer occupied cell and the
+  //! block's boundary, else that distance is the bound.
+  Probe nearest_in_rings(const Vec3& x, const std::array<double, 3>& f, const Cell& c) const {
+    const auto gaps = axis_gaps(x, c, cell_);
+    const int dz = planar_ ? 0 : 1;
+    std::array<std::array<Candidate, 27>, 2> rings;  // occupied cells of rings 0 and 1
+    std::array<std::size_t, 2> counts{0, 0};
+    const int x0 = std::max(c[0] - 1, 0), x1 = std::min(c[0] + 1, dims_[0] - 1);
+    for (int z = std::max(c[2] - dz, 0); z <= std::min(c[2] + dz, dims_[2] - 1); ++z)
+      for (int y = std::max(c[1] - 1, 0); y <= std::min(c[1] + 1, dims_[1] - 1); ++y) {
+        const double gap2_yz = gaps[1][y - c[1] + 2] + gaps[2][z - c[2] + 2];
+        const bool off_axis = y != c[1] || z != c[2];
+        for (std::uint64_t row = occupied_.row({x0, y, z}, x1 - x0 + 1); row; row &= row - 1) {
+          const int cx = x0 + __builtin_ctzll(row);
+          const int ring = off_axis || cx != c[0];
+          rings[ring][counts[ring]++] = {gap2_yz + gaps[0][cx - c[0] + 2], {cx, y, z}};
+        }
+      }
+    const double margin = face_margin(f, c, 0);
+    std::int32_t best = -1;
+    double best2 = std::numeric_limits<double>::infinity();
+    for (int ring = 0; ring < 2; ++ring) {
+      const double reach = ring == 0 ? 0.0 : margin * cell_;  // nearest ring 1 gets
+      if (reach * reach >= best2) break;
+      for (std::size_t i = 0; i < counts[ring]; ++i) {
+        if (rings[ring][i].gap2 >= best2) continue;
+        for_each_in_cell(rings[ring][i].cell, [&](std::int32_t id) {
+          const double d2 = (position(id) - x).squaredNorm();
+          if (d2 < best2) {
+            best2 = d2;
+            best = id;
+          }
+        });
+      }
+    }
+
+    double beyond2 = (2.0 + margin) * cell_;  // nearest anything outside the 5x5x5 block gets
+    beyond2 *= beyond2;
+    const int reach_z = planar_ ? 0 : 2;
+    const int ox0 = std::max(c[0] - 2, 0), ox1 = std::min(c[0] + 2, dims_[0] - 1);
+    for (int z = std::max(c[2] - reach_z, 0); z <= std::min(c[2] + reach_z, dims_[2] - 1); ++z)
+      for (int y = std::max(c[1] - 2, 0); y <= std::min(c[1] + 2, dims_[1] - 1); ++y) {
+        const double gap2_yz = gaps[1][y - c[1] + 2] + gaps[2][z - c[2] + 2];
+        if (gap2_yz >= std::min(best2, beyond2)) continue;  // nothing in this row can matter
+        std::uint64_t row = occupied_.row({ox0, y, z}, ox1 - ox0 + 1);
+        if (std::abs(y - c[1]) <= 1 && std::abs(z - c[2]) <= 1)  // inner row: only its two ends
+          row &= ~(std::uint64_t{7} << (std::max(c[0] - 1, 0) - ox0));
+        for (; row; row &= row - 1)
+          beyond2 = std::min(beyond2, gap2_yz + gaps[0][ox0 + __builtin_ctzll(row) - c[0] + 2]);
+      }
+    if (best >= 0 && best2 <= beyond2) return {best, std::sqrt(best2)};
+    return {-1, std::sqrt(std::min(best2, beyond2))};
+  }
+
+  //! A lower bound on the distance from x to any particle, knowing that the 3x3x3 block of
+  //! `level` cells about x holds none: the distance from x to the nearest occupied cell of the
+  //! 5x5x5 block, or to the block's boundary if it has none.
+  double clearance(const Level& level, const Vec3& x, const std::array<double, 3>& f, const Cell& c) const {
+    const Cell home = level.up(c, planar_);
+    const double size = cell_ * (1 << level.shift);
+    double best2 = (2.0 * (1 << level.shift) + face_margin(f, c, level.shift)) * cell_;
+    best2 *= best2;
+    const Cell& dims = level.occupied.dims;
+    const auto gaps = axis_gaps(x, home, size);
+    const int x0 = std::max(home[0] - 2, 0), x1 = std::min(home[0] + 2, dims[0] - 1);
+    const int reach_z = planar_ ? 0 : 2;
+    for (int z = std::max(home[2] - reach_z, 0); z <= std::min(home[2] + reach_z, dims[2] - 1); ++z)
+      for (int y = std::max(home[1] - 2, 0); y <= std::min(home[1] + 2, dims[1] - 1); ++y) {
+        const double gap2_yz = gaps[1][y - home[1] + 2] + gaps[2][z - home[2] + 2];
+        if (gap2_yz >= best2) continue;
+        std::uint64_t row = level.occupied.row({x0, y, z}, x1 - x0 + 1);
+        while (row) {
+          best2 = std::min(best2, gap2_yz + gaps[0][x0 + __builtin_ctzll(row) - home[0] + 2]);
+          row &= row - 1;
+        }
+      }
+    return std::sqrt(best2);
+  }
+
+  //! Distance from fractional cell position f to the faces of its cell at level `shift`, in cells.
+  double face_margin(const std::array<double, 3>& f, const Cell& c, int shift) const {
     double margin = std::numeric_limits<double>::infinity();
     for (int a = 0; a < axes(); ++a) {
       const double lo = static_cast<double>((c[a] >> shift) << shift);
@@ -167,7 +284,7 @@ class GridIndex {
 
   void start(const Vec3& center, double radius) {
     center_ = center;
-    cells_ = 64;
+    cells_ = 32;
     while (cells_ < kMaxCells && cells_ * cell_ < 2.0 * radius + 4.0 * cell_) cells_ *= 2;
     rebuild();
   }
@@ -183,28 +300,27 @@ class GridIndex {
   }
 
   void rebuild() {
-    const int depth = planar_ ? 1 : cells_;
-    dims_ = {cells_, cells_, depth};
+    dims_ = {cells_, cells_, planar_ ? 1 : cells_};
     origin_ = center_ - Vec3::Constant(0.5 * cells_ * cell_);
     if (planar_) origin_.z() = center_.z() - 0.5 * cell_;
-    block_dims_ = {cells_ >> kBlockShift, cells_ >> kBlockShift,
-                   planar_ ? 1 : cells_ >> kBlockShift};
+    block_dims_ = {cells_ >> kBlockShift, cells_ >> kBlockShift, planar_ ? 1 : cells_ >> kBlockShift};
     block_of_.assign(static_cast<std::size_t>(block_dims_[0]) * block_dims_[1] * block_dims_[2], -1);
     heads_.clear();
+    occupied_.reset(dims_);
     levels_.clear();
     for (int shift = 1; (cells_ >> shift) >= 4; ++shift) {
-      Level level{shift, {cells_ >> shift, cells_ >> shift, planar_ ? 1 : cells_ >> shift}, {}};
-      const std::size_t words =
-          (static_cast<std::size_t>(level.dims[0]) * level.dims[1] * level.dims[2] + 63) / 64;
-      if (words > kMaxLevelWords) continue;
-      level.bits.assign(words, 0);
+      const Cell dims{cells_ >> shift, cells_ >> shift, planar_ ? 1 : cells_ >> shift};
+      if (static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] / 64 > kMaxLevelWords) continue;
+      Level level{shift, {}, {}};
+      level.near.reset(dims);
+      level.occupied.reset(dims);
       levels_.push_back(std::move(level));
     }
     for (std::int32_t id = 0; id < inserted_; ++id) place(id);
   }
 
-  std::array<int, 3> cell_of(const Vec3& p) const {
-    std::array<int, 3> c{0, 0, 0};
+  Cell cell_of(const Vec3& p) const {
+    Cell c{0, 0, 0};
     for (int a = 0; a < axes(); ++a)
       c[a] = std::min(static_cast<int>((p[a] - origin_[a]) / cell_), dims_[a] - 1);
     return c;
@@ -212,60 +328,53 @@ class GridIndex {
 
   int block_cells() const { return planar_ ? 64 : 512; }
 
-  std::size_t slot_of(const std::array<int, 3>& c) const {
-    const std::size_t block =
-        (static_cast<std::size_t>(c[2] >> kBlockShift) * block_dims_[1] + (c[1] >> kBlockShift)) *
-            block_dims_[0] +
-        (c[0] >> kBlockShift);
-    const std::int32_t b = block_of_[block];
-    if (b < 0) return std::numeric_limits<std::size_t>::max();
+  std::size_t block_of(const Cell& c) const {
+    return (static_cast<std::size_t>(c[2] >> kBlockShift) * block_dims_[1] + (c[1] >> kBlockShift)) *
+               block_dims_[0] +
+           (c[0] >> kBlockShift);
+  }
+
+  //! Where a cell's list head lives in heads_; the cell's block must exist.
+  std::size_t slot_of(const Cell& c, std::int32_t block) const {
     const int m = (1 << kBlockShift) - 1;
-    return static_cast<std::size_t>(b) * block_cells() +
+    return static_cast<std::size_t>(block) * block_cells() +
            (((c[2] & m) << kBlockShift | (c[1] & m)) << kBlockShift | (c[0] & m));
   }
 
+  template <class Visit>
+  void for_each_in_cell(const Cell& c, Visit&& visit) const {
+    const std::int32_t block = block_of_[block_of(c)];
+    if (block < 0) return;
+    for (std::int32_t id = heads_[slot_of(c, block)]; id >= 0; id = next_[static_cast<std::size_t>(id)])
+      visit(id);
+  }
+
   void place(std::int32_t id) {
-    const std::array<int, 3> c = cell_of(particles_[static_cast<std::size_t>(id)].position);
-    std::size_t slot = slot_of(c);
-    if (slot == std::numeric_limits<std::size_t>::max()) {
-      const std::size_t block =
-          (static_cast<std::size_t>(c[2] >> kBlockShift) * block_dims_[1] + (c[1] >> kBlockShift)) *
-              block_dims_[0] +
-          (c[0] >> kBlockShift);
-      block_of_[block] = static_cast<std::int32_t>(heads_.size() / block_cells());
+    const Cell c = cell_of(position(id));
+    std::int32_t& block = block_of_[block_of(c)];
+    if (block < 0) {
+      block = static_cast<std::int32_t>(heads_.size() / block_cells());
       heads_.resize(heads_.size() + block_cells(), -1);
-      slot = slot_of(c);
     }
+    const std::size_t slot = slot_of(c, block);
     next_[static_cast<std::size_t>(id)] = heads_[slot];
     heads_[slot] = id;
+    occupied_.set(c);
     for (Level& level : levels_) level.mark(c, planar_);
   }
 
-  template <class Visit>
-  void for_each_cell(int x0, int x1, int y0, int y1, int z0, int z1, Visit&& visit) const {
-    x0 = std::max(x0, 0), y0 = std::max(y0, 0), z0 = std::max(z0, 0);
-    x1 = std::min(x1, dims_[0] - 1), y1 = std::min(y1, dims_[1] - 1), z1 = std::min(z1, dims_[2] - 1);
-    for (int z = z0; z <= z1; ++z)
-      for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x) {
-          const std::size_t slot = slot_of({x, y, z});
-          if (slot == std::numeric_limits<std::size_t>::max()) continue;
-          for (std::int32_t id = heads_[slot]; id >= 0; id = next_[static_cast<std::size_t>(id)])
-            visit(id);
-        }
-  }
-
   const std::vector<Particle>& particles_;
-  double cell_;  // fine cell edge: two spacings, so 27 cells hold every particle within 2 spacings
+  double cell_;  // cell edge: four spacings
   bool planar_;
   Vec3 center_ = Vec3::Zero();
   Vec3 origin_ = Vec3::Zero();
-  int cells_ = 0;  // fine cells a side (z is one cell when planar); 0 until the first use
-  std::array<int, 3> dims_{0, 0, 0};
-  std::array<int, 3> block_dims_{0, 0, 0};
+  int cells_ = 0;  // cells a side (z is one cell when planar); 0 until the first use
+  Cell dims_{0, 0, 0};
+  Cell block_dims_{0, 0, 0};
   std::vector<std::int32_t> block_of_;  // block table: block number, or -1 while empty
   std::vector<std::int32_t> heads_;     // per cell of every block: first particle, or -1
   std::vector<std::int32_t> next_;      // per particle: next particle in its cell, or -1
+  BitGrid occupied_;                    // per cell: holds a particle
   std::vector<Level> levels_;           // finest first
   std::int32_t inserted_ = 0;
 };
