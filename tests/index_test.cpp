@@ -91,10 +91,15 @@ TEST(GridIndex, EmptyIndexKnowsNothing) {
 }
 
 TEST(GridIndex, FarQueriesGetLargeBounds) {
-  // A bound that stays tiny far away would make every walk crawl.
+  // A bound that stays tiny far away would make every walk crawl. The coarsest clear level's
+  // cell size S bounds the distance, and the next level is not clear, so the particle is
+  // within 4 sqrt(3) S < 8 S: the bound is at least an eighth of the true distance.
   std::vector<dla::Particle> store{{dla::Vec3::Zero(), -1, 0}};
   dla::GridIndex grid(store, 1.0, 3);
   grid.insert(0);
   grid.cover(dla::Vec3::Zero(), 200.0);
-  EXPECT_GT(grid.probe(dla::Vec3(150, 0, 0)).distance, 40.0);
+  for (double r : {30.0, 77.0, 150.0, 190.0}) {
+    EXPECT_GE(grid.probe(dla::Vec3(r, 0, 0)).distance, r / 8) << r;
+    EXPECT_GE(grid.probe(dla::Vec3(0.6 * r, -0.8 * r, 0)).distance, r / 8) << r;
+  }
 }

@@ -1,13 +1,14 @@
 #pragma once
 //! \file grid_index.h
-//! The default nearest-particle look-up: a grid of cells four spacings wide, stored in blocks
+//! The default nearest-particle look-up: a grid of cells five spacings wide, stored in blocks
 //! allocated where particles are, with an occupancy bit per cell and a pyramid of coarser
 //! occupancy bits above.
 //!
-//! Within about eight spacings of the structure a probe returns the exact nearest particle,
-//! visiting occupied cells nearest first (the occupancy bits of a row of cells are read in one
-//! word). Farther out it reads one bit per pyramid level and returns a lower bound on the
-//! distance: the walk only needs a ball free of particles. See docs/index.md for the layout
+//! Within about five spacings of the structure a probe returns the exact nearest particle,
+//! visiting the occupied cells of the 3x3x3 block about the point nearest first (the occupancy
+//! bits of a row of cells are read in one load). Farther out it reads one bit per pyramid
+//! level and returns a lower bound on the distance: the walk only needs a ball free of
+//! particles. See docs/index.md for the layout
 //! and the measurements that made it the default.
 
 #include "dla/errors.h"
@@ -17,6 +18,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -26,7 +28,7 @@ namespace dla {
 class GridIndex {
  public:
   GridIndex(const std::vector<Particle>& particles, double spacing, int dimensions)
-      : particles_(particles), cell_(4.0 * spacing), planar_(dimensions == 2) {}
+      : particles_(particles), cell_(5.0 * spacing), planar_(dimensions == 2) {}
 
   void insert(std::int32_t id) {
     const Vec3& p = particles_[static_cast<std::size_t>(id)].position;
@@ -51,15 +53,19 @@ class GridIndex {
       if (!(f[a] >= 0.0 && f[a] < dims_[a])) return {-1, distance_to_domain(x)};
       c[a] = static_cast<int>(f[a]);
     }
-    // Around the coarsest level whose 3x3x3 block about x is empty, the distance to the
-    // nearest occupied cell bounds the distance; that beats what the exact search can promise.
+    // The coarsest level whose 3x3x3 block about x is empty bounds the distance by its cell
+    // size plus x's distance to its own cell's faces; that beats what the block search can
+    // promise.
     int clear = -1;
     for (int l = 0; l < static_cast<int>(levels_.size()); ++l) {
       if (levels_[l].near.test(levels_[l].up(c, planar_))) break;
       clear = l;
     }
-    if (clear >= 0) return {-1, clearance(levels_[clear], x, f, c)};
-    return nearest_in_rings(x, f, c);
+    if (clear >= 0) {
+      const int shift = levels_[clear].shift;
+      return {-1, ((1 << shift) + face_margin(f, c, shift)) * cell_};
+    }
+    return nearest_in_block(x, f, c);
   }
 
   template <class Visit>
@@ -87,7 +93,7 @@ class GridIndex {
   std::size_t memory_bytes() const {
     std::size_t bytes = (block_of_.capacity() + heads_.capacity() + next_.capacity()) * 4;
     bytes += occupied_.words.capacity() * 8;
-    for (const Level& level : levels_) bytes += (level.near.words.capacity() + level.occupied.words.capacity()) * 8;
+    for (const Level& level : levels_) bytes += level.near.words.capacity() * 8;
     return bytes;
   }
 
@@ -105,7 +111,7 @@ class GridIndex {
 
     void reset(const Cell& size) {
       dims = size;
-      words.assign((static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] + 63) / 64, 0);
+      words.assign((static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] + 63) / 64 + 1, 0);
     }
     std::size_t bit(const Cell& c) const {
       return (static_cast<std::size_t>(c[2]) * dims[1] + c[1]) * dims[0] + c[0];
@@ -118,30 +124,28 @@ class GridIndex {
       const std::size_t b = bit(c);
       words[b >> 6] |= std::uint64_t{1} << (b & 63);
     }
-    //! The bits of `length` (< 64) cells from `first` along x, lowest bit first.
+    //! The bits of `length` (<= 56) cells from `first` along x, lowest bit first: one
+    //! unaligned load (the words are padded so it never reads past the end).
     std::uint64_t row(const Cell& first, int length) const {
       const std::size_t b = bit(first);
-      const std::size_t word = b >> 6, offset = b & 63;
-      std::uint64_t bits = words[word] >> offset;
-      if (offset + static_cast<std::size_t>(length) > 64 && word + 1 < words.size())
-        bits |= words[word + 1] << (64 - offset);
-      return bits & ((std::uint64_t{1} << length) - 1);
+      std::uint64_t bits;
+      std::memcpy(&bits, reinterpret_cast<const unsigned char*>(words.data()) + (b >> 3), sizeof bits);
+      return (bits >> (b & 7)) & ((std::uint64_t{1} << length) - 1);
     }
   };
 
   //! One pyramid level: cells of 2^shift cells a side. `near` has a bit set when a particle
   //! lies in the cell or one of its 26 neighbours, so one bit answers "is the 3x3x3 block
-  //! empty"; `occupied` marks the cells that hold particles.
+  //! empty".
   struct Level {
     int shift;
-    BitGrid near, occupied;
+    BitGrid near;
 
     Cell up(const Cell& cell, bool planar) const {
       return {cell[0] >> shift, cell[1] >> shift, planar ? 0 : cell[2] >> shift};
     }
     void mark(const Cell& cell, bool planar) {
       const Cell c = up(cell, planar);
-      occupied.set(c);
       const int dz = planar ? 0 : 1;
       for (int z = std::max(c[2] - dz, 0); z <= std::min(c[2] + dz, near.dims[2] - 1); ++z)
         for (int y = std::max(c[1] - 1, 0); y <= std::min(c[1] + 1, near.dims[1] - 1); ++y)
@@ -157,48 +161,45 @@ class GridIndex {
   };
 
   int axes() const { return planar_ ? 2 : 3; }
+  const Vec3& position(std::int32_t id) const { return particles_[static_cast<std::size_t>(id)].position; }
 
-  //! Squared gap along each axis from x to the cells at offsets -2..2 from `home`, cells of
-  //! `size`; index [axis][offset + 2]. A cell's squared distance to x is the sum over axes.
-  std::array<std::array<double, 5>, 3> axis_gaps(const Vec3& x, const Cell& home, double size) const {
-    std::array<std::array<double, 5>, 3> gaps{};
+  //! Squared gap along each axis from x to the cells at offsets -1..1 from `home`;
+  //! index [axis][offset + 1]. A cell's squared distance to x is the sum over axes.
+  std::array<std::array<double, 3>, 3> axis_gaps(const Vec3& x, const Cell& home) const {
+    std::array<std::array<double, 3>, 3> gaps{};
     for (int a = 0; a < axes(); ++a)
-      for (int o = -2; o <= 2; ++o) {
-        const double lo = origin_[a] + (home[a] + o) * size;
-        const double gap = std::max({lo - x[a], x[a] - lo - size, 0.0});
-        gaps[a][o + 2] = gap * gap;
+      for (int o = -1; o <= 1; ++o) {
+        const double lo = origin_[a] + (home[a] + o) * cell_;
+        const double gap = std::max({lo - x[a], x[a] - lo - cell_, 0.0});
+        gaps[a][o + 1] = gap * gap;
       }
     return gaps;
   }
-  const Vec3& position(std::int32_t id) const { return particles_[static_cast<std::size_t>(id)].position; }
 
-  //! The nearest particle, exact when it lies within about one cell of x's cell. The
-  //! particles of the 3x3x3 block of cells about x are searched, nearest ring first, from
-  //! occupied cells read a row at a time from the occupancy bits. Then the rows of the outer
-  //! ring of the 5x5x5 block that could hold something nearer are read, as a bound only: the
-  //! answer is exact when the best particle is nearer than every outer occupied cell and the
-  //! block's boundary, else that distance is the bound.
-  Probe nearest_in_rings(const Vec3& x, const std::array<double, 3>& f, const Cell& c) const {
-    const auto gaps = axis_gaps(x, c, cell_);
+  //! The nearest particle if it lies within the 3x3x3 block of cells about x and nearer than
+  //! the block's boundary, else the distance to that boundary as a bound. Occupied cells are
+  //! read a row at a time from the occupancy bits and searched nearest ring first.
+  Probe nearest_in_block(const Vec3& x, const std::array<double, 3>& f, const Cell& c) const {
+    const auto gaps = axis_gaps(x, c);
     const int dz = planar_ ? 0 : 1;
-    std::array<std::array<Candidate, 27>, 2> rings;  // occupied cells of rings 0 and 1
+    std::array<std::array<Candidate, 27>, 2> rings;  // occupied cells: x's own, the 26 around
     std::array<std::size_t, 2> counts{0, 0};
     const int x0 = std::max(c[0] - 1, 0), x1 = std::min(c[0] + 1, dims_[0] - 1);
     for (int z = std::max(c[2] - dz, 0); z <= std::min(c[2] + dz, dims_[2] - 1); ++z)
       for (int y = std::max(c[1] - 1, 0); y <= std::min(c[1] + 1, dims_[1] - 1); ++y) {
-        const double gap2_yz = gaps[1][y - c[1] + 2] + gaps[2][z - c[2] + 2];
+        const double gap2_yz = gaps[1][y - c[1] + 1] + gaps[2][z - c[2] + 1];
         const bool off_axis = y != c[1] || z != c[2];
         for (std::uint64_t row = occupied_.row({x0, y, z}, x1 - x0 + 1); row; row &= row - 1) {
           const int cx = x0 + __builtin_ctzll(row);
           const int ring = off_axis || cx != c[0];
-          rings[ring][counts[ring]++] = {gap2_yz + gaps[0][cx - c[0] + 2], {cx, y, z}};
+          rings[ring][counts[ring]++] = {gap2_yz + gaps[0][cx - c[0] + 1], {cx, y, z}};
         }
       }
     const double margin = face_margin(f, c, 0);
     std::int32_t best = -1;
     double best2 = std::numeric_limits<double>::infinity();
     for (int ring = 0; ring < 2; ++ring) {
-      const double reach = ring == 0 ? 0.0 : margin * cell_;  // nearest ring 1 gets
+      const double reach = ring == 0 ? 0.0 : margin * cell_;  // nearest the 26 around get
       if (reach * reach >= best2) break;
       for (std::size_t i = 0; i < counts[ring]; ++i) {
         if (rings[ring][i].gap2 >= best2) continue;
@@ -211,48 +212,9 @@ class GridIndex {
         });
       }
     }
-
-    double beyond2 = (2.0 + margin) * cell_;  // nearest anything outside the 5x5x5 block gets
-    beyond2 *= beyond2;
-    const int reach_z = planar_ ? 0 : 2;
-    const int ox0 = std::max(c[0] - 2, 0), ox1 = std::min(c[0] + 2, dims_[0] - 1);
-    for (int z = std::max(c[2] - reach_z, 0); z <= std::min(c[2] + reach_z, dims_[2] - 1); ++z)
-      for (int y = std::max(c[1] - 2, 0); y <= std::min(c[1] + 2, dims_[1] - 1); ++y) {
-        const double gap2_yz = gaps[1][y - c[1] + 2] + gaps[2][z - c[2] + 2];
-        if (gap2_yz >= std::min(best2, beyond2)) continue;  // nothing in this row can matter
-        std::uint64_t row = occupied_.row({ox0, y, z}, ox1 - ox0 + 1);
-        if (std::abs(y - c[1]) <= 1 && std::abs(z - c[2]) <= 1)  // inner row: only its two ends
-          row &= ~(std::uint64_t{7} << (std::max(c[0] - 1, 0) - ox0));
-        for (; row; row &= row - 1)
-          beyond2 = std::min(beyond2, gap2_yz + gaps[0][ox0 + __builtin_ctzll(row) - c[0] + 2]);
-      }
-    if (best >= 0 && best2 <= beyond2) return {best, std::sqrt(best2)};
-    return {-1, std::sqrt(std::min(best2, beyond2))};
-  }
-
-  //! A lower bound on the distance from x to any particle, knowing that the 3x3x3 block of
-  //! `level` cells about x holds none: the distance from x to the nearest occupied cell of the
-  //! 5x5x5 block, or to the block's boundary if it has none.
-  double clearance(const Level& level, const Vec3& x, const std::array<double, 3>& f, const Cell& c) const {
-    const Cell home = level.up(c, planar_);
-    const double size = cell_ * (1 << level.shift);
-    double best2 = (2.0 * (1 << level.shift) + face_margin(f, c, level.shift)) * cell_;
-    best2 *= best2;
-    const Cell& dims = level.occupied.dims;
-    const auto gaps = axis_gaps(x, home, size);
-    const int x0 = std::max(home[0] - 2, 0), x1 = std::min(home[0] + 2, dims[0] - 1);
-    const int reach_z = planar_ ? 0 : 2;
-    for (int z = std::max(home[2] - reach_z, 0); z <= std::min(home[2] + reach_z, dims[2] - 1); ++z)
-      for (int y = std::max(home[1] - 2, 0); y <= std::min(home[1] + 2, dims[1] - 1); ++y) {
-        const double gap2_yz = gaps[1][y - home[1] + 2] + gaps[2][z - home[2] + 2];
-        if (gap2_yz >= best2) continue;
-        std::uint64_t row = level.occupied.row({x0, y, z}, x1 - x0 + 1);
-        while (row) {
-          best2 = std::min(best2, gap2_yz + gaps[0][x0 + __builtin_ctzll(row) - home[0] + 2]);
-          row &= row - 1;
-        }
-      }
-    return std::sqrt(best2);
+    const double boundary = (1.0 + margin) * cell_;
+    if (best >= 0 && best2 <= boundary * boundary) return {best, std::sqrt(best2)};
+    return {-1, boundary};
   }
 
   //! Distance from fractional cell position f to the faces of its cell at level `shift`, in cells.
@@ -311,9 +273,8 @@ class GridIndex {
     for (int shift = 1; (cells_ >> shift) >= 4; ++shift) {
       const Cell dims{cells_ >> shift, cells_ >> shift, planar_ ? 1 : cells_ >> shift};
       if (static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] / 64 > kMaxLevelWords) continue;
-      Level level{shift, {}, {}};
+      Level level{shift, {}};
       level.near.reset(dims);
-      level.occupied.reset(dims);
       levels_.push_back(std::move(level));
     }
     for (std::int32_t id = 0; id < inserted_; ++id) place(id);
@@ -364,7 +325,7 @@ class GridIndex {
   }
 
   const std::vector<Particle>& particles_;
-  double cell_;  // cell edge: four spacings
+  double cell_;  // cell edge: five spacings (measured best of 4, 4.5, 5, 6 and 8)
   bool planar_;
   Vec3 center_ = Vec3::Zero();
   Vec3 origin_ = Vec3::Zero();
