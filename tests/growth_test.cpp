@@ -47,6 +47,12 @@ void expect_valid_tree(const Cluster& c, const GrowthOptions& o) {
   EXPECT_GE(closest, o.spacing * (1 - 1e-9)) << "two particles overlap";
 }
 
+double mean_z(const Cluster& c) {
+  double sum = 0.0;
+  for (const Particle& p : c.particles) sum += p.position.z();
+  return sum / static_cast<double>(c.particles.size());
+}
+
 GrowthOptions small(std::size_t n = 3000) {
   GrowthOptions o;
   o.particles = n;
@@ -88,9 +94,7 @@ TEST(Growth, DiskSpawnGrowsTowardsTheDisk) {
   o.spawn_axis = Axis::z;
   const Cluster c = grow(o);
   expect_valid_tree(c, o);
-  double mean_z = 0.0;
-  for (const Particle& p : c.particles) mean_z += p.position.z() / c.particles.size();
-  EXPECT_GT(mean_z, 0.3 * radius_of_gyration(c));
+  EXPECT_GT(mean_z(c), 0.3 * radius_of_gyration(c));
 }
 
 TEST(Growth, DriftBiasesGrowthAgainstIt) {
@@ -99,9 +103,7 @@ TEST(Growth, DriftBiasesGrowthAgainstIt) {
   o.drift = Vec3(0, 0, -0.5);
   const Cluster c = grow(o);
   expect_valid_tree(c, o);
-  double mean_z = 0.0;
-  for (const Particle& p : c.particles) mean_z += p.position.z() / c.particles.size();
-  EXPECT_GT(mean_z, 0.3 * radius_of_gyration(c));
+  EXPECT_GT(mean_z(c), 0.3 * radius_of_gyration(c));
 }
 
 TEST(Growth, BoxSpawn) {
