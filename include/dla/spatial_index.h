@@ -21,6 +21,7 @@
 
 #include "dla/cluster.h"
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <vector>
