@@ -56,7 +56,7 @@ void write_run_report(const Cluster& cluster, const GrowthOptions& o, const PovO
   out.integer(static_cast<long long>(cluster.particles.size())) << ",\n    \"seeds\": ";
   out.integer(static_cast<long long>(cluster.seed_count)) << ",\n    \"attached\": ";
   out.integer(static_cast<long long>(attached)) << ",\n    \"strands\": ";
-  out.integer(static_cast<long long>(decompose_strands(cluster).size())) << "\n  },\n";
+  out.integer(static_cast<long long>(count_strands(cluster))) << "\n  },\n";
   const WalkStats& s = cluster.stats;
   out << "  \"walk\": {\n    \"walkers\": ";
   out.integer(static_cast<long long>(s.walkers)) << ",\n    \"steps\": ";

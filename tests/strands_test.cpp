@@ -39,6 +39,7 @@ TEST(Strands, CoverEveryBranchOnceFromStartToTip) {
   std::size_t leaves = 0;
   for (int n : children) leaves += n == 0;
   EXPECT_EQ(tips, leaves) << "one strand per tip";
+  EXPECT_EQ(count_strands(c), strands.size());
 }
 
 TEST(Strands, LoneSeedIsAStrandOfOne) {
@@ -48,6 +49,7 @@ TEST(Strands, LoneSeedIsAStrandOfOne) {
   const std::vector<Strand> strands = decompose_strands(c);
   ASSERT_EQ(strands.size(), 1u);
   EXPECT_EQ(strands[0], Strand{0});
+  EXPECT_EQ(count_strands(c), 1u);
 }
 
 }  // namespace

@@ -43,4 +43,15 @@ inline std::vector<Strand> decompose_strands(const Cluster& cluster) {
   return strands;
 }
 
+//! How many strands decompose_strands makes, without making them: every particle with a child
+//! continues exactly one strand into a child, so each other particle starts one.
+inline std::size_t count_strands(const Cluster& cluster) {
+  std::vector<bool> has_child(cluster.particles.size(), false);
+  for (const Particle& p : cluster.particles)
+    if (p.parent >= 0) has_child[static_cast<std::size_t>(p.parent)] = true;
+  std::size_t strands = 0;
+  for (bool parent : has_child) strands += !parent;
+  return strands;
+}
+
 }  // namespace dla
