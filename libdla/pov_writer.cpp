@@ -69,12 +69,8 @@ void write_geometry(const Cluster& cluster, const std::string& path) {
 }  // namespace
 
 void validate(const PovOptions& options) {
-  if (!(options.base_radius > 0.0) || !std::isfinite(options.base_radius))
-    throw InvalidInput("base radius " + detail::format_number(options.base_radius) +
-                       " is not a positive number");
-  if (!(options.tip_radius > 0.0) || !std::isfinite(options.tip_radius))
-    throw InvalidInput("tip radius " + detail::format_number(options.tip_radius) +
-                       " is not a positive number");
+  detail::require_positive("base radius", options.base_radius);
+  detail::require_positive("tip radius", options.tip_radius);
 }
 
 void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptions& options) {

@@ -89,14 +89,6 @@ class GridIndex {
           });
   }
 
-  //! Bytes held by the grid (cells, blocks, occupancy bits), for bench/.
-  std::size_t memory_bytes() const {
-    std::size_t bytes = (block_of_.capacity() + heads_.capacity() + next_.capacity()) * 4;
-    bytes += occupied_.words.capacity() * 8;
-    for (const Level& level : levels_) bytes += level.near.words.capacity() * 8;
-    return bytes;
-  }
-
  private:
   static constexpr int kBlockShift = 3;                   // blocks of 8 cells a side
   static constexpr int kMaxCells = 1024;                  // cells a side at most

@@ -118,6 +118,12 @@ inline std::string format_number(double value) {
   std::snprintf(buffer, sizeof buffer, "%g", value);
   return buffer;
 }
+
+//! Throws InvalidInput "WHAT VALUE is not a positive number" unless value is finite and > 0.
+inline void require_positive(const std::string& what, double value) {
+  if (!(value > 0.0) || !std::isfinite(value))
+    throw InvalidInput(what + " " + format_number(value) + " is not a positive number");
+}
 }  // namespace detail
 
 inline SpawnMode parse_spawn_mode(std::string_view word) {
@@ -141,8 +147,7 @@ inline void validate(const GrowthOptions& o) {
   // Parents are stored as 32-bit indices.
   if (o.particles + o.seeds.size() > 2'000'000'000u)
     throw InvalidInput("particles " + std::to_string(o.particles) + " is more than 2e9");
-  if (!(o.spacing > 0.0) || !std::isfinite(o.spacing))
-    throw InvalidInput("spacing " + format_number(o.spacing) + " is not a positive number");
+  detail::require_positive("spacing", o.spacing);
   if (!(o.stickiness > 0.0 && o.stickiness <= 1.0))
     throw InvalidInput("stickiness " + format_number(o.stickiness) + " is not in (0, 1]");
   if (o.dimensions != 2 && o.dimensions != 3)
@@ -161,8 +166,7 @@ inline void validate(const GrowthOptions& o) {
   }
   if (o.dimensions == 2 && o.spawn == SpawnMode::disk && o.spawn_axis == Axis::z)
     throw InvalidInput("the disk spawn axis must be x or y in 2 dimensions");
-  if (!(o.disk_radius > 0.0) || !std::isfinite(o.disk_radius))
-    throw InvalidInput("disk radius " + format_number(o.disk_radius) + " is not a positive number");
+  detail::require_positive("disk radius", o.disk_radius);
   if (o.spawn_box) {
     const Box& b = *o.spawn_box;
     if (!finite(b.min) || !finite(b.max)) throw InvalidInput("spawn box is not finite");
