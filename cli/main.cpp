@@ -1,7 +1,9 @@
 // dla3d: grows a DLA structure and writes it as a POV-Ray scene, CSV, PLY and a JSON sidecar.
 
+#include "dla/constraint.h"
 #include "dla/csv_writer.h"
 #include "dla/growth.h"
+#include "dla/mesh.h"
 #include "dla/ply_writer.h"
 #include "dla/pov_writer.h"
 #include "dla/run_report.h"
@@ -11,6 +13,8 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
+#include <memory>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -104,6 +108,26 @@ void check_writable(const std::string& prefix) {
   std::remove(probe.c_str());
 }
 
+//! A spacing of about a two-hundredth of the mesh's longest side, rounded to two digits.
+double default_spacing(const dla::TriangleMesh& mesh) {
+  const dla::Box box = dla::bounding_box(mesh);
+  const double raw = (box.max - box.min).maxCoeff() / 200.0;
+  const double unit = std::pow(10.0, std::floor(std::log10(raw)) - 1.0);
+  return std::round(raw / unit) * unit;
+}
+
+//! `dla3d convert IN OUT.stl`: the project's own mesh reading, to make bust.stl at setup.
+int convert(const std::string& in, const std::string& out, bool quiet) {
+  if (out.size() < 4 || (out.compare(out.size() - 4, 4, ".stl") != 0 && out.compare(out.size() - 4, 4, ".STL") != 0))
+    throw dla::InvalidInput("convert writes binary STL: '" + out + "' does not end in .stl");
+  const dla::TriangleMesh mesh = dla::read_mesh(in);
+  dla::write_stl(mesh, out);
+  if (!quiet)
+    std::fprintf(stderr, "dla3d: wrote %s: %s triangles from %s\n", out.c_str(),
+                 with_commas(static_cast<double>(mesh.triangles.size())).c_str(), in.c_str());
+  return 0;
+}
+
 int run(int argc, char** argv) {
   CLI::App app{"Grows a branching structure by off-lattice diffusion-limited aggregation and writes\n"
                "it as a POV-Ray scene (PREFIX.pov, PREFIX.inc), PREFIX.csv, PREFIX.ply and PREFIX.json.",
@@ -120,18 +144,28 @@ int run(int argc, char** argv) {
   std::string spawn_axis = std::string(to_string(options.spawn_axis));
   std::string box, drift, index = std::string(to_string(options.index));
   bool quiet = false;
+  std::string mesh_path;
+  dla::ConstraintOptions constraint_options;
+  std::string side = std::string(to_string(constraint_options.side));
+  std::string constraint_mode = std::string(to_string(constraint_options.mode));
+  std::size_t seed_count = 0;
+  bool scene_mesh = true;
+  std::string up = std::string(to_string(pov.up));
 
   const char* growth = "Growth";
   app.add_option("-n,--particles", particles, "particles to attach, seeds not counted")
       ->capture_default_str()->group(growth);
-  app.add_option("--spacing", options.spacing, "distance between a particle and its parent; also the contact distance")
-      ->capture_default_str()->group(growth);
+  CLI::Option* spacing = app.add_option(
+      "--spacing", options.spacing,
+      "distance between a particle and its parent; also the contact distance; with a mesh, "
+      "default: its longest side / 200")->capture_default_str()->group(growth);
   app.add_option("--stickiness", options.stickiness, "probability of sticking at a contact, in (0, 1]")
       ->capture_default_str()->group(growth);
   app.add_option("--dimensions", options.dimensions, "3, or 2 for growth in the plane z = 0")
       ->capture_default_str()->group(growth);
-  app.add_option("--seed-at", seed_at, "a seed at x,y,z (repeat for several); default: one at the origin")
-      ->type_name("X,Y,Z")->allow_extra_args(false)->group(growth);
+  CLI::Option* seed_at_option =
+      app.add_option("--seed-at", seed_at, "a seed at x,y,z (repeat for several); default: one at the origin")
+          ->type_name("X,Y,Z")->allow_extra_args(false)->group(growth);
   app.add_option("--rng-seed", options.rng_seed, "seed of the random generator: the same seed gives the same files")
       ->capture_default_str()->group(growth);
   app.add_option("--min-step", options.min_step, "step length next to the structure, in spacings, (0, 1]")
@@ -139,8 +173,24 @@ int run(int argc, char** argv) {
   app.add_option("--index", index, "nearest-particle look-up: grid, kdtree or brute")
       ->capture_default_str()->group(growth);
 
+  const char* meshes = "Mesh constraint";
+  app.add_option("--stl,--mesh", mesh_path, "grow constrained by this mesh: STL, OFF, OBJ or PLY")
+      ->type_name("FILE")->group(meshes);
+  app.add_option("--side", side, "inside, outside or both (the mesh is only a wall; not closed)")
+      ->capture_default_str()->group(meshes);
+  app.add_option("--constraint", constraint_mode, "a branch crossing the mesh: reject (walk on) or clip (end at it)")
+      ->capture_default_str()->group(meshes);
+  CLI::Option* seeds_option =
+      app.add_option("--seeds", seed_count, "place this many seeds on the growing side, far apart; default 1")
+          ->type_name("K")->group(meshes)->excludes(seed_at_option);
+  app.add_flag("--scene-mesh,!--no-scene-mesh", scene_mesh, "show the mesh, as glass, in the POV-Ray scene")
+      ->capture_default_str()->group(meshes);
+
   const char* spawning = "Spawn";
-  app.add_option("--spawn", spawn, "where walkers start: sphere, disk or box")->capture_default_str()->group(spawning);
+  CLI::Option* spawn_option =
+      app.add_option("--spawn", spawn, "where walkers start: sphere, disk, box, or with a mesh inside or radial; "
+                                       "with --side inside, default inside")
+          ->capture_default_str()->group(spawning);
   app.add_option("--spawn-axis", spawn_axis, "disk: the axis the disk sits on, x, y or z")
       ->capture_default_str()->group(spawning);
   app.add_option("--disk-radius", options.disk_radius, "disk: radius as a fraction of the launch radius")
@@ -156,7 +206,16 @@ int run(int argc, char** argv) {
       ->capture_default_str()->group(outputs);
   app.add_option("--tip-radius", pov.tip_radius, "POV-Ray: branch radius at a strand's tip, in spacings")
       ->capture_default_str()->group(outputs);
+  app.add_option("--up", up, "POV-Ray: the axis that is up in the picture, x, y or z")
+      ->capture_default_str()->group(outputs);
   app.add_flag("-q,--quiet", quiet, "no progress bar and no summary")->group(outputs);
+
+  std::string convert_in, convert_out;
+  CLI::App* convert_command =
+      app.add_subcommand("convert", "read a mesh (STL, OFF, OBJ, PLY) and write it as binary STL, then stop");
+  convert_command->add_option("in", convert_in, "the mesh to read")->required();
+  convert_command->add_option("out", convert_out, "the .stl to write")->required();
+  app.require_subcommand(0, 1);
 
   try {
     app.parse(argc, argv);
@@ -169,6 +228,16 @@ int run(int argc, char** argv) {
     return 2;
   }
 
+  if (convert_command->parsed()) {
+    try {
+      return convert(convert_in, convert_out, quiet);
+    } catch (const dla::InvalidInput& e) {
+      std::fprintf(stderr, "dla3d: error: %s\n", e.what());
+      return 2;
+    }
+  }
+
+  std::unique_ptr<dla::MeshConstraint> constraint;
   try {
     if (particles < 0) throw dla::InvalidInput("--particles " + std::to_string(particles) + " is negative");
     options.particles = static_cast<std::size_t>(particles);
@@ -179,6 +248,7 @@ int run(int argc, char** argv) {
     options.spawn = dla::parse_spawn_mode(spawn);
     options.spawn_axis = dla::parse_axis(spawn_axis);
     options.index = dla::parse_index_kind(index);
+    pov.up = dla::parse_axis(up);
     if (!box.empty()) {
       const std::vector<double> b = parse_numbers("--box", box, 6);
       options.spawn_box = dla::Box{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}};
@@ -187,8 +257,28 @@ int run(int argc, char** argv) {
     }
     if (!drift.empty()) options.drift = parse_vec3("--drift", drift);
     if (output.empty()) throw dla::InvalidInput("--output is empty");
-    dla::validate(options);
+    constraint_options.side = dla::parse_side(side);
+    constraint_options.mode = dla::parse_constraint_mode(constraint_mode);
+    if (mesh_path.empty() && seeds_option->count())
+      throw dla::InvalidInput("--seeds places seeds in a mesh given with --stl; without one, use --seed-at");
     dla::validate(pov);
+    if (!mesh_path.empty()) {
+      const dla::TriangleMesh mesh = dla::read_mesh(mesh_path);
+      if (!spacing->count()) options.spacing = default_spacing(mesh);
+      dla::detail::require_positive("spacing", options.spacing);
+      check_writable(output);  // before the set-up, which takes a moment
+      constraint = std::make_unique<dla::MeshConstraint>(mesh, constraint_options, options.spacing);
+      if (!quiet)
+        std::fprintf(stderr, "dla3d: %s: %s triangles; %s; spacing %g\n", mesh_path.c_str(),
+                     with_commas(static_cast<double>(mesh.triangles.size())).c_str(),
+                     constraint->repair_report().summary().c_str(), options.spacing);
+      if (!spawn_option->count())
+        options.spawn = constraint_options.side == dla::Side::inside ? dla::SpawnMode::inside : dla::SpawnMode::sphere;
+      if (!seed_at_option->count()) options.seeds = constraint->place_seeds(seed_count ? seed_count : 1, options.rng_seed);
+      dla::validate(options, *constraint);
+    } else {
+      dla::validate(options);
+    }
   } catch (const dla::InvalidInput& e) {
     std::fprintf(stderr, "dla3d: error: %s\n", e.what());
     return 2;
@@ -198,10 +288,11 @@ int run(int argc, char** argv) {
 
   ProgressBar bar(options.particles, !quiet && isatty(STDERR_FILENO));
   const Clock::time_point start = Clock::now();
-  const dla::Cluster cluster = dla::grow(options, [&](std::size_t done) {
+  const auto progress = [&](std::size_t done) {
     bar.update(done);
     return true;
-  });
+  };
+  const dla::Cluster cluster = constraint ? dla::grow(options, *constraint, progress) : dla::grow(options, progress);
   bar.clear();
   dla::RunTimings timings;
   timings.grow_seconds = std::chrono::duration<double>(Clock::now() - start).count();
@@ -212,9 +303,9 @@ int run(int argc, char** argv) {
   const Clock::time_point write_start = Clock::now();
   dla::write_csv(cluster, output + ".csv");
   dla::write_ply(cluster, output + ".ply");
-  dla::write_pov(cluster, output, pov);
+  dla::write_pov(cluster, output, pov, constraint && scene_mesh ? &constraint->mesh() : nullptr);
   timings.write_seconds = std::chrono::duration<double>(Clock::now() - write_start).count();
-  dla::write_run_report(cluster, options, pov, timings, output + ".json");
+  dla::write_run_report(cluster, options, pov, timings, output + ".json", constraint.get(), mesh_path);
 
   if (!quiet) {
     const double attached = static_cast<double>(cluster.particles.size() - cluster.seed_count);

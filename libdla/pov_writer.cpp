@@ -22,27 +22,52 @@ void vector(detail::OutputFile& out, const Vec3& v) {
   out.number(v.z(), 7) << '>';
 }
 
-// Centre and radius of a sphere around every particle centre (the box's centre, not the
-// smallest sphere: close enough for framing).
-std::pair<Vec3, double> bounding_sphere(const Cluster& cluster) {
+// Centre and radius of a sphere around every particle centre and mesh vertex (the box's
+// centre, not the smallest sphere: close enough for framing).
+std::pair<Vec3, double> bounding_sphere(const Cluster& cluster, const TriangleMesh* mesh) {
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (const Particle& p : cluster.particles) {
-    lo = lo.cwiseMin(p.position);
-    hi = hi.cwiseMax(p.position);
-  }
+  const auto each_point = [&](auto&& visit) {
+    for (const Particle& p : cluster.particles) visit(p.position);
+    if (mesh)
+      for (const Vec3& v : mesh->vertices) visit(v);
+  };
+  each_point([&](const Vec3& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  });
   const Vec3 center = 0.5 * (lo + hi);
   double r2 = 0.0;
-  for (const Particle& p : cluster.particles) r2 = std::max(r2, (p.position - center).squaredNorm());
+  each_point([&](const Vec3& p) { r2 = std::max(r2, (p - center).squaredNorm()); });
   return {center, std::sqrt(r2)};
 }
 
-void write_geometry(const Cluster& cluster, const std::string& path) {
+void write_mesh(detail::OutputFile& out, const TriangleMesh& mesh) {
+  out << "#declare DLA_Mesh = mesh2 {\n  vertex_vectors { ";
+  out.integer(static_cast<long long>(mesh.vertices.size()));
+  for (const Vec3& v : mesh.vertices) {
+    out << ",\n    ";
+    vector(out, v);
+  }
+  out << " }\n  face_indices { ";
+  out.integer(static_cast<long long>(mesh.triangles.size()));
+  for (const auto& t : mesh.triangles) {
+    out << ",\n    <";
+    out.integer(t[0]) << ", ";
+    out.integer(t[1]) << ", ";
+    out.integer(t[2]) << '>';
+  }
+  out << " }\n}\n";
+}
+
+void write_geometry(const Cluster& cluster, const TriangleMesh* mesh, const std::string& path) {
   const std::vector<Strand> strands = decompose_strands(cluster);
   detail::OutputFile out(path);
   out << "// dla3d " << version << " geometry: ";
   out.integer(static_cast<long long>(cluster.particles.size())) << " particles in ";
   out.integer(static_cast<long long>(strands.size()))
-      << " strands.\n// Declares DLA_Structure; uses DLA_R and DLA_BaseRadius from the .pov.\n";
+      << " strands.\n// Declares DLA_Structure" << (mesh ? " and DLA_Mesh" : "")
+      << "; uses DLA_R and DLA_BaseRadius from the .pov.\n";
+  if (mesh) write_mesh(out, *mesh);
   out << "#declare DLA_Structure = union {\n";
   for (std::size_t s = 0; s < cluster.seed_count; ++s) {
     out << "  sphere { ";
@@ -73,12 +98,13 @@ void validate(const PovOptions& options) {
   detail::require_positive("tip radius", options.tip_radius);
 }
 
-void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptions& options) {
+void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptions& options,
+               const TriangleMesh* mesh) {
   validate(options);
   const std::string include = prefix + ".inc";
-  write_geometry(cluster, include);
+  write_geometry(cluster, mesh, include);
 
-  const auto [center, radius] = bounding_sphere(cluster);
+  const auto [center, radius] = bounding_sphere(cluster, mesh);
   const double base = options.base_radius * cluster.spacing;
   detail::OutputFile out(prefix + ".pov");
   if (!options.comment.empty()) out << "// " << options.comment << '\n';
@@ -96,15 +122,27 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
          "  pigment { color rgb <0.90, 0.80, 0.62> }\n"
          "  finish { ambient 0.06 diffuse 0.8 specular 0.4 roughness 0.015 }\n"
          "}\n"
-         "#declare DLA_Background = rgb <0.04, 0.05, 0.07>;\n"
-         "#declare DLA_R = function(F) { DLA_TipRadius + (DLA_BaseRadius - DLA_TipRadius) * F }\n\n"
-         "// Framing: a sphere around the structure, seen from DLA_View.\n"
+         "#declare DLA_Background = rgb <0.04, 0.05, 0.07>;\n";
+  if (mesh)
+    out << "#declare DLA_ShowMesh = on;  // the constraint mesh, as glass\n"
+           "#declare DLA_MeshTexture = texture {\n"
+           "  pigment { color rgbt <0.80, 0.90, 1.0, 0.92> }\n"
+           "  finish { ambient 0.04 diffuse 0.12 specular 0.6 roughness 0.004 reflection 0.03 }\n"
+           "}\n";
+  out << "#declare DLA_R = function(F) { DLA_TipRadius + (DLA_BaseRadius - DLA_TipRadius) * F }\n\n"
+         "// Framing: a sphere around the structure (and mesh), seen from DLA_View.\n"
          "#declare DLA_Center = ";
   vector(out, center);
   out << ";\n#declare DLA_Radius = ";
-  out.number(radius + base, 7) << ";\n#declare DLA_View = "
-                               << (cluster.dimensions == 2 ? "<0, 0, -1>" : "<0.35, 0.45, -1>")
-                               << ";  // from the centre towards the camera\n"
+  // Seen from the front, a little from the side and above, whichever axis is up.
+  const char* view = cluster.dimensions == 2     ? "<0, 0, -1>"
+                     : options.up == Axis::z ? "<0.35, 1, 0.45>"
+                     : options.up == Axis::x ? "<0.45, 0.35, -1>"
+                                             : "<0.35, 0.45, -1>";
+  out.number(radius + base, 7) << ";\n#declare DLA_View = " << view
+                               << ";  // from the centre towards the camera\n#declare DLA_Sky = "
+                               << (options.up == Axis::z ? "z" : options.up == Axis::x ? "x" : "y")
+                               << ";  // up in the picture\n"
          "#declare DLA_Angle = 40;  // horizontal field of view, degrees\n"
          "#declare DLA_Aspect = image_width / image_height;\n"
          "#declare DLA_HalfAngle = min(DLA_Angle / 2, degrees(atan(tan(radians(DLA_Angle / 2)) / DLA_Aspect)));\n"
@@ -116,11 +154,13 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
          "  look_at DLA_Center\n"
          "  right x * DLA_Aspect\n"
          "  angle DLA_Angle\n"
+         "  sky DLA_Sky\n"
          "}\n"
          "light_source { DLA_Center + 3 * DLA_Distance * <-0.6, 1.0, -0.8> color rgb 1.0 }\n"
          "light_source { DLA_Center + 3 * DLA_Distance * <0.8, 0.3, -0.4> color rgb 0.3 shadowless }\n\n"
          "#include \""
       << file_name(include) << "\"\nobject { DLA_Structure texture { DLA_Texture } }\n";
+  if (mesh) out << "#if (DLA_ShowMesh) object { DLA_Mesh texture { DLA_MeshTexture } no_shadow } #end\n";
   out.commit();
 }
 

@@ -18,8 +18,26 @@ void vector(detail::OutputFile& out, const Vec3& v) {
 
 }  // namespace
 
+//! A JSON string: quotes, backslashes and control characters escaped.
+void string(detail::OutputFile& out, const std::string& text) {
+  out << '"';
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      out << '\\' << c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
+      out << escaped;
+    } else {
+      out << c;
+    }
+  }
+  out << '"';
+}
+
 void write_run_report(const Cluster& cluster, const GrowthOptions& o, const PovOptions& pov,
-                      const RunTimings& timings, const std::string& path) {
+                      const RunTimings& timings, const std::string& path, const MeshConstraint* constraint,
+                      const std::string& mesh_file) {
   const std::size_t attached = cluster.particles.size() - cluster.seed_count;
   detail::OutputFile out(path);
   out << "{\n  \"generator\": \"dla3d\",\n  \"version\": \"" << version << "\",\n";
@@ -52,7 +70,19 @@ void write_run_report(const Cluster& cluster, const GrowthOptions& o, const PovO
   out.number(o.min_step) << ",\n    \"index\": \"" << to_string(o.index)
                          << "\",\n    \"base_radius\": ";
   out.number(pov.base_radius) << ",\n    \"tip_radius\": ";
-  out.number(pov.tip_radius) << "\n  },\n  \"counts\": {\n    \"particles\": ";
+  out.number(pov.tip_radius) << "\n  },\n";
+  if (constraint) {
+    const RepairReport& r = constraint->repair_report();
+    out << "  \"constraint\": {\n    \"mesh\": ";
+    string(out, mesh_file);
+    out << ",\n    \"side\": \"" << to_string(constraint->options().side) << "\",\n    \"mode\": \""
+        << to_string(constraint->options().mode) << "\",\n    \"input_triangles\": ";
+    out.integer(static_cast<long long>(r.input_triangles)) << ",\n    \"triangles\": ";
+    out.integer(static_cast<long long>(constraint->mesh().triangles.size())) << ",\n    \"repair\": ";
+    string(out, r.summary());
+    out << ",\n    \"closed\": " << (r.closed ? "true" : "false") << "\n  },\n";
+  }
+  out << "  \"counts\": {\n    \"particles\": ";
   out.integer(static_cast<long long>(cluster.particles.size())) << ",\n    \"seeds\": ";
   out.integer(static_cast<long long>(cluster.seed_count)) << ",\n    \"attached\": ";
   out.integer(static_cast<long long>(attached)) << ",\n    \"strands\": ";
@@ -64,7 +94,10 @@ void write_run_report(const Cluster& cluster, const GrowthOptions& o, const PovO
   out.integer(static_cast<long long>(s.near_steps)) << ",\n    \"contacts\": ";
   out.integer(static_cast<long long>(s.contacts)) << ",\n    \"returns\": ";
   out.integer(static_cast<long long>(s.returns)) << ",\n    \"relaunches\": ";
-  out.integer(static_cast<long long>(s.relaunches)) << "\n  },\n";
+  out.integer(static_cast<long long>(s.relaunches)) << ",\n    \"lost\": ";
+  out.integer(static_cast<long long>(s.lost)) << ",\n    \"rejected\": ";
+  out.integer(static_cast<long long>(s.rejected)) << ",\n    \"clipped\": ";
+  out.integer(static_cast<long long>(s.clipped)) << "\n  },\n";
   out << "  \"measures\": {\n    \"center\": ";
   vector(out, cluster.center);
   out << ",\n    \"bounding_radius\": ";

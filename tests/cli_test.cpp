@@ -56,6 +56,23 @@ TEST(Cli, QuietPrintsNothing) {
   EXPECT_EQ(run.err, "");
 }
 
+TEST(Cli, GrowsInAMeshWithAHoleAndConvertsIt) {
+  ScratchDir dir;
+  CliRun run = dla3d(dir, "convert " TEST_DATA_DIR "/open_box.off box.stl");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  run = dla3d(dir, "--stl box.stl --seeds 2 -n 800 -o in --spacing 0.5");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("box.stl: 10 triangles; merged"), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("closed 1 hole"), std::string::npos) << run.err;
+  EXPECT_NE(read_file(dir / "in.inc").find("DLA_Mesh = mesh2"), std::string::npos);
+  const std::string json = read_file(dir / "in.json");
+  EXPECT_NE(json.find("\"side\": \"inside\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"spawn\": \"inside\""), std::string::npos) << json;
+  ASSERT_EQ(dla3d(dir, "--stl box.stl --seeds 2 -n 800 -o again --spacing 0.5 -q --no-scene-mesh").exit_code, 0);
+  EXPECT_EQ(read_file(dir / "in.csv"), read_file(dir / "again.csv"));
+  EXPECT_EQ(read_file(dir / "again.inc").find("mesh2"), std::string::npos);
+}
+
 TEST(Cli, HelpAndVersion) {
   ScratchDir dir;
   EXPECT_EQ(dla3d(dir, "--help").exit_code, 0);
@@ -81,6 +98,17 @@ TEST(Cli, BadInputIsOneLineAndNoFiles) {
       "--no-such-flag",
       "-o missing-folder/out",
       "-o ''",
+      "--stl no-such.stl",
+      "--stl " TEST_DATA_DIR "/open_box.off --side sideways",
+      "--stl " TEST_DATA_DIR "/open_box.off --constraint bend",
+      "--stl " TEST_DATA_DIR "/open_box.off --seed-at 50,50,50",
+      "--stl " TEST_DATA_DIR "/open_box.off --seeds 2 --seed-at 1,1,1",
+      "--stl " TEST_DATA_DIR "/open_box.off --side both",
+      "--stl " TEST_DATA_DIR "/open_box.off --spawn radial --side outside",
+      "--seeds 2",
+      "--spawn inside",
+      "--stl " TEST_DATA_DIR "/../constraint_test.cpp",
+      "--up w",
   };
   for (const char* args : cases) {
     ScratchDir dir;

@@ -3,6 +3,7 @@
 
 #include "dla/growth.h"
 #include "dla/pov_writer.h"
+#include "mesh_util.h"
 #include "test_util.h"
 
 #include <gtest/gtest.h>
@@ -53,11 +54,12 @@ Image read_ppm(const std::string& path) {
 }
 
 // Renders PREFIX.pov at 160x120 and checks what it shows.
-void expect_framed_render(const Cluster& cluster, const ScratchDir& dir) {
+void expect_framed_render(const Cluster& cluster, const ScratchDir& dir, const TriangleMesh* mesh = nullptr,
+                          const PovOptions& options = {}) {
   const std::string povray = POVRAY_PATH;
   ASSERT_FALSE(povray.empty() || povray.find("NOTFOUND") != std::string::npos)
       << "POV-Ray is not installed: the README's setup command installs the povray package";
-  write_pov(cluster, dir / "scene");
+  write_pov(cluster, dir / "scene", options, mesh);
   const std::string command = "cd '" + dir.path().string() + "' && '" + povray +
                               "' +Iscene.pov +Oscene.ppm +FP +W160 +H120 -D -V +A0.3 > povray.log 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << read_file(dir / "povray.log");
@@ -87,6 +89,20 @@ TEST(Render, PovRayShowsTheStructure3D) {
   GrowthOptions o;
   o.particles = 1500;
   expect_framed_render(grow(o), dir);
+}
+
+TEST(Render, PovRayShowsTheStructureInTheBust) {
+  DLA_NEED_BUST(path);
+  const MeshConstraint constraint(read_mesh(path), {}, 0.3);
+  GrowthOptions o;
+  o.particles = 3000;
+  o.spacing = 0.3;
+  o.spawn = SpawnMode::inside;
+  o.seeds = constraint.place_seeds(2, o.rng_seed);
+  PovOptions look;
+  look.up = Axis::z;
+  ScratchDir dir;
+  expect_framed_render(grow(o, constraint), dir, &constraint.mesh(), look);
 }
 
 TEST(Render, PovRayShowsTheStructurePlanar) {

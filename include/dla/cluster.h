@@ -29,6 +29,9 @@ struct WalkStats {
   std::uint64_t contacts = 0;     //!< contacts, stuck or refused
   std::uint64_t returns = 0;      //!< walkers put back on the return sphere from outside it
   std::uint64_t relaunches = 0;   //!< walkers that escaped and started afresh
+  std::uint64_t lost = 0;         //!< walkers on the wrong side of a constraint mesh, started afresh
+  std::uint64_t rejected = 0;     //!< branches refused because they crossed the constraint mesh
+  std::uint64_t clipped = 0;      //!< branches cut short at the constraint mesh
 };
 
 //! A grown structure.

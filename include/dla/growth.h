@@ -4,6 +4,7 @@
 //! continuous space until they touch the structure and stick. See docs/algorithm.md.
 
 #include "dla/cluster.h"
+#include "dla/constraint.h"
 #include "dla/options.h"
 #include "dla/random.h"
 #include "dla/spawn.h"
@@ -24,9 +25,19 @@ using ProgressFn = std::function<bool(std::size_t attached)>;
 //! Defined in libdla (it instantiates grow_with for every index).
 Cluster grow(const GrowthOptions& options, const ProgressFn& progress = {});
 
-//! Grows a structure with a given index type (see spatial_index.h). Does not validate.
+//! Grows a structure constrained by a mesh (see constraint.h). Validates the options and
+//! checks them against the constraint: the same spacing, 3 dimensions, seeds on the growing
+//! side, a spawn mode that can start walkers there.
+Cluster grow(const GrowthOptions& options, const MeshConstraint& constraint, const ProgressFn& progress = {});
+
+//! Throws InvalidInput where the options and the constraint cannot work together.
+void validate(const GrowthOptions& options, const MeshConstraint& constraint);
+
+//! Grows a structure with a given index type (see spatial_index.h), constrained by a mesh if
+//! `constraint` is set. Does not validate.
 template <class Index>
-Cluster grow_with(const GrowthOptions& options, const ProgressFn& progress = {});
+Cluster grow_with(const GrowthOptions& options, const ProgressFn& progress = {},
+                  const MeshConstraint* constraint = nullptr);
 
 // ---------------------------------------------------------------------------------------------
 
@@ -35,8 +46,9 @@ namespace detail {
 template <class Index>
 class Aggregation {
  public:
-  explicit Aggregation(const GrowthOptions& options)
+  Aggregation(const GrowthOptions& options, const MeshConstraint* constraint)
       : opt_(options),
+        constraint_(constraint),
         contact_(options.spacing),
         near_step_(options.min_step * options.spacing),
         drift_scale_(1.0 / (1.0 + options.drift.norm())),
@@ -83,6 +95,9 @@ class Aggregation {
     Rng rng(opt_.rng_seed, k);
     const Vec3& center = cluster_.center;
     Vec3 x = launch(rng);
+    // Bounds that turn a setup where nothing can stick into an error rather than a hang.
+    constexpr std::uint64_t max_lost = 10'000'000, max_rejected = 1'000'000;
+    std::uint64_t lost = 0, rejected = 0;
     for (;;) {
       ++stats.steps;
       const Vec3 offset = x - center;
@@ -109,6 +124,15 @@ class Aggregation {
           continue;
         }
         x += jump(rng, std::sqrt(r2) - cluster_radius_ - contact_);
+        continue;
+      }
+
+      if (constraint_ && constraint_->lost(x)) {
+        ++stats.lost;
+        if (++lost == max_lost)
+          throw GrowthError("walker " + std::to_string(k + 1) + " left the growing side of the mesh " +
+                            std::to_string(max_lost) + " times: walkers cannot reach the seeds");
+        x = launch(rng);
         continue;
       }
 
@@ -139,8 +163,20 @@ class Aggregation {
       x += first * step;
       if (opt_.stickiness < 1.0 && rng.uniform() >= opt_.stickiness) continue;
       const Vec3& parent = position(touched);
-      return {parent + (x - parent).normalized() * opt_.spacing, touched,
-              cluster_.particles[static_cast<std::size_t>(touched)].seed};
+      Vec3 end = parent + (x - parent).normalized() * opt_.spacing;
+      if (constraint_) {
+        const BranchCheck check = constraint_->check_branch(parent, end);
+        if (!check.accepted) {
+          ++stats.rejected;
+          if (++rejected == max_rejected)
+            throw GrowthError("the mesh refused " + std::to_string(max_rejected) + " branches of walker " +
+                              std::to_string(k + 1) + ": are the seeds within a spacing of the surface?");
+          continue;
+        }
+        stats.clipped += check.clipped;
+        end = check.end;
+      }
+      return {end, touched, cluster_.particles[static_cast<std::size_t>(touched)].seed};
     }
   }
 
@@ -155,20 +191,39 @@ class Aggregation {
   }
 
   //! A walker's start. Starts beyond the return sphere are fine: the walk's first step applies
-  //! the return rule. A start within contact of the structure is drawn again.
+  //! the return rule. A start within contact of the structure, or lost, is drawn again.
   Vec3 launch(Rng& rng) {
     const Vec3& center = cluster_.center;
     const double R2 = return_radius_ * return_radius_;
     constexpr int max_draws = 1'000'000;
     for (int draw = 0; draw < max_draws; ++draw) {
-      const Vec3 x = draw_spawn(opt_, center, return_radius_, rng);
+      const Vec3 x = draw_start(rng);
+      if (constraint_ && constraint_->lost(x)) continue;
       if ((x - center).squaredNorm() >= R2 || index_.probe(x).distance >= contact_) return x;
     }
-    throw GrowthError("the spawn region is filled by the structure: no free start in " +
-                      std::to_string(max_draws) + " draws");
+    throw GrowthError("no free start in " + std::to_string(max_draws) + " draws from the " +
+                      std::string(to_string(opt_.spawn)) + " spawn" +
+                      (constraint_ ? " on the growing side of the mesh" : ": the structure fills it"));
+  }
+
+  Vec3 draw_start(Rng& rng) const {
+    if (constraint_) {
+      switch (opt_.spawn) {
+        case SpawnMode::inside: return constraint_->draw_inside(rng);
+        case SpawnMode::radial: return constraint_->draw_radial(rng);
+        case SpawnMode::sphere: {  // around the mesh and the structure
+          const Vec3& c = constraint_->center();
+          const double R = std::max(constraint_->radius(), (c - cluster_.center).norm() + return_radius_);
+          return draw_spawn(opt_, c, R, rng);
+        }
+        default: break;
+      }
+    }
+    return draw_spawn(opt_, cluster_.center, return_radius_, rng);
   }
 
   const GrowthOptions& opt_;
+  const MeshConstraint* constraint_;  // null: unconstrained
   const double contact_;      // centre distance at which a walker touches a particle
   const double near_step_;    // step length next to the structure
   const double drift_scale_;  // keeps a drifted jump inside its free ball
@@ -181,8 +236,8 @@ class Aggregation {
 }  // namespace detail
 
 template <class Index>
-Cluster grow_with(const GrowthOptions& options, const ProgressFn& progress) {
-  return detail::Aggregation<Index>(options).run(progress);
+Cluster grow_with(const GrowthOptions& options, const ProgressFn& progress, const MeshConstraint* constraint) {
+  return detail::Aggregation<Index>(options, constraint).run(progress);
 }
 
 }  // namespace dla

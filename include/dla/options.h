@@ -18,11 +18,13 @@ namespace dla {
 
 using Vec3 = Eigen::Vector3d;
 
-//! Where walkers start. The words are the CLI's (`--spawn sphere|disk|box`).
+//! Where walkers start. The words are the CLI's (`--spawn sphere|disk|box|inside|radial`).
 enum class SpawnMode {
-  sphere,  //!< uniform on a sphere just outside the structure: the classical launch
+  sphere,  //!< uniform on a sphere just outside the structure (with a mesh: around the mesh)
   disk,    //!< uniform in a disk across the spawn axis, just outside the structure: directed growth
   box,     //!< uniform in a box
+  inside,  //!< uniform in the volume of a constraint mesh (constraint.h)
+  radial,  //!< along rays from a constraint mesh's centroid to its surface (constraint.h)
 };
 
 //! A coordinate axis, for the disk spawn.
@@ -80,6 +82,8 @@ inline std::string_view to_string(SpawnMode mode) {
     case SpawnMode::sphere: return "sphere";
     case SpawnMode::disk: return "disk";
     case SpawnMode::box: return "box";
+    case SpawnMode::inside: return "inside";
+    case SpawnMode::radial: return "radial";
   }
   return "?";
 }
@@ -127,7 +131,8 @@ inline void require_positive(const std::string& what, double value) {
 }  // namespace detail
 
 inline SpawnMode parse_spawn_mode(std::string_view word) {
-  constexpr SpawnMode values[] = {SpawnMode::sphere, SpawnMode::disk, SpawnMode::box};
+  constexpr SpawnMode values[] = {SpawnMode::sphere, SpawnMode::disk, SpawnMode::box, SpawnMode::inside,
+                                  SpawnMode::radial};
   return detail::parse_word(word, values, "spawn mode");
 }
 

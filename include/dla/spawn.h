@@ -1,6 +1,6 @@
 #pragma once
 //! \file spawn.h
-//! Where walkers start: the spawn distributions of GrowthOptions::spawn.
+//! Where walkers start: the spawn distributions of GrowthOptions::spawn that need no mesh.
 
 #include "dla/options.h"
 #include "dla/random.h"
@@ -40,6 +40,9 @@ inline Vec3 draw_spawn(const GrowthOptions& o, const Vec3& center, double launch
       if (o.dimensions == 2) x.z() = 0.0;
       return x;
     }
+    case SpawnMode::inside:
+    case SpawnMode::radial:
+      break;  // drawn by a constraint mesh (MeshConstraint); grow() refuses them without one
   }
   return center;
 }

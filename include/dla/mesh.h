@@ -1,0 +1,39 @@
+#pragma once
+//! \file mesh.h
+//! Triangle meshes as plain data, and their files: STL (binary and ASCII), OFF, OBJ and PLY in,
+//! binary STL out. See docs/formats.md.
+
+#include "dla/options.h"
+
+#include <Eigen/Geometry>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace dla {
+
+//! A triangle soup with shared vertices. Triangles list vertex indices; their order (counter-
+//! clockwise seen from outside) gives the outward side once the mesh is repaired.
+struct TriangleMesh {
+  std::vector<Vec3> vertices;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+};
+
+//! Reads a mesh, choosing the format by the file's extension (.stl, .off, .obj, .ply, any
+//! case). Polygons are split into triangle fans; STL normals are ignored. Throws IOError if the
+//! file cannot be read and InvalidInput, naming the file, if it is not a well-formed mesh.
+TriangleMesh read_mesh(const std::string& path);
+
+//! Reads a mesh from bytes, in the format named by `extension` ("stl", "off", "obj", "ply");
+//! `name` prefixes the error messages. The readers behind read_mesh().
+TriangleMesh parse_mesh(std::string_view bytes, std::string_view extension, const std::string& name);
+
+//! Writes a binary STL (its header does not begin with "solid"). Throws IOError.
+void write_stl(const TriangleMesh& mesh, const std::string& path);
+
+//! The smallest axis-aligned box around the vertices that triangles use.
+Box bounding_box(const TriangleMesh& mesh);
+
+}  // namespace dla

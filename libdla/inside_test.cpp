@@ -1,0 +1,176 @@
+// Winding numbers by signed crossings of a vertical ray. The 2D edge tests are computed so that
+// the two triangles sharing an edge get exactly opposite values, and a tie rule gives a point
+// on the edge to exactly one of them: a ray through an edge or a vertex is counted once, never
+// twice or not at all. This file is built with -ffp-contract=off so no fused multiply-add
+// breaks that symmetry.
+
+#include "dla/inside_test.h"
+
+#include <algorithm>
+#include <array>
+
+namespace dla {
+
+namespace {
+
+//! Twice the signed area of (u, v, q) in the xy plane; exactly -orient(v, u, q).
+inline double orient(const Vec3& u, const Vec3& v, double qx, double qy) {
+  return (u.x() - qx) * (v.y() - qy) - (u.y() - qy) * (v.x() - qx);
+}
+
+//! Which of the two directions of an edge owns the points on it (exactly one of them does).
+inline bool owns(const Vec3& u, const Vec3& v) {
+  return v.y() < u.y() || (v.y() == u.y() && v.x() > u.x());
+}
+
+//! +1 or -1 if the vertical line through (qx, qy) crosses triangle (a, b, c) (the sign of the
+//! triangle's normal along z), with the crossing's height in z; 0 if it misses.
+inline int vertical_crossing(const Vec3& a, Vec3 b, Vec3 c, double qx, double qy, double& z) {
+  const double area = orient(a, b, c.x(), c.y());
+  if (area == 0.0) return 0;  // seen edge-on: its neighbours count the crossing
+  int sign = 1;
+  if (area < 0.0) {
+    std::swap(b, c);
+    sign = -1;
+  }
+  const double w0 = orient(b, c, qx, qy), w1 = orient(c, a, qx, qy), w2 = orient(a, b, qx, qy);
+  const auto in = [](double w, const Vec3& u, const Vec3& v) { return w > 0.0 || (w == 0.0 && owns(u, v)); };
+  if (!in(w0, b, c) || !in(w1, c, a) || !in(w2, a, b)) return 0;
+  const double sum = w0 + w1 + w2;
+  z = (w0 * a.z() + w1 * b.z() + w2 * c.z()) / sum;
+  return sign;
+}
+
+}  // namespace
+
+InsideTest::InsideTest(const TriangleMesh& mesh, double band, double cell) {
+  const Box box = bounding_box(mesh);
+  corners_.reserve(3 * mesh.triangles.size());
+  for (const auto& t : mesh.triangles)
+    for (std::uint32_t id : t) corners_.push_back(mesh.vertices[id]);
+  const std::size_t triangles = mesh.triangles.size();
+
+  // The voxel grid: the box, a band and a cell wider on every side.
+  const Vec3 lo = box.min.array() - (band + cell), hi = box.max.array() + (band + cell);
+  const Vec3 size = hi - lo;
+  constexpr double max_cells = 16.0 * 1024 * 1024;
+  cell_ = std::max(cell, std::cbrt(size.prod() / max_cells));
+  origin_ = lo;
+  for (int a = 0; a < 3; ++a) dims_[a] = std::max(1.0, std::ceil(size[a] / cell_));
+  const std::size_t nx = static_cast<std::size_t>(dims_[0]), ny = static_cast<std::size_t>(dims_[1]),
+                    nz = static_cast<std::size_t>(dims_[2]);
+  cells_.assign(nx * ny * nz, Region::outside);
+
+  // Buckets in xy of about four cells, for the exact test.
+  bucket_ = 4.0 * cell_;
+  bucket_origin_ = origin_;
+  bucket_dims_[0] = static_cast<int>(std::ceil(dims_[0] / 4.0));
+  bucket_dims_[1] = static_cast<int>(std::ceil(dims_[1] / 4.0));
+  const auto bucket_range = [&](std::size_t t, int axis) {
+    const double a = corners_[3 * t][axis], b = corners_[3 * t + 1][axis], c = corners_[3 * t + 2][axis];
+    const double lo_f = (std::min({a, b, c}) - bucket_origin_[axis]) / bucket_;
+    const double hi_f = (std::max({a, b, c}) - bucket_origin_[axis]) / bucket_;
+    return std::pair<int, int>{std::clamp(static_cast<int>(std::floor(lo_f)), 0, bucket_dims_[axis] - 1),
+                               std::clamp(static_cast<int>(std::floor(hi_f)), 0, bucket_dims_[axis] - 1)};
+  };
+  bucket_start_.assign(static_cast<std::size_t>(bucket_dims_[0]) * bucket_dims_[1] + 1, 0);
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<std::uint32_t> fill(bucket_start_.begin(), bucket_start_.end() - 1);
+    for (std::size_t t = 0; t < triangles; ++t) {
+      const auto [x0, x1] = bucket_range(t, 0);
+      const auto [y0, y1] = bucket_range(t, 1);
+      for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+          const std::size_t b = static_cast<std::size_t>(y) * bucket_dims_[0] + x;
+          if (pass == 0)
+            ++bucket_start_[b + 1];
+          else
+            bucket_triangles_[fill[b]++] = static_cast<std::uint32_t>(t);
+        }
+    }
+    if (pass == 0) {
+      for (std::size_t b = 1; b < bucket_start_.size(); ++b) bucket_start_[b] += bucket_start_[b - 1];
+      bucket_triangles_.resize(bucket_start_.back());
+    }
+  }
+
+  // Every cell centre's winding number, a column at a time: the crossings of the column's
+  // vertical line, from the top down.
+  struct Crossing {
+    std::size_t column;
+    double z;
+    int sign;
+  };
+  std::vector<Crossing> crossings;
+  for (std::size_t t = 0; t < triangles; ++t) {
+    const Vec3 &a = corners_[3 * t], &b = corners_[3 * t + 1], &c = corners_[3 * t + 2];
+    const double x_lo = std::min({a.x(), b.x(), c.x()}), x_hi = std::max({a.x(), b.x(), c.x()});
+    const double y_lo = std::min({a.y(), b.y(), c.y()}), y_hi = std::max({a.y(), b.y(), c.y()});
+    const std::size_t i0 = static_cast<std::size_t>(std::max(0.0, std::ceil((x_lo - origin_.x()) / cell_ - 0.5)));
+    const std::size_t j0 = static_cast<std::size_t>(std::max(0.0, std::ceil((y_lo - origin_.y()) / cell_ - 0.5)));
+    for (std::size_t j = j0; j < ny; ++j) {
+      const double y = origin_.y() + (static_cast<double>(j) + 0.5) * cell_;
+      if (y > y_hi) break;
+      for (std::size_t i = i0; i < nx; ++i) {
+        const double x = origin_.x() + (static_cast<double>(i) + 0.5) * cell_;
+        if (x > x_hi) break;
+        double z;
+        if (const int sign = vertical_crossing(a, b, c, x, y, z)) crossings.push_back({j * nx + i, z, sign});
+      }
+    }
+  }
+  std::sort(crossings.begin(), crossings.end(), [](const Crossing& p, const Crossing& q) {
+    return p.column != q.column ? p.column < q.column : p.z > q.z;
+  });
+  for (std::size_t first = 0; first < crossings.size();) {
+    std::size_t last = first;
+    while (last < crossings.size() && crossings[last].column == crossings[first].column) ++last;
+    const std::size_t column = crossings[first].column;
+    int winding = 0;
+    std::size_t next = first;
+    for (std::size_t k = nz; k-- > 0;) {
+      const double z = origin_.z() + (static_cast<double>(k) + 0.5) * cell_;
+      while (next < last && crossings[next].z > z) winding += crossings[next++].sign;
+      cells_[k * nx * ny + column] = winding > 0 ? Region::inside : Region::outside;
+    }
+    first = last;
+  }
+
+  // The band: every cell that may hold a point within `band` of a triangle. The plane test
+  // keeps large slanted triangles from claiming their whole bounding box.
+  const double reach = band + 0.5 * std::sqrt(3.0) * cell_;
+  for (std::size_t t = 0; t < triangles; ++t) {
+    const Vec3 &a = corners_[3 * t], &b = corners_[3 * t + 1], &c = corners_[3 * t + 2];
+    const Vec3 normal = (b - a).cross(c - a).normalized();
+    std::array<std::size_t, 3> from{}, to{};
+    for (int axis = 0; axis < 3; ++axis) {
+      const double l = (std::min({a[axis], b[axis], c[axis]}) - band - origin_[axis]) / cell_;
+      const double h = (std::max({a[axis], b[axis], c[axis]}) + band - origin_[axis]) / cell_;
+      from[axis] = static_cast<std::size_t>(std::clamp(std::floor(l), 0.0, dims_[axis] - 1));
+      to[axis] = static_cast<std::size_t>(std::clamp(std::floor(h), 0.0, dims_[axis] - 1));
+    }
+    for (std::size_t k = from[2]; k <= to[2]; ++k)
+      for (std::size_t j = from[1]; j <= to[1]; ++j)
+        for (std::size_t i = from[0]; i <= to[0]; ++i) {
+          const Vec3 center = origin_ + cell_ * Vec3(i + 0.5, j + 0.5, k + 0.5);
+          if (normal.allFinite() && std::abs(normal.dot(center - a)) > reach) continue;
+          cells_[(k * ny + j) * nx + i] = Region::surface;
+        }
+  }
+}
+
+int InsideTest::winding_number(const Vec3& p) const {
+  const double fx = (p.x() - bucket_origin_.x()) / bucket_, fy = (p.y() - bucket_origin_.y()) / bucket_;
+  if (!(fx >= 0.0 && fy >= 0.0 && fx < bucket_dims_[0] && fy < bucket_dims_[1])) return 0;
+  const std::size_t b = static_cast<std::size_t>(fy) * bucket_dims_[0] + static_cast<std::size_t>(fx);
+  int winding = 0;
+  for (std::uint32_t k = bucket_start_[b]; k < bucket_start_[b + 1]; ++k) {
+    const std::size_t t = bucket_triangles_[k];
+    double z;
+    const int sign = vertical_crossing(corners_[3 * t], corners_[3 * t + 1], corners_[3 * t + 2], p.x(), p.y(), z);
+    if (sign && z > p.z()) winding += sign;
+  }
+  return winding;
+}
+
+}  // namespace dla

@@ -1,0 +1,163 @@
+// Growth constrained by a mesh, checked with the brute-force references of mesh_util.h: every
+// particle on the growing side, no branch through the surface, clipped branches ending at it,
+// every seed growing, the same files for the same seed.
+
+#include "dla/constraint.h"
+#include "dla/growth.h"
+#include "dla/mesh_repair.h"
+#include "dla/shapes.h"
+#include "mesh_util.h"
+#include "test_util.h"
+
+#include <gtest/gtest.h>
+
+namespace dla {
+namespace {
+
+struct Checked {
+  std::size_t clipped = 0;  // branches shorter than the spacing
+  std::vector<std::size_t> per_seed;
+};
+
+// Every branch against every triangle; every particle against the winding number by solid
+// angles when `side` is inside or outside.
+Checked expect_constrained(const Cluster& cluster, const MeshConstraint& constraint) {
+  const TriangleMesh& mesh = constraint.mesh();
+  const Side side = constraint.options().side;
+  Checked checked;
+  checked.per_seed.assign(cluster.seed_count, 0);
+  for (std::size_t i = 0; i < cluster.particles.size(); ++i) {
+    const Particle& p = cluster.particles[i];
+    ++checked.per_seed[static_cast<std::size_t>(p.seed)];
+    if (side != Side::both) {
+      const double gwn = testing::generalized_winding_number(mesh, p.position);
+      EXPECT_EQ(gwn > 0.5, side == Side::inside) << "particle " << i << " at " << p.position.transpose();
+    }
+    if (p.parent < 0) continue;
+    const Vec3& parent = cluster.particles[static_cast<std::size_t>(p.parent)].position;
+    const double t = testing::brute_first_hit(mesh, parent, p.position);
+    EXPECT_LT(t, 0.0) << "branch " << i << " crosses the surface at t = " << t;
+    const double length = (p.position - parent).norm();
+    EXPECT_LE(length, cluster.spacing * (1 + 1e-9));
+    if (length < cluster.spacing * (1 - 1e-9)) {
+      ++checked.clipped;
+      EXPECT_GE(length, 0.5 * cluster.spacing * (1 - 1e-9));
+      EXPECT_LT(constraint.distance_to_surface(p.position), 1e-3 * cluster.spacing) << "a clipped branch short of the surface";
+    }
+  }
+  return checked;
+}
+
+GrowthOptions options_for(const MeshConstraint& constraint, std::size_t particles, std::size_t seeds) {
+  GrowthOptions o;
+  o.particles = particles;
+  o.spacing = constraint.spacing();
+  o.spawn = SpawnMode::inside;
+  o.seeds = constraint.place_seeds(seeds, o.rng_seed);
+  return o;
+}
+
+TEST(Constraint, TwoSeedsGrowInsideTheBustWithoutCrossingIt) {
+  DLA_NEED_BUST(path);
+  const MeshConstraint constraint(read_mesh(path), {}, 0.2);
+  EXPECT_TRUE(constraint.repair_report().closed);
+  EXPECT_EQ(constraint.repair_report().holes_closed, 1u);
+  const GrowthOptions o = options_for(constraint, 2500, 2);
+  const Cluster cluster = grow(o, constraint);
+  ASSERT_EQ(cluster.particles.size(), 2502u);
+  const Checked checked = expect_constrained(cluster, constraint);
+  EXPECT_EQ(checked.clipped, 0u);
+  for (std::size_t count : checked.per_seed) EXPECT_GT(count, cluster.particles.size() / 5) << "a seed hardly grew";
+  EXPECT_GT(cluster.stats.lost, 0u);
+  EXPECT_EQ(grow(o, constraint).particles.back().position, cluster.particles.back().position) << "not deterministic";
+}
+
+TEST(Constraint, ClippedBranchesTouchTheBustButDoNotCross) {
+  DLA_NEED_BUST(path);
+  ConstraintOptions c;
+  c.mode = ConstraintMode::clip;
+  const MeshConstraint constraint(read_mesh(path), c, 1.0);
+  const Cluster cluster = grow(options_for(constraint, 3000, 2), constraint);
+  const Checked checked = expect_constrained(cluster, constraint);
+  EXPECT_GT(checked.clipped, 0u);
+  EXPECT_EQ(checked.clipped, cluster.stats.clipped);
+}
+
+TEST(Constraint, RejectedBranchesWalkOnInAThinVessel) {
+  // A narrow tube: most walkers meet the wall before the structure, so many branches cross it.
+  const MeshConstraint constraint(make_open_can(Vec3::Zero(), 3.0, 40.0, 24), {}, 1.0);
+  EXPECT_EQ(constraint.repair_report().holes_closed, 1u);
+  GrowthOptions o = options_for(constraint, 600, 1);
+  o.seeds = {Vec3(0, 0, 20)};
+  const Cluster cluster = grow(o, constraint);
+  expect_constrained(cluster, constraint);
+  EXPECT_GT(cluster.stats.rejected, 0u);
+}
+
+TEST(Constraint, RadialSpawnGrowsInATube) {
+  ConstraintOptions c;
+  c.mode = ConstraintMode::clip;
+  const MeshConstraint constraint(make_open_can(Vec3::Zero(), 3.0, 40.0, 24), c, 1.0);
+  GrowthOptions o = options_for(constraint, 600, 1);
+  o.spawn = SpawnMode::radial;
+  const Cluster cluster = grow(o, constraint);
+  EXPECT_GT(expect_constrained(cluster, constraint).clipped, 0u);
+}
+
+TEST(Constraint, GrowsInsideATestMeshWithAHole) {
+  const MeshConstraint constraint(read_mesh(TEST_DATA_DIR "/open_box.off"), {}, 0.5);
+  EXPECT_EQ(constraint.repair_report().holes_closed, 1u);
+  const Cluster cluster = grow(options_for(constraint, 1500, 3), constraint);
+  const Checked checked = expect_constrained(cluster, constraint);
+  EXPECT_EQ(checked.per_seed.size(), 3u);
+}
+
+TEST(Constraint, GrowsAroundAnObjectOutside) {
+  ConstraintOptions c;
+  c.side = Side::outside;
+  const MeshConstraint constraint(make_sphere(Vec3::Zero(), 6.0), c, 0.5);
+  GrowthOptions o;
+  o.particles = 1500;
+  o.spacing = 0.5;
+  o.seeds = constraint.place_seeds(2, o.rng_seed);
+  for (const Vec3& s : o.seeds) EXPECT_NEAR(s.norm(), 7.0, 0.05);  // two spacings off the surface
+  expect_constrained(grow(o, constraint), constraint);
+}
+
+TEST(Constraint, OpenCanOfBourkesFigure4) {
+  // Side both: the can is a wall, not a vessel; walkers come from a sphere about its centre.
+  ConstraintOptions c;
+  c.side = Side::both;
+  const MeshConstraint constraint(make_open_can(Vec3::Zero(), 10.0, 20.0), c, 0.5);
+  EXPECT_EQ(constraint.repair_report().holes_closed, 0u);
+  EXPECT_FALSE(constraint.repair_report().closed);
+  GrowthOptions o;
+  o.particles = 2000;
+  o.spacing = 0.5;
+  o.seeds = {Vec3(0, 0, 20)};
+  const Cluster cluster = grow(o, constraint);
+  expect_constrained(cluster, constraint);
+  std::size_t in_can = 0;
+  for (const Particle& p : cluster.particles) in_can += p.position.z() < 19.0 && p.position.head<2>().norm() < 10.0;
+  EXPECT_GT(in_can, 0u) << "nothing grew down into the can";
+  EXPECT_GT(cluster.stats.rejected, 0u);
+}
+
+TEST(Constraint, BadSetupsAreClearErrors) {
+  const MeshConstraint constraint(make_sphere(Vec3::Zero(), 5.0), {}, 1.0);
+  GrowthOptions o;
+  o.seeds = {Vec3(9, 0, 0)};
+  EXPECT_THROW(grow(o, constraint), InvalidInput);  // a seed outside
+  o.seeds = {Vec3::Zero()};
+  o.spacing = 0.5;
+  EXPECT_THROW(grow(o, constraint), InvalidInput);  // not the constraint's spacing
+  o.spacing = 1.0;
+  o.spawn = SpawnMode::sphere;
+  EXPECT_THROW(grow(o, constraint), GrowthError);  // every start outside: no free start
+  o.spawn = SpawnMode::inside;
+  EXPECT_THROW(grow(o), InvalidInput);  // inside without a mesh
+  EXPECT_THROW(constraint.place_seeds(1000, 1), InvalidInput);  // too many to fit
+}
+
+}  // namespace
+}  // namespace dla
