@@ -116,6 +116,14 @@ double default_spacing(const dla::TriangleMesh& mesh) {
   return std::round(raw / unit) * unit;
 }
 
+//! The axis of the mesh's longest side, y on a tie: standing figures and vessels come out upright.
+dla::Axis longest_axis(const dla::TriangleMesh& mesh) {
+  const dla::Vec3 size = dla::bounding_box(mesh).max - dla::bounding_box(mesh).min;
+  if (size.z() > size.y() && size.z() > size.x()) return dla::Axis::z;
+  if (size.x() > size.y()) return dla::Axis::x;
+  return dla::Axis::y;
+}
+
 //! `dla3d convert IN OUT.stl`: the project's own mesh reading, to make bust.stl at setup.
 int convert(const std::string& in, const std::string& out, bool quiet) {
   if (out.size() < 4 || (out.compare(out.size() - 4, 4, ".stl") != 0 && out.compare(out.size() - 4, 4, ".STL") != 0))
@@ -206,8 +214,9 @@ int run(int argc, char** argv) {
       ->capture_default_str()->group(outputs);
   app.add_option("--tip-radius", pov.tip_radius, "POV-Ray: branch radius at a strand's tip, in spacings")
       ->capture_default_str()->group(outputs);
-  app.add_option("--up", up, "POV-Ray: the axis that is up in the picture, x, y or z")
-      ->capture_default_str()->group(outputs);
+  CLI::Option* up_option =
+      app.add_option("--up", up, "POV-Ray: the axis that is up in the picture, x, y or z; with a mesh, "
+                                 "default: its longest side's")->capture_default_str()->group(outputs);
   app.add_flag("-q,--quiet", quiet, "no progress bar and no summary")->group(outputs);
 
   std::string convert_in, convert_out;
@@ -265,6 +274,7 @@ int run(int argc, char** argv) {
     if (!mesh_path.empty()) {
       const dla::TriangleMesh mesh = dla::read_mesh(mesh_path);
       if (!spacing->count()) options.spacing = default_spacing(mesh);
+      if (!up_option->count()) pov.up = longest_axis(mesh);
       dla::detail::require_positive("spacing", options.spacing);
       check_writable(output);  // before the set-up, which takes a moment
       constraint = std::make_unique<dla::MeshConstraint>(mesh, constraint_options, options.spacing);

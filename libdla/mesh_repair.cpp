@@ -22,8 +22,11 @@ using Point = Kernel::Point_3;
 using Mesh = CGAL::Surface_mesh<Point>;
 namespace PMP = CGAL::Polygon_mesh_processing;
 
+//! "1 hole", "64,687 duplicate vertices".
 std::string count(std::size_t n, const char* one, const char* many) {
-  return std::to_string(n) + " " + (n == 1 ? one : many);
+  std::string digits = std::to_string(n);
+  for (int i = static_cast<int>(digits.size()) - 3; i > 0; i -= 3) digits.insert(static_cast<std::size_t>(i), ",");
+  return digits + " " + (n == 1 ? one : many);
 }
 
 //! Whether triangle `t` of `mesh` runs the other way round from the same corners `original`.

@@ -1,6 +1,7 @@
 // dla3d as a user meets it: `dla3d -n N -o PREFIX` writes every file; every bad flag or value
 // is one line on stderr, a non-zero exit and no files.
 
+#include "mesh_util.h"
 #include "test_util.h"
 
 #include <gtest/gtest.h>
@@ -71,6 +72,22 @@ TEST(Cli, GrowsInAMeshWithAHoleAndConvertsIt) {
   ASSERT_EQ(dla3d(dir, "--stl box.stl --seeds 2 -n 800 -o again --spacing 0.5 -q --no-scene-mesh").exit_code, 0);
   EXPECT_EQ(read_file(dir / "in.csv"), read_file(dir / "again.csv"));
   EXPECT_EQ(read_file(dir / "again.inc").find("mesh2"), std::string::npos);
+}
+
+TEST(Cli, TheMainJobGrowsTwoSeedsInTheBust) {
+  DLA_NEED_BUST(bust);
+  ScratchDir dir;
+  ASSERT_EQ(dla3d(dir, "convert '" + bust + "' bust.stl").exit_code, 0);
+  const CliRun run = dla3d(dir, "--stl bust.stl --seeds 2 -n 3000");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("bust.stl: 25,888 triangles; merged 64,687 duplicate vertices, closed 1 hole"), std::string::npos)
+      << run.err;
+  const std::string json = read_file(dir / "dla.json");
+  EXPECT_NE(json.find("\"closed\": true"), std::string::npos);
+  EXPECT_NE(json.find("\"attached\": 3000"), std::string::npos);
+  EXPECT_NE(read_file(dir / "dla.pov").find("#declare DLA_Sky = z;"), std::string::npos) << "the bust is z-up";
+  const std::string csv = read_file(dir / "dla.csv");
+  EXPECT_NE(csv.find(",-1,1\n"), std::string::npos) << "no second seed";
 }
 
 TEST(Cli, HelpAndVersion) {
