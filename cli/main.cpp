@@ -118,7 +118,8 @@ double default_spacing(const dla::TriangleMesh& mesh) {
 
 //! The axis of the mesh's longest side, y on a tie: standing figures and vessels come out upright.
 dla::Axis longest_axis(const dla::TriangleMesh& mesh) {
-  const dla::Vec3 size = dla::bounding_box(mesh).max - dla::bounding_box(mesh).min;
+  const dla::Box box = dla::bounding_box(mesh);
+  const dla::Vec3 size = box.max - box.min;
   if (size.z() > size.y() && size.z() > size.x()) return dla::Axis::z;
   if (size.x() > size.y()) return dla::Axis::x;
   return dla::Axis::y;
@@ -271,12 +272,12 @@ int run(int argc, char** argv) {
     if (mesh_path.empty() && seeds_option->count())
       throw dla::InvalidInput("--seeds places seeds in a mesh given with --stl; without one, use --seed-at");
     dla::validate(pov);
+    check_writable(output);  // before a mesh's set-up and a long run
     if (!mesh_path.empty()) {
       const dla::TriangleMesh mesh = dla::read_mesh(mesh_path);
       if (!spacing->count()) options.spacing = default_spacing(mesh);
       if (!up_option->count()) pov.up = longest_axis(mesh);
       dla::detail::require_positive("spacing", options.spacing);
-      check_writable(output);  // before the set-up, which takes a moment
       constraint = std::make_unique<dla::MeshConstraint>(mesh, constraint_options, options.spacing);
       if (!quiet)
         std::fprintf(stderr, "dla3d: %s: %s triangles; %s; spacing %g\n", mesh_path.c_str(),
@@ -293,8 +294,6 @@ int run(int argc, char** argv) {
     std::fprintf(stderr, "dla3d: error: %s\n", e.what());
     return 2;
   }
-
-  check_writable(output);
 
   ProgressBar bar(options.particles, !quiet && isatty(STDERR_FILENO));
   const Clock::time_point start = Clock::now();

@@ -117,13 +117,17 @@ BranchCheck MeshConstraint::check_branch(const Vec3& from, const Vec3& to) const
   return {true, true, from + end * (to - from)};
 }
 
+bool MeshConstraint::encloses(const Vec3& p) const {
+  const Region region = inside_.region(p);
+  return region == Region::inside || (region == Region::surface && inside_.contains(p));
+}
+
 Vec3 MeshConstraint::draw_inside(Rng& rng) const {
   constexpr int max_draws = 1'000'000;
   for (int draw = 0; draw < max_draws; ++draw) {
     Vec3 p;
     for (int a = 0; a < 3; ++a) p[a] = box_.min[a] + (box_.max[a] - box_.min[a]) * rng.uniform();
-    const Region region = inside_.region(p);
-    if (region == Region::inside || (region == Region::surface && inside_.contains(p))) return p;
+    if (encloses(p)) return p;
   }
   throw GrowthError("no point inside the mesh in a million draws: it encloses no volume");
 }
@@ -149,8 +153,7 @@ Vec3 MeshConstraint::draw_radial(Rng& rng) const {
   for (int draw = 0; draw < max_draws; ++draw) {
     const Vec3 s = surface_point(rng, nullptr);
     const Vec3 p = centroid_ + rng.uniform() * (s - centroid_);
-    const Region region = inside_.region(p);
-    if (region == Region::inside || (region == Region::surface && inside_.contains(p))) return p;
+    if (encloses(p)) return p;
   }
   throw GrowthError("no radial start inside the mesh in a million draws");
 }

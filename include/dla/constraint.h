@@ -96,6 +96,7 @@ class MeshConstraint {
 
  private:
   Vec3 surface_point(Rng& rng, Vec3* normal) const;
+  bool encloses(const Vec3& p) const;  // inside, by the grid where it can tell
 
   ConstraintOptions options_;
   double spacing_;
