@@ -36,7 +36,7 @@ void grow_cluster(benchmark::State& state) {
     state.ResumeTiming();
     // The progress call every 256 particles samples the heap: the cost is a few microseconds
     // per 256 particles, and the peak is exact to within 256 particles' growth.
-    const dla::Cluster cluster = dla::grow_with<Index>(options, [&](std::size_t) {
+    const dla::Cluster cluster = dla::grow_with<Index>(options, [&](const dla::Cluster&) {
       peak = std::max(peak, heap_in_use());
       return true;
     });

@@ -1,5 +1,6 @@
 // dla3d: grows a DLA structure and writes it as a POV-Ray scene, CSV, PLY and a JSON sidecar.
 
+#include "dla/checkpoint.h"
 #include "dla/constraint.h"
 #include "dla/csv_writer.h"
 #include "dla/growth.h"
@@ -12,6 +13,7 @@
 #include <CLI/CLI.hpp>
 #include <unistd.h>
 
+#include <csignal>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -19,6 +21,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <new>
 #include <sstream>
 #include <string>
@@ -137,7 +140,34 @@ int convert(const std::string& in, const std::string& out, bool quiet) {
   return 0;
 }
 
-int run(int argc, char** argv) {
+//! The signal (SIGINT, SIGTERM) that asked the run to stop, 0 if none. A second one ends the
+//! process at once.
+volatile std::sig_atomic_t stop_signal = 0;
+
+extern "C" void on_stop_signal(int signal) {
+  stop_signal = signal;
+  std::signal(signal, SIG_DFL);
+}
+
+const char* signal_name(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal"; }
+
+//! A mesh file read once: its bytes' hash goes into checkpoints, so a resume can tell whether
+//! it changed.
+dla::TriangleMesh read_mesh_file(const std::string& path, std::uint64_t& hash) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw dla::IOError("cannot read '" + path + "': " + std::strerror(errno));
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  hash = dla::fnv1a(bytes);
+  const std::size_t dot = path.find_last_of('.');
+  return dla::parse_mesh(bytes, dot == std::string::npos ? "" : std::string_view(path).substr(dot + 1), path);
+}
+
+//! Runs dla3d with `args` (argv without the program name); with `resumed`, grows on from that
+//! checkpoint, whose command `args` then is.
+int run(const std::vector<std::string>& args, const dla::Checkpoint* resumed = nullptr) {
+  std::vector<char*> argv{const_cast<char*>("dla3d")};
+  for (const std::string& arg : args) argv.push_back(const_cast<char*>(arg.c_str()));
+  const int argc = static_cast<int>(argv.size());
   CLI::App app{"Grows a branching structure by off-lattice diffusion-limited aggregation and writes\n"
                "it as a POV-Ray scene (PREFIX.pov, PREFIX.inc), PREFIX.csv, PREFIX.ply and PREFIX.json.",
                "dla3d"};
@@ -220,6 +250,16 @@ int run(int argc, char** argv) {
                                  "default: its longest side's")->capture_default_str()->group(outputs);
   app.add_flag("-q,--quiet", quiet, "no progress bar and no summary")->group(outputs);
 
+  const char* runs = "Long runs";
+  std::string checkpoint_path, resume_path;
+  double checkpoint_every = 60.0;
+  app.add_option("--checkpoint", checkpoint_path, "save the run to FILE as it goes, and when stopped by Ctrl-C or SIGTERM")
+      ->type_name("FILE")->group(runs);
+  app.add_option("--checkpoint-every", checkpoint_every, "seconds between saves")->capture_default_str()->group(runs);
+  CLI::Option* resume_option =
+      app.add_option("--resume", resume_path, "grow on from a checkpoint, with the options it was started with")
+          ->type_name("FILE")->group(runs);
+
   std::string convert_in, convert_out;
   CLI::App* convert_command =
       app.add_subcommand("convert", "read a mesh (STL, OFF, OBJ, PLY) and write it as binary STL, then stop");
@@ -228,7 +268,7 @@ int run(int argc, char** argv) {
   app.require_subcommand(0, 1);
 
   try {
-    app.parse(argc, argv);
+    app.parse(argc, argv.data());
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForVersion& e) {
@@ -247,8 +287,29 @@ int run(int argc, char** argv) {
     }
   }
 
+  if (resume_option->count()) {
+    if (resumed) throw dla::InvalidInput("a checkpoint's command cannot itself resume");
+    // Only -q may go with --resume: every other option comes from the checkpoint.
+    std::size_t others = 0;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+      if (args[i] == "--resume") ++i;
+      else if (args[i].rfind("--resume=", 0) != 0 && args[i] != "-q" && args[i] != "--quiet") ++others;
+    }
+    if (others > 0) {
+      std::fprintf(stderr, "dla3d: error: --resume takes no other options but -q: they come from the checkpoint\n");
+      return 2;
+    }
+    const dla::Checkpoint checkpoint = dla::read_checkpoint(resume_path);
+    std::vector<std::string> command = checkpoint.command;
+    if (quiet) command.push_back("-q");
+    return run(command, &checkpoint);
+  }
+
   std::unique_ptr<dla::MeshConstraint> constraint;
+  std::uint64_t input_hash = 0;
   try {
+    if (!(checkpoint_every >= 0.0))
+      throw dla::InvalidInput("--checkpoint-every " + dla::detail::format_number(checkpoint_every) + " is negative");
     if (particles < 0) throw dla::InvalidInput("--particles " + std::to_string(particles) + " is negative");
     options.particles = static_cast<std::size_t>(particles);
     if (!seed_at.empty()) {
@@ -274,11 +335,17 @@ int run(int argc, char** argv) {
     dla::validate(pov);
     check_writable(output);  // before a mesh's set-up and a long run
     if (!mesh_path.empty()) {
-      const dla::TriangleMesh mesh = dla::read_mesh(mesh_path);
+      const dla::TriangleMesh mesh = read_mesh_file(mesh_path, input_hash);
+      if (resumed && resumed->input_hash != input_hash)
+        throw dla::InvalidInput(mesh_path + " has changed since the checkpoint was written: the run cannot go on");
       if (!spacing->count()) options.spacing = default_spacing(mesh);
       if (!up_option->count()) pov.up = longest_axis(mesh);
       dla::detail::require_positive("spacing", options.spacing);
-      constraint = std::make_unique<dla::MeshConstraint>(mesh, constraint_options, options.spacing);
+      try {
+        constraint = std::make_unique<dla::MeshConstraint>(mesh, constraint_options, options.spacing);
+      } catch (const dla::InvalidInput& e) {
+        throw dla::InvalidInput(mesh_path + ": " + e.what());
+      }
       if (!quiet)
         std::fprintf(stderr, "dla3d: %s: %s triangles; %s; spacing %g\n", mesh_path.c_str(),
                      with_commas(static_cast<double>(mesh.triangles.size())).c_str(),
@@ -297,17 +364,32 @@ int run(int argc, char** argv) {
 
   ProgressBar bar(options.particles, !quiet && isatty(STDERR_FILENO));
   const Clock::time_point start = Clock::now();
-  const auto progress = [&](std::size_t done) {
-    bar.update(done);
+  Clock::time_point saved = start;
+  const auto save = [&](const dla::Cluster& so_far) {
+    if (!checkpoint_path.empty()) dla::write_checkpoint({args, input_hash, so_far}, checkpoint_path);
+  };
+  const auto progress = [&](const dla::Cluster& so_far) {
+    bar.update(dla::attached(so_far));
+    if (stop_signal) return false;
+    if (!checkpoint_path.empty() && Clock::now() - saved >= std::chrono::duration<double>(checkpoint_every)) {
+      save(so_far);
+      saved = Clock::now();
+    }
     return true;
   };
-  const dla::Cluster cluster = constraint ? dla::grow(options, *constraint, progress) : dla::grow(options, progress);
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
+  const dla::Cluster cluster =
+      resumed ? (constraint ? dla::resume(options, *constraint, resumed->cluster, progress)
+                            : dla::resume(options, resumed->cluster, progress))
+              : (constraint ? dla::grow(options, *constraint, progress) : dla::grow(options, progress));
   bar.clear();
   dla::RunTimings timings;
   timings.grow_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  if (!cluster.complete) save(cluster);
 
   std::string command = "dla3d";
-  for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+  for (const std::string& arg : args) command += " " + arg;
   pov.comment = command;
   const Clock::time_point write_start = Clock::now();
   dla::write_csv(cluster, output + ".csv");
@@ -327,6 +409,15 @@ int run(int argc, char** argv) {
                  dla::bounding_radius(cluster), dla::radius_of_gyration(cluster), output.c_str(),
                  output.c_str(), output.c_str(), output.c_str(), output.c_str(), output.c_str());
   }
+  if (!cluster.complete) {
+    const int signal = stop_signal;
+    std::fprintf(stderr, "dla3d: stopped by %s after %s of %s particles; the files hold them%s%s\n",
+                 signal_name(signal), with_commas(static_cast<double>(dla::attached(cluster))).c_str(),
+                 with_commas(static_cast<double>(options.particles)).c_str(),
+                 checkpoint_path.empty() ? "" : "; go on with: dla3d --resume ", checkpoint_path.c_str());
+    return 128 + signal;
+  }
+  if (!checkpoint_path.empty()) std::remove(checkpoint_path.c_str());  // the run is whole: nothing to resume
   return 0;
 }
 
@@ -334,7 +425,10 @@ int run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   try {
-    return run(argc, argv);
+    return run(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const dla::InvalidInput& e) {
+    std::fprintf(stderr, "dla3d: error: %s\n", e.what());
+    return 2;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "dla3d: error: out of memory\n");
   } catch (const std::exception& e) {

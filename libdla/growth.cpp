@@ -11,13 +11,36 @@ namespace dla {
 
 namespace {
 
-Cluster grow_any(const GrowthOptions& options, const ProgressFn& progress, const MeshConstraint* constraint) {
+Cluster grow_any(const GrowthOptions& options, const ProgressFn& progress, const MeshConstraint* constraint,
+                 const Cluster* partial) {
   switch (options.index) {
-    case IndexKind::grid: return grow_with<GridIndex>(options, progress, constraint);
-    case IndexKind::kdtree: return grow_with<KdTreeIndex>(options, progress, constraint);
-    case IndexKind::brute: return grow_with<BruteForceIndex>(options, progress, constraint);
+    case IndexKind::grid: return grow_with<GridIndex>(options, progress, constraint, partial);
+    case IndexKind::kdtree: return grow_with<KdTreeIndex>(options, progress, constraint, partial);
+    case IndexKind::brute: return grow_with<BruteForceIndex>(options, progress, constraint, partial);
   }
   throw InvalidInput("unknown index");
+}
+
+//! Whether `partial` can be a structure these options grew and stopped: its seeds, scale and
+//! tree are those the options give.
+void validate_partial(const GrowthOptions& options, const Cluster& partial) {
+  if (partial.seed_count != options.seeds.size() || partial.particles.size() < partial.seed_count)
+    throw InvalidInput("the saved structure has " + std::to_string(partial.seed_count) + " seeds, the options " +
+                       std::to_string(options.seeds.size()));
+  if (partial.spacing != options.spacing || partial.dimensions != options.dimensions)
+    throw InvalidInput("the saved structure was grown with another spacing or dimension");
+  if (attached(partial) > options.particles)
+    throw InvalidInput("the saved structure has " + std::to_string(attached(partial)) + " particles, more than " +
+                       std::to_string(options.particles));
+  for (std::size_t i = 0; i < partial.particles.size(); ++i) {
+    const Particle& p = partial.particles[i];
+    const bool seed = i < partial.seed_count;
+    const bool tree_ok = seed ? p.parent == -1 && p.seed == static_cast<std::int32_t>(i) && p.position == options.seeds[i]
+                              : p.parent >= 0 && static_cast<std::size_t>(p.parent) < i &&
+                                    p.seed == partial.particles[static_cast<std::size_t>(p.parent)].seed;
+    if (!tree_ok || !p.position.allFinite())
+      throw InvalidInput("the saved structure is not one these options grow (particle " + std::to_string(i) + ")");
+  }
 }
 
 std::string point(const Vec3& p) {
@@ -31,7 +54,20 @@ Cluster grow(const GrowthOptions& options, const ProgressFn& progress) {
   validate(options);
   if (options.spawn == SpawnMode::inside || options.spawn == SpawnMode::radial)
     throw InvalidInput("spawn " + std::string(to_string(options.spawn)) + " needs a constraint mesh");
-  return grow_any(options, progress, nullptr);
+  return grow_any(options, progress, nullptr, nullptr);
+}
+
+Cluster resume(const GrowthOptions& options, const Cluster& partial, const ProgressFn& progress) {
+  validate(options);
+  validate_partial(options, partial);
+  return grow_any(options, progress, nullptr, &partial);
+}
+
+Cluster resume(const GrowthOptions& options, const MeshConstraint& constraint, const Cluster& partial,
+               const ProgressFn& progress) {
+  validate(options, constraint);
+  validate_partial(options, partial);
+  return grow_any(options, progress, &constraint, &partial);
 }
 
 void validate(const GrowthOptions& options, const MeshConstraint& constraint) {
@@ -53,7 +89,7 @@ void validate(const GrowthOptions& options, const MeshConstraint& constraint) {
 
 Cluster grow(const GrowthOptions& options, const MeshConstraint& constraint, const ProgressFn& progress) {
   validate(options, constraint);
-  return grow_any(options, progress, &constraint);
+  return grow_any(options, progress, &constraint, nullptr);
 }
 
 }  // namespace dla

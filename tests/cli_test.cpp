@@ -90,6 +90,49 @@ TEST(Cli, TheMainJobGrowsTwoSeedsInTheBust) {
   EXPECT_NE(csv.find(",-1,1\n"), std::string::npos) << "no second seed";
 }
 
+// Starts dla3d in the background, sends it `signal` after `seconds`, and returns its exit code.
+int interrupted(const ScratchDir& dir, const std::string& args, const char* signal, double seconds) {
+  const std::string command = "cd '" + dir.path().string() + "' && { '" DLA3D_PATH "' " + args +
+                              " 2> err.txt & pid=$!; sleep " + std::to_string(seconds) + "; kill -" + signal +
+                              " $pid; wait $pid; echo $? > code.txt; }";
+  EXPECT_EQ(std::system(command.c_str()), 0);
+  return std::atoi(read_file(dir / "code.txt").c_str());
+}
+
+TEST(Cli, CtrlCKeepsTheWorkAndResumeEndsAsAnUninterruptedRun) {
+  ScratchDir dir;
+  const std::string run = "-n 150000 -q --rng-seed 3";
+  const int code = interrupted(dir, run + " -o part --checkpoint part.ck --checkpoint-every 0.2", "INT", 0.7);
+  if (code == 0) GTEST_SKIP() << "the run ended before the signal: this machine is too fast for the test";
+  ASSERT_EQ(code, 130) << read_file(dir / "err.txt");
+  const std::string err = read_file(dir / "err.txt");
+  EXPECT_NE(err.find("stopped by SIGINT after "), std::string::npos) << err;
+  EXPECT_NE(err.find("dla3d --resume part.ck"), std::string::npos) << err;
+  EXPECT_NE(read_file(dir / "part.json").find("\"complete\": false"), std::string::npos);
+  for (const char* name : {"part.csv", "part.ply", "part.pov", "part.inc", "part.ck"})
+    EXPECT_TRUE(std::filesystem::exists(dir / name)) << name;
+
+  const CliRun resumed = dla3d(dir, "--resume part.ck -q");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "part.ck")) << "a finished run's checkpoint is left behind";
+  ASSERT_EQ(dla3d(dir, run + " -o whole").exit_code, 0);
+  EXPECT_TRUE(read_file(dir / "part.csv") == read_file(dir / "whole.csv")) << "resumed run differs";
+  EXPECT_EQ(dla3d(dir, "--resume part.ck").exit_code, 1) << "the checkpoint is gone";
+  EXPECT_EQ(dla3d(dir, "--resume whole.csv").exit_code, 2);
+  EXPECT_EQ(dla3d(dir, "--resume whole.csv -n 5").exit_code, 2);
+}
+
+TEST(Cli, SigtermWritesPartialFiles) {
+  ScratchDir dir;
+  const int code = interrupted(dir, "-n 300000 -o part", "TERM", 0.5);
+  if (code == 0) GTEST_SKIP() << "the run ended before the signal";
+  EXPECT_EQ(code, 143) << read_file(dir / "err.txt");
+  EXPECT_NE(read_file(dir / "part.json").find("\"complete\": false"), std::string::npos);
+  const std::string csv = read_file(dir / "part.csv");
+  EXPECT_EQ(csv.back(), '\n');
+  EXPECT_GT(std::count(csv.begin(), csv.end(), '\n'), 256);
+}
+
 TEST(Cli, HelpAndVersion) {
   ScratchDir dir;
   EXPECT_EQ(dla3d(dir, "--help").exit_code, 0);

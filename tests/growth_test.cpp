@@ -143,13 +143,35 @@ TEST(Growth, SameSeedSameStructureOtherSeedOther) {
 TEST(Growth, ProgressCanStopGrowth) {
   GrowthOptions o = small(5000);
   std::size_t calls = 0;
-  const Cluster c = grow(o, [&](std::size_t done) {
+  const Cluster c = grow(o, [&](const Cluster& so_far) {
+    const std::size_t done = attached(so_far);
     ++calls;
     return done < 1024;
   });
   EXPECT_FALSE(c.complete);
   EXPECT_EQ(c.particles.size(), 1 + 1024u);
   EXPECT_EQ(calls, 4u);
+}
+
+TEST(Growth, ResumedGrowthIsTheUninterruptedOne) {
+  GrowthOptions o = small(3000);
+  o.seeds = {Vec3(-6, 0, 0), Vec3(6, 0, 0)};
+  const Cluster whole = grow(o);
+  const Cluster part = grow(o, [](const Cluster& so_far) { return attached(so_far) < 1280; });
+  ASSERT_EQ(attached(part), 1280u);
+  const Cluster resumed = resume(o, part);
+  EXPECT_TRUE(resumed.complete);
+  ASSERT_EQ(resumed.particles.size(), whole.particles.size());
+  for (std::size_t i = 0; i < whole.particles.size(); ++i) {
+    ASSERT_EQ(resumed.particles[i].position, whole.particles[i].position) << i;
+    ASSERT_EQ(resumed.particles[i].parent, whole.particles[i].parent) << i;
+  }
+  EXPECT_EQ(resumed.stats.steps, whole.stats.steps);
+  EXPECT_EQ(resumed.stats.walkers, whole.stats.walkers);
+
+  Cluster foreign = part;
+  foreign.particles[1].position.x() += 1.0;  // a seed that is not the options'
+  EXPECT_THROW(resume(o, foreign), InvalidInput);
 }
 
 TEST(Growth, FilledSpawnBoxIsAnErrorNotAHang) {

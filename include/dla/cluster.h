@@ -45,6 +45,9 @@ struct Cluster {
   WalkStats stats;
 };
 
+//! Particles attached so far, seeds not counted.
+inline std::size_t attached(const Cluster& cluster) { return cluster.particles.size() - cluster.seed_count; }
+
 //! Largest distance of a particle centre from `cluster.center`.
 inline double bounding_radius(const Cluster& cluster) {
   double r2 = 0.0;

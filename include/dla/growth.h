@@ -17,9 +17,10 @@
 
 namespace dla {
 
-//! Called as growth goes on with the number of particles attached so far (seeds not counted);
-//! returning false stops growth early and the cluster comes back marked incomplete.
-using ProgressFn = std::function<bool(std::size_t attached)>;
+//! Called as growth goes on, every 256 particles and at the end, with the structure so far;
+//! returning false stops growth early and the cluster comes back marked incomplete (it can be
+//! saved and grown on with resume()).
+using ProgressFn = std::function<bool(const Cluster& so_far)>;
 
 //! Grows a structure with the index chosen in options.index. Validates the options first.
 //! Defined in libdla (it instantiates grow_with for every index).
@@ -30,14 +31,22 @@ Cluster grow(const GrowthOptions& options, const ProgressFn& progress = {});
 //! side, a spawn mode that can start walkers there.
 Cluster grow(const GrowthOptions& options, const MeshConstraint& constraint, const ProgressFn& progress = {});
 
+//! Grows on a structure that growth with the same options (and constraint) stopped early, up
+//! to options.particles. The result is the one growth without the stop gives, byte for byte:
+//! walker k draws from its own random stream, whenever it runs. Throws InvalidInput if
+//! `partial` cannot have come from these options.
+Cluster resume(const GrowthOptions& options, const Cluster& partial, const ProgressFn& progress = {});
+Cluster resume(const GrowthOptions& options, const MeshConstraint& constraint, const Cluster& partial,
+               const ProgressFn& progress = {});
+
 //! Throws InvalidInput where the options and the constraint cannot work together.
 void validate(const GrowthOptions& options, const MeshConstraint& constraint);
 
 //! Grows a structure with a given index type (see spatial_index.h), constrained by a mesh if
-//! `constraint` is set. Does not validate.
+//! `constraint` is set, going on from `partial` if it is set. Does not validate.
 template <class Index>
 Cluster grow_with(const GrowthOptions& options, const ProgressFn& progress = {},
-                  const MeshConstraint* constraint = nullptr);
+                  const MeshConstraint* constraint = nullptr, const Cluster* partial = nullptr);
 
 // ---------------------------------------------------------------------------------------------
 
@@ -46,7 +55,7 @@ namespace detail {
 template <class Index>
 class Aggregation {
  public:
-  Aggregation(const GrowthOptions& options, const MeshConstraint* constraint)
+  Aggregation(const GrowthOptions& options, const MeshConstraint* constraint, const Cluster* partial)
       : opt_(options),
         constraint_(constraint),
         contact_(options.spacing),
@@ -59,15 +68,21 @@ class Aggregation {
     cluster_.particles.reserve(options.seeds.size() + options.particles);
     for (const Vec3& s : options.seeds) cluster_.center += s;
     cluster_.center /= static_cast<double>(options.seeds.size());
+    if (partial) {
+      // The same particles added in the same order rebuild the same index and radii.
+      for (const Particle& p : partial->particles) add(p);
+      cluster_.stats = partial->stats;
+      return;
+    }
     for (std::size_t i = 0; i < options.seeds.size(); ++i)
       add({options.seeds[i], -1, static_cast<std::int32_t>(i)});
   }
 
   Cluster run(const ProgressFn& progress) {
     constexpr std::size_t report_every = 256;
-    for (std::size_t k = 0; k < opt_.particles; ++k) {
+    for (std::size_t k = attached(cluster_); k < opt_.particles; ++k) {
       add(walk(k));
-      if (progress && ((k + 1) % report_every == 0 || k + 1 == opt_.particles) && !progress(k + 1)) {
+      if (progress && ((k + 1) % report_every == 0 || k + 1 == opt_.particles) && !progress(cluster_)) {
         cluster_.complete = k + 1 == opt_.particles;
         break;
       }
@@ -236,8 +251,9 @@ class Aggregation {
 }  // namespace detail
 
 template <class Index>
-Cluster grow_with(const GrowthOptions& options, const ProgressFn& progress, const MeshConstraint* constraint) {
-  return detail::Aggregation<Index>(options, constraint).run(progress);
+Cluster grow_with(const GrowthOptions& options, const ProgressFn& progress, const MeshConstraint* constraint,
+                  const Cluster* partial) {
+  return detail::Aggregation<Index>(options, constraint, partial).run(progress);
 }
 
 }  // namespace dla

@@ -1,0 +1,77 @@
+// Checkpoints read back exactly what was written, refuse damaged files, and a run resumed from
+// one ends as the uninterrupted run does, with a constraint mesh too.
+
+#include "dla/checkpoint.h"
+#include "dla/growth.h"
+#include "dla/shapes.h"
+#include "test_util.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+namespace dla {
+namespace {
+
+using testing::ScratchDir;
+
+TEST(Checkpoint, ReadsBackWhatWasWritten) {
+  ScratchDir dir;
+  GrowthOptions o;
+  o.particles = 700;
+  Checkpoint saved{{"-n", "700", "--seed-at", "1,2,3", "a word with spaces"}, 0x1234, grow(o)};
+  write_checkpoint(saved, dir / "run.ck");
+  const Checkpoint back = read_checkpoint(dir / "run.ck");
+  EXPECT_EQ(back.command, saved.command);
+  EXPECT_EQ(back.input_hash, saved.input_hash);
+  ASSERT_EQ(back.cluster.particles.size(), saved.cluster.particles.size());
+  for (std::size_t i = 0; i < saved.cluster.particles.size(); ++i) {
+    EXPECT_EQ(back.cluster.particles[i].position, saved.cluster.particles[i].position);
+    EXPECT_EQ(back.cluster.particles[i].parent, saved.cluster.particles[i].parent);
+  }
+  EXPECT_EQ(back.cluster.stats.steps, saved.cluster.stats.steps);
+  EXPECT_EQ(back.cluster.seed_count, 1u);
+  EXPECT_FALSE(back.cluster.complete);
+}
+
+TEST(Checkpoint, DamagedOrForeignFilesAreClearErrors) {
+  ScratchDir dir;
+  GrowthOptions o;
+  o.particles = 300;
+  write_checkpoint({{"-n", "300"}, 0, grow(o)}, dir / "run.ck");
+  const std::string bytes = testing::read_file(dir / "run.ck");
+  const auto expect_refused = [&](const std::string& content, const char* says) {
+    std::ofstream(dir / "bad.ck", std::ios::binary) << content;
+    try {
+      read_checkpoint(dir / "bad.ck");
+      ADD_FAILURE() << "accepted: " << says;
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+  };
+  expect_refused(bytes.substr(0, bytes.size() / 2), "cut short or damaged");
+  std::string flipped = bytes;
+  flipped[bytes.size() / 2] ^= 1;
+  expect_refused(flipped, "cut short or damaged");
+  expect_refused("solid not a checkpoint", "is not a dla3d checkpoint");
+  expect_refused("", "is not a dla3d checkpoint");
+  EXPECT_THROW(read_checkpoint(dir / "missing.ck"), IOError);
+}
+
+TEST(Checkpoint, ResumedConstrainedGrowthIsTheUninterruptedOne) {
+  const MeshConstraint tube(make_open_can(Vec3::Zero(), 4.0, 30.0, 24), {}, 1.0);
+  GrowthOptions o;
+  o.particles = 900;
+  o.spawn = SpawnMode::inside;
+  o.seeds = tube.place_seeds(2, o.rng_seed);
+  const Cluster whole = grow(o, tube);
+  const Cluster part = grow(o, tube, [](const Cluster& so_far) { return attached(so_far) < 512; });
+  const Cluster resumed = resume(o, tube, part);
+  ASSERT_EQ(resumed.particles.size(), whole.particles.size());
+  for (std::size_t i = 0; i < whole.particles.size(); ++i)
+    ASSERT_EQ(resumed.particles[i].position, whole.particles[i].position) << i;
+  EXPECT_EQ(resumed.stats.rejected, whole.stats.rejected);
+}
+
+}  // namespace
+}  // namespace dla
