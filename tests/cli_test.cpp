@@ -1,6 +1,8 @@
 // dla3d as a user meets it: `dla3d -n N -o PREFIX` writes every file; every bad flag or value
 // is one line on stderr, a non-zero exit and no files.
 
+#include "dla/mesh.h"
+#include "dla/shapes.h"
 #include "mesh_util.h"
 #include "test_util.h"
 
@@ -8,6 +10,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace {
@@ -131,6 +134,84 @@ TEST(Cli, SigtermWritesPartialFiles) {
   const std::string csv = read_file(dir / "part.csv");
   EXPECT_EQ(csv.back(), '\n');
   EXPECT_GT(std::count(csv.begin(), csv.end(), '\n'), 256);
+}
+
+// Every malformed mesh: one line naming the file and the fault, exit 2, no files written.
+TEST(Cli, MalformedMeshesAreOneLineErrors) {
+  std::string binary(84, '\0');
+  binary[80] = 2;  // two triangles counted, none there
+  std::string absurd(84 + 50, '\0');
+  absurd[80] = absurd[81] = absurd[82] = absurd[83] = '\xff';  // 4,294,967,295 triangles
+  std::string nan_stl(84, '\0');
+  nan_stl[80] = 1;
+  nan_stl += std::string(12, '\0') + std::string("\x00\x00\xc0\x7f", 4) + std::string(34, '\0');  // x = NaN
+  std::string random_bytes;
+  for (int i = 0; i < 1000; ++i) random_bytes += static_cast<char>((i * 7919 + 13) % 251);
+  const struct {
+    const char* name;
+    std::string bytes;
+    const char* says;
+  } cases[] = {
+      {"empty.stl", "", "is empty"},
+      {"header.stl", std::string(84, '\0'), "has no triangles"},
+      {"header.off", "OFF\n", "no vertex, face and edge counts"},
+      {"truncated.stl", binary + std::string(60, '\0'), "not a valid binary STL"},
+      {"overlong.stl", binary + std::string(150, '\0'), "counts 2 triangles, 184 bytes, but the file has 234"},
+      {"absurd.stl", absurd, "4294967295 triangles"},
+      {"absurd.off", "OFF\n3 4000000000 0\n0 0 0\n1 0 0\n0 1 0\n", "more than its"},
+      {"nan.stl", nan_stl, "not a finite number"},
+      {"inf.off", "OFF\n3 1 0\n0 0 inf\n1 0 0\n0 1 0\n3 0 1 2\n", "not a finite number"},
+      {"garbage.stl", "solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 zero\n", "a vertex needs 3 numbers"},
+      {"cut.stl", "solid x\n facet normal 0 0 1\n outer loop\n vertex 0 0 0\n vertex 1 0 0\n", "ends in the middle"},
+      {"random.stl", random_bytes, "STL"},
+      {"random.ply", random_bytes, "is not a PLY file"},
+      {"random.obj", random_bytes, "has no triangles"},
+      {"notes.off", "These are my notes, not a mesh.\n", "does not begin with OFF"},
+      {"flat.off", "OFF\n3 2 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n3 2 1 0\n", "degenerate"},
+  };
+  for (const auto& c : cases) {
+    ScratchDir dir;
+    std::ofstream(dir / c.name, std::ios::binary) << c.bytes;
+    const CliRun run = dla3d(dir, std::string("--stl ") + c.name + " -n 50 -q -o out");
+    EXPECT_EQ(run.exit_code, 2) << c.name << ": " << run.err;
+    EXPECT_EQ(run.err.rfind(std::string("dla3d: error: ") + c.name + ": ", 0), 0u) << c.name << ": " << run.err;
+    EXPECT_NE(run.err.find(c.says), std::string::npos) << c.name << ": " << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << c.name << ": " << run.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out.csv")) << c.name;
+  }
+}
+
+// Valid but awkward files grow: binary STL whose header says "solid", ASCII with CRLF, half
+// the triangles flipped with zeroed normals.
+TEST(Cli, AwkwardButValidMeshesGrow) {
+  ScratchDir dir;
+  const dla::TriangleMesh sphere = dla::make_sphere(dla::Vec3::Zero(), 10.0, 12, 24);
+  dla::write_stl(sphere, dir / "plain.stl");
+  std::string solid = read_file(dir / "plain.stl");
+  solid.replace(0, 12, "solid sphere");
+  std::ofstream(dir / "solid.stl", std::ios::binary) << solid;
+  std::string crlf = "solid sphere\r\n", flipped = "solid sphere\n";
+  for (std::size_t t = 0; t < sphere.triangles.size(); ++t) {
+    auto tri = sphere.triangles[t];
+    const auto facet = [&](std::string& out, const char* end) {
+      out += std::string(" facet normal 0 0 0") + end + "  outer loop" + end;
+      for (std::uint32_t id : tri) {
+        const dla::Vec3& v = sphere.vertices[id];
+        out += "   vertex " + std::to_string(v.x()) + " " + std::to_string(v.y()) + " " + std::to_string(v.z()) + end;
+      }
+      out += std::string("  endloop") + end + " endfacet" + end;
+    };
+    facet(crlf, "\r\n");
+    if (t % 2) std::swap(tri[1], tri[2]);
+    facet(flipped, "\n");
+  }
+  std::ofstream(dir / "crlf.stl", std::ios::binary) << crlf << "endsolid sphere\r\n";
+  std::ofstream(dir / "flipped.stl", std::ios::binary) << flipped << "endsolid sphere\n";
+  for (const char* name : {"solid.stl", "crlf.stl", "flipped.stl"}) {
+    const CliRun run = dla3d(dir, std::string("--stl ") + name + " -n 300 -o " + name + " --spacing 0.5");
+    EXPECT_EQ(run.exit_code, 0) << name << ": " << run.err;
+    EXPECT_NE(run.err.find("grew 300 particles"), std::string::npos) << name << ": " << run.err;
+  }
 }
 
 TEST(Cli, HelpAndVersion) {

@@ -7,7 +7,9 @@
 
 // nanoflann 1.4 leaves a bounding box uninitialised on a path it never takes; GCC warns.
 #pragma GCC diagnostic push
+#if defined(__GNUC__) && !defined(__clang__)  // a GCC-only warning
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 #include <nanoflann.hpp>
 #pragma GCC diagnostic pop
 

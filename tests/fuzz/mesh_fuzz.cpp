@@ -1,0 +1,24 @@
+// libFuzzer target for one mesh reader, chosen at build time (DLA_FUZZ_FORMAT: stl, off, obj or
+// ply). Any input must either parse into a mesh whose indices are in range and coordinates
+// finite, or be refused with InvalidInput: never crash, hang, leak or read out of bounds.
+// Build with -DDLA_FUZZ=ON (clang); see docs/testing.md.
+
+#include "dla/mesh.h"
+
+#include <cstdint>
+#include <cstdlib>
+#include <string_view>
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+  try {
+    const dla::TriangleMesh mesh = dla::parse_mesh(bytes, DLA_FUZZ_FORMAT, "fuzz");
+    for (const auto& t : mesh.triangles)
+      for (std::uint32_t id : t)
+        if (id >= mesh.vertices.size()) std::abort();
+    for (const dla::Vec3& v : mesh.vertices)
+      if (!v.allFinite()) std::abort();
+  } catch (const dla::InvalidInput&) {
+  }
+  return 0;
+}

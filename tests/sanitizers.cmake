@@ -1,0 +1,34 @@
+# The sanitizer pass (ctest's `sanitizers` test): builds the project with AddressSanitizer and
+# UndefinedBehaviorSanitizer in its own folder, runs the unit tests there, then fuzzes every
+# mesh reader for FUZZ_SECONDS from the seed corpus. With clang the fuzzers are built too;
+# without it the pass says so and fuzzes nothing.
+#   cmake -DSOURCE_DIR=... -DWORK_DIR=... -DFUZZ_SECONDS=15 -P tests/sanitizers.cmake
+find_program(CLANGXX NAMES clang++ clang++-14)
+set(compiler)
+if(CLANGXX)
+  set(compiler -DCMAKE_CXX_COMPILER=${CLANGXX} -DDLA_FUZZ=ON)
+else()
+  message(WARNING "clang++ is missing (the README's setup installs it): the mesh readers are not fuzzed")
+endif()
+
+function(step)
+  execute_process(COMMAND ${ARGV} RESULT_VARIABLE failed)
+  if(failed)
+    message(FATAL_ERROR "failed (${failed}): ${ARGV}")
+  endif()
+endfunction()
+
+step(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR} -DCMAKE_BUILD_TYPE=RelWithDebInfo ${compiler}
+     -DDLA_SANITIZE=ON -DDLA_SANITIZER_TESTS=OFF -DDLA_BUILD_BENCH=OFF -DDLA_BUILD_EXAMPLES=OFF)
+step(${CMAKE_COMMAND} --build ${WORK_DIR} -j2)
+# The consumer example installs a package: nothing the sanitizers add to.
+step(${CMAKE_CTEST_COMMAND} --test-dir ${WORK_DIR} --output-on-failure -j2 -E consumer_example)
+
+if(CLANGXX)
+  foreach(format stl off obj ply)
+    set(corpus ${WORK_DIR}/fuzz_corpus/${format})
+    file(MAKE_DIRECTORY ${corpus})
+    step(${WORK_DIR}/tests/fuzz/fuzz_${format} -max_total_time=${FUZZ_SECONDS} -rss_limit_mb=2048 -timeout=10
+         -print_final_stats=1 ${corpus} ${SOURCE_DIR}/tests/fuzz/corpus/${format})
+  endforeach()
+endif()
