@@ -101,12 +101,12 @@ class ProgressBar {
   Clock::time_point last_{};
 };
 
-//! Fails early, before a long run, if PREFIX.* cannot be created.
-void check_writable(const std::string& prefix) {
-  const std::string probe = prefix + ".json.tmp";
+//! Fails early, before a long run, if `path` cannot be created (its temporary name is tried).
+void check_writable(const std::string& path) {
+  const std::string probe = path + ".tmp";
   {
     std::ofstream out(probe);
-    if (!out) throw dla::IOError("cannot write '" + prefix + ".json': " + std::strerror(errno));
+    if (!out) throw dla::IOError("cannot write '" + path + "': " + std::strerror(errno));
   }
   std::remove(probe.c_str());
 }
@@ -150,17 +150,6 @@ extern "C" void on_stop_signal(int signal) {
 }
 
 const char* signal_name(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal"; }
-
-//! A mesh file read once: its bytes' hash goes into checkpoints, so a resume can tell whether
-//! it changed.
-dla::TriangleMesh read_mesh_file(const std::string& path, std::uint64_t& hash) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw dla::IOError("cannot read '" + path + "': " + std::strerror(errno));
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  hash = dla::fnv1a(bytes);
-  const std::size_t dot = path.find_last_of('.');
-  return dla::parse_mesh(bytes, dot == std::string::npos ? "" : std::string_view(path).substr(dot + 1), path);
-}
 
 //! Runs dla3d with `args` (argv without the program name); with `resumed`, grows on from that
 //! checkpoint, whose command `args` then is.
@@ -333,9 +322,10 @@ int run(const std::vector<std::string>& args, const dla::Checkpoint* resumed = n
     if (mesh_path.empty() && seeds_option->count())
       throw dla::InvalidInput("--seeds places seeds in a mesh given with --stl; without one, use --seed-at");
     dla::validate(pov);
-    check_writable(output);  // before a mesh's set-up and a long run
+    check_writable(output + ".json");  // before a mesh's set-up and a long run
+    if (!checkpoint_path.empty()) check_writable(checkpoint_path);
     if (!mesh_path.empty()) {
-      const dla::TriangleMesh mesh = read_mesh_file(mesh_path, input_hash);
+      const dla::TriangleMesh mesh = dla::read_mesh(mesh_path, &input_hash);
       if (resumed && resumed->input_hash != input_hash)
         throw dla::InvalidInput(mesh_path + " has changed since the checkpoint was written: the run cannot go on");
       if (!spacing->count()) options.spacing = default_spacing(mesh);
@@ -365,8 +355,16 @@ int run(const std::vector<std::string>& args, const dla::Checkpoint* resumed = n
   ProgressBar bar(options.particles, !quiet && isatty(STDERR_FILENO));
   const Clock::time_point start = Clock::now();
   Clock::time_point saved = start;
+  // A save that fails (a full disk) is reported once and does not stop the run.
+  bool save_failed = false;
   const auto save = [&](const dla::Cluster& so_far) {
-    if (!checkpoint_path.empty()) dla::write_checkpoint({args, input_hash, so_far}, checkpoint_path);
+    if (checkpoint_path.empty()) return;
+    try {
+      dla::write_checkpoint({args, input_hash, so_far}, checkpoint_path);
+    } catch (const dla::IOError& e) {
+      if (!save_failed) std::fprintf(stderr, "\r\033[Kdla3d: warning: %s; growth goes on\n", e.what());
+      save_failed = true;
+    }
   };
   const auto progress = [&](const dla::Cluster& so_far) {
     bar.update(dla::attached(so_far));
@@ -386,7 +384,6 @@ int run(const std::vector<std::string>& args, const dla::Checkpoint* resumed = n
   bar.clear();
   dla::RunTimings timings;
   timings.grow_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  if (!cluster.complete) save(cluster);
 
   std::string command = "dla3d";
   for (const std::string& arg : args) command += " " + arg;
@@ -397,6 +394,7 @@ int run(const std::vector<std::string>& args, const dla::Checkpoint* resumed = n
   dla::write_pov(cluster, output, pov, constraint && scene_mesh ? &constraint->mesh() : nullptr);
   timings.write_seconds = std::chrono::duration<double>(Clock::now() - write_start).count();
   dla::write_run_report(cluster, options, pov, timings, output + ".json", constraint.get(), mesh_path);
+  if (!cluster.complete) save(cluster);  // after the files: they matter more
 
   if (!quiet) {
     const double attached = static_cast<double>(cluster.particles.size() - cluster.seed_count);

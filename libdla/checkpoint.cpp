@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <string_view>
 
 namespace dla {
 
@@ -59,11 +60,6 @@ class Reader {
 };
 
 }  // namespace
-
-std::uint64_t fnv1a(std::string_view bytes, std::uint64_t hash) {
-  for (const char c : bytes) hash = (hash ^ static_cast<unsigned char>(c)) * 0x100000001b3ULL;
-  return hash;
-}
 
 void write_checkpoint(const Checkpoint& checkpoint, const std::string& path) {
   const Cluster& c = checkpoint.cluster;

@@ -4,6 +4,7 @@
 
 #include "dla/mesh.h"
 
+#include "dla/hash.h"
 #include "output_file.h"
 
 #include <algorithm>
@@ -473,7 +474,7 @@ TriangleMesh parse_mesh(std::string_view bytes, std::string_view extension, cons
   throw InvalidInput(name + ": unknown mesh format '" + std::string(extension) + "' (use .stl, .off, .obj or .ply)");
 }
 
-TriangleMesh read_mesh(const std::string& path) {
+TriangleMesh read_mesh(const std::string& path, std::uint64_t* file_hash) {
   const std::size_t dot = path.find_last_of('.');
   const std::size_t slash = path.find_last_of('/');
   const std::string extension =
@@ -483,6 +484,7 @@ TriangleMesh read_mesh(const std::string& path) {
   if (!in) throw IOError("cannot read '" + path + "': " + std::strerror(errno));
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw IOError("cannot read '" + path + "': " + std::strerror(errno));
+  if (file_hash) *file_hash = fnv1a(bytes);
   return parse_mesh(bytes, extension, path);
 }
 

@@ -4,10 +4,10 @@
 //! so far, its walk statistics, and what made it. See docs/formats.md.
 
 #include "dla/cluster.h"
+#include "dla/hash.h"
 
 #include <cstdint>
 #include <string>
-#include <string_view>
 #include <vector>
 
 namespace dla {
@@ -25,8 +25,5 @@ void write_checkpoint(const Checkpoint& checkpoint, const std::string& path);
 //! Reads a checkpoint; throws IOError if it cannot be read and InvalidInput, naming the file,
 //! if it is not a whole checkpoint (a checksum covers every byte).
 Checkpoint read_checkpoint(const std::string& path);
-
-//! FNV-1a, 64 bits: the checkpoint's checksum, and a fingerprint of input files.
-std::uint64_t fnv1a(std::string_view bytes, std::uint64_t hash = 0xcbf29ce484222325ULL);
 
 }  // namespace dla

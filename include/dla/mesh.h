@@ -24,7 +24,8 @@ struct TriangleMesh {
 //! Reads a mesh, choosing the format by the file's extension (.stl, .off, .obj, .ply, any
 //! case). Polygons are split into triangle fans; STL normals are ignored. Throws IOError if the
 //! file cannot be read and InvalidInput, naming the file, if it is not a well-formed mesh.
-TriangleMesh read_mesh(const std::string& path);
+//! With `file_hash`, also gives the FNV-1a hash of the file's bytes (to tell if it changes).
+TriangleMesh read_mesh(const std::string& path, std::uint64_t* file_hash = nullptr);
 
 //! Reads a mesh from bytes, in the format named by `extension` ("stl", "off", "obj", "ply");
 //! `name` prefixes the error messages. The readers behind read_mesh().
