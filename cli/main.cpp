@@ -1,5 +1,6 @@
 // dla3d: grows a DLA structure and writes it as a POV-Ray scene, CSV, PLY and a JSON sidecar.
 
+#include "dla/analysis.h"
 #include "dla/checkpoint.h"
 #include "dla/constraint.h"
 #include "dla/csv_writer.h"
@@ -14,6 +15,7 @@
 #include <unistd.h>
 
 #include <csignal>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -126,6 +128,61 @@ dla::Axis longest_axis(const dla::TriangleMesh& mesh) {
   if (size.z() > size.y() && size.z() > size.x()) return dla::Axis::z;
   if (size.x() > size.y()) return dla::Axis::x;
   return dla::Axis::y;
+}
+
+//! A structure read back from dla3d's CSV (id,x,y,z,parent,seed). The spacing is the median
+//! branch length; the structure is planar if every z is 0.
+dla::Cluster read_structure_csv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw dla::IOError("cannot read '" + path + "': " + std::strerror(errno));
+  std::string line;
+  if (!std::getline(in, line) || line.rfind("id,x,y,z,parent,seed", 0) != 0)
+    throw dla::InvalidInput(path + ": is not a dla3d CSV (no 'id,x,y,z,parent,seed' header)");
+  dla::Cluster cluster;
+  cluster.dimensions = 2;
+  std::vector<double> lengths;
+  for (std::size_t row = 2; std::getline(in, line); ++row) {
+    if (line.empty()) continue;
+    std::vector<double> v;
+    try {
+      v = parse_numbers("row", line, 6);
+    } catch (const dla::InvalidInput&) {
+      throw dla::InvalidInput(path + ": line " + std::to_string(row) + " is not 6 numbers");
+    }
+    dla::Particle p{{v[1], v[2], v[3]}, static_cast<std::int32_t>(v[4]), static_cast<std::int32_t>(v[5])};
+    const auto index = static_cast<double>(cluster.particles.size());
+    if (v[0] != index || !(p.parent == -1 || (p.parent >= 0 && p.parent < v[0])) || !p.position.allFinite())
+      throw dla::InvalidInput(path + ": line " + std::to_string(row) + " is not a particle after the ones before it");
+    if (p.parent < 0) {
+      ++cluster.seed_count;
+    } else {
+      lengths.push_back((p.position - cluster.particles[static_cast<std::size_t>(p.parent)].position).norm());
+    }
+    if (p.position.z() != 0.0) cluster.dimensions = 3;
+    cluster.particles.push_back(p);
+  }
+  if (lengths.empty()) throw dla::InvalidInput(path + ": has no branches to measure");
+  std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2), lengths.end());
+  cluster.spacing = lengths[lengths.size() / 2];
+  return cluster;
+}
+
+//! `dla3d analyze PREFIX.csv`: the fractal dimension of a grown structure, as JSON on stdout.
+int analyze(const std::string& path) {
+  const dla::Cluster cluster = read_structure_csv(path);
+  const dla::FractalFit gyration = dla::fractal_dimension_by_gyration(cluster);
+  const dla::FractalFit mass = dla::fractal_dimension_by_mass_radius(cluster);
+  const auto value = [](const dla::FractalFit& fit) {
+    return fit.samples >= 2 ? dla::detail::format_number(fit.dimension) : std::string("null");
+  };
+  std::printf("{\n  \"file\": \"%s\",\n  \"particles\": %zu,\n  \"seeds\": %zu,\n  \"spacing\": %s,\n"
+              "  \"dimensions\": %d,\n  \"radius_of_gyration\": %s,\n  \"fractal_dimension_gyration\": %s,\n"
+              "  \"fractal_dimension_mass_radius\": %s\n}\n",
+              path.c_str(), cluster.particles.size(), cluster.seed_count,
+              dla::detail::format_number(cluster.spacing).c_str(), cluster.dimensions,
+              dla::detail::format_number(dla::radius_of_gyration(cluster)).c_str(), value(gyration).c_str(),
+              value(mass).c_str());
+  return 0;
 }
 
 //! `dla3d convert IN OUT.stl`: the project's own mesh reading, to make bust.stl at setup.
@@ -254,6 +311,10 @@ int run(const std::vector<std::string>& args, const dla::Checkpoint* resumed = n
       app.add_subcommand("convert", "read a mesh (STL, OFF, OBJ, PLY) and write it as binary STL, then stop");
   convert_command->add_option("in", convert_in, "the mesh to read")->required();
   convert_command->add_option("out", convert_out, "the .stl to write")->required();
+  std::string analyze_csv;
+  CLI::App* analyze_command = app.add_subcommand(
+      "analyze", "print the fractal dimension of a grown structure (by gyration and by mass-radius) as JSON");
+  analyze_command->add_option("csv", analyze_csv, "a CSV that dla3d wrote")->required();
   app.require_subcommand(0, 1);
 
   try {
@@ -275,6 +336,8 @@ int run(const std::vector<std::string>& args, const dla::Checkpoint* resumed = n
       return 2;
     }
   }
+
+  if (analyze_command->parsed()) return analyze(analyze_csv);
 
   if (resume_option->count()) {
     if (resumed) throw dla::InvalidInput("a checkpoint's command cannot itself resume");

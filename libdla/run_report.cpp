@@ -103,11 +103,15 @@ void write_run_report(const Cluster& cluster, const GrowthOptions& o, const PovO
   out << ",\n    \"bounding_radius\": ";
   out.number(bounding_radius(cluster), 9) << ",\n    \"radius_of_gyration\": ";
   out.number(radius_of_gyration(cluster), 9) << ",\n    \"fractal_dimension_gyration\": ";
-  const FractalFit fit = fractal_dimension_by_gyration(cluster);
-  if (fit.samples >= 2)
-    out.number(fit.dimension, 5);
-  else
-    out << "null";
+  const auto dimension = [&](const FractalFit& fit) {
+    if (fit.samples >= 2)
+      out.number(fit.dimension, 5);
+    else
+      out << "null";
+  };
+  dimension(fractal_dimension_by_gyration(cluster));
+  out << ",\n    \"fractal_dimension_mass_radius\": ";
+  dimension(fractal_dimension_by_mass_radius(cluster));
   out << "\n  },\n  \"timings\": {\n    \"grow_seconds\": ";
   out.number(timings.grow_seconds, 6) << ",\n    \"write_seconds\": ";
   out.number(timings.write_seconds, 6) << ",\n    \"particles_per_second\": ";

@@ -214,6 +214,26 @@ TEST(Cli, AwkwardButValidMeshesGrow) {
   }
 }
 
+TEST(Cli, AnalyzeMeasuresAGrownStructure) {
+  ScratchDir dir;
+  ASSERT_EQ(dla3d(dir, "-n 20000 -q -o grown --spacing 0.5").exit_code, 0);
+  const std::string command = "cd '" + dir.path().string() + "' && '" DLA3D_PATH "' analyze grown.csv > out.json";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  const std::string json = read_file(dir / "out.json");
+  EXPECT_NE(json.find("\"particles\": 20001"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"spacing\": 0.5"), std::string::npos) << json;
+  const auto value = [&](const std::string& key) {
+    const std::size_t at = json.find("\"" + key + "\": ");
+    return at == std::string::npos ? 0.0 : std::atof(json.c_str() + at + key.size() + 4);
+  };
+  EXPECT_NEAR(value("fractal_dimension_gyration"), 2.5, 0.2) << json;
+  EXPECT_NEAR(value("fractal_dimension_mass_radius"), 2.5, 0.25) << json;
+  EXPECT_NE(read_file(dir / "grown.json").find("\"fractal_dimension_mass_radius\": 2."), std::string::npos);
+  const CliRun bad = dla3d(dir, "analyze grown.json");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("is not a dla3d CSV"), std::string::npos) << bad.err;
+}
+
 TEST(Cli, HelpAndVersion) {
   ScratchDir dir;
   EXPECT_EQ(dla3d(dir, "--help").exit_code, 0);
