@@ -59,11 +59,8 @@ dla::Vec3 parse_vec3(const std::string& flag, const std::string& text) {
   return {v[0], v[1], v[2]};
 }
 
-std::string with_commas(double value) {
-  std::string digits = std::to_string(static_cast<long long>(value + 0.5));
-  for (int i = static_cast<int>(digits.size()) - 3; i > 0; i -= 3) digits.insert(static_cast<std::size_t>(i), ",");
-  return digits;
-}
+//! A non-negative amount rounded to a whole number, thousands grouped.
+std::string with_commas(double value) { return dla::detail::format_count(static_cast<std::uint64_t>(value + 0.5)); }
 
 //! A one-line progress bar on stderr, drawn only on a terminal and only once a run has taken
 //! a second.
@@ -113,17 +110,16 @@ void check_writable(const std::string& path) {
   std::remove(probe.c_str());
 }
 
-//! A spacing of about a two-hundredth of the mesh's longest side, rounded to two digits.
-double default_spacing(const dla::TriangleMesh& mesh) {
-  const dla::Box box = dla::bounding_box(mesh);
+//! A spacing of about a two-hundredth of the mesh box's longest side, rounded to two digits.
+double default_spacing(const dla::Box& box) {
   const double raw = (box.max - box.min).maxCoeff() / 200.0;
   const double unit = std::pow(10.0, std::floor(std::log10(raw)) - 1.0);
   return std::round(raw / unit) * unit;
 }
 
-//! The axis of the mesh's longest side, y on a tie: standing figures and vessels come out upright.
-dla::Axis longest_axis(const dla::TriangleMesh& mesh) {
-  const dla::Box box = dla::bounding_box(mesh);
+//! The axis of the mesh box's longest side, y on a tie: standing figures and vessels come out
+//! upright.
+dla::Axis longest_axis(const dla::Box& box) {
   const dla::Vec3 size = box.max - box.min;
   if (size.z() > size.y() && size.z() > size.x()) return dla::Axis::z;
   if (size.x() > size.y()) return dla::Axis::x;
@@ -391,8 +387,9 @@ int run(const std::vector<std::string>& args, const dla::Checkpoint* resumed = n
       const dla::TriangleMesh mesh = dla::read_mesh(mesh_path, &input_hash);
       if (resumed && resumed->input_hash != input_hash)
         throw dla::InvalidInput(mesh_path + " has changed since the checkpoint was written: the run cannot go on");
-      if (!spacing->count()) options.spacing = default_spacing(mesh);
-      if (!up_option->count()) pov.up = longest_axis(mesh);
+      const dla::Box box = dla::bounding_box(mesh);
+      if (!spacing->count()) options.spacing = default_spacing(box);
+      if (!up_option->count()) pov.up = longest_axis(box);
       dla::detail::require_positive("spacing", options.spacing);
       try {
         constraint = std::make_unique<dla::MeshConstraint>(mesh, constraint_options, options.spacing);

@@ -24,9 +24,7 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 
 //! "1 hole", "64,687 duplicate vertices".
 std::string count(std::size_t n, const char* one, const char* many) {
-  std::string digits = std::to_string(n);
-  for (int i = static_cast<int>(digits.size()) - 3; i > 0; i -= 3) digits.insert(static_cast<std::size_t>(i), ",");
-  return digits + " " + (n == 1 ? one : many);
+  return detail::format_count(n) + " " + (n == 1 ? one : many);
 }
 
 //! Whether triangle `t` of `mesh` runs the other way round from the same corners `original`.

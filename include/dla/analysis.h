@@ -88,10 +88,7 @@ inline FractalFit fractal_dimension_by_mass_radius(const Cluster& cluster, doubl
   for (const Particle& p : cluster.particles)
     if (p.seed == 0) distances.push_back((p.position - origin).norm() / cluster.spacing);
   std::sort(distances.begin(), distances.end());
-  Cluster tree;
-  for (const Particle& p : cluster.particles)
-    if (p.seed == 0) tree.particles.push_back(p);
-  const double r_max = radius_of_gyration(tree) / cluster.spacing;
+  const double r_max = radius_of_gyration(cluster, 0) / cluster.spacing;
   constexpr int radii = 20;
   if (!(r_max > 2.0 * r_min)) return fit;
   std::vector<double> log_r, log_n;

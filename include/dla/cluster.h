@@ -56,16 +56,20 @@ inline double bounding_radius(const Cluster& cluster) {
   return std::sqrt(r2);
 }
 
-//! Radius of gyration of all particles about their centre of mass.
-inline double radius_of_gyration(const Cluster& cluster) {
-  if (cluster.particles.empty()) return 0.0;
+//! Radius of gyration about their centre of mass of all particles, or with `seed` >= 0 of
+//! that seed's tree only.
+inline double radius_of_gyration(const Cluster& cluster, std::int32_t seed = -1) {
   Vec3 sum = Vec3::Zero();
   double sum2 = 0.0;
+  std::size_t count = 0;
   for (const Particle& p : cluster.particles) {
+    if (seed >= 0 && p.seed != seed) continue;
     sum += p.position;
     sum2 += p.position.squaredNorm();
+    ++count;
   }
-  const double n = static_cast<double>(cluster.particles.size());
+  if (count == 0) return 0.0;
+  const double n = static_cast<double>(count);
   return std::sqrt(std::max(0.0, sum2 / n - (sum / n).squaredNorm()));
 }
 

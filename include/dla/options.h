@@ -123,6 +123,13 @@ inline std::string format_number(double value) {
   return buffer;
 }
 
+//! A count with its thousands grouped: "64,687".
+inline std::string format_count(std::uint64_t value) {
+  std::string digits = std::to_string(value);
+  for (int i = static_cast<int>(digits.size()) - 3; i > 0; i -= 3) digits.insert(static_cast<std::size_t>(i), ",");
+  return digits;
+}
+
 //! Throws InvalidInput "WHAT VALUE is not a positive number" unless value is finite and > 0.
 inline void require_positive(const std::string& what, double value) {
   if (!(value > 0.0) || !std::isfinite(value))
