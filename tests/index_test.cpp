@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 #include <vector>
 
@@ -101,5 +102,32 @@ TEST(GridIndex, FarQueriesGetLargeBounds) {
   for (double r : {30.0, 77.0, 150.0, 190.0}) {
     EXPECT_GE(grid.probe(dla::Vec3(r, 0, 0)).distance, r / 8) << r;
     EXPECT_GE(grid.probe(dla::Vec3(0.6 * r, -0.8 * r, 0)).distance, r / 8) << r;
+  }
+}
+
+TEST(GridIndex, MidRangeBoundsAreTight) {
+  // Between half a cell and the gap map's reach (2 to 16 spacings with cells of 4), the bound is
+  // at least the distance less the diagonal of a cell (4 sqrt(3) spacings) and one gap unit
+  // (1/8 spacing); on average within a fifth of it (the pyramid alone gave about half). That
+  // is what keeps walks short. It must survive the domain doubling, which moves blocks of gaps
+  // instead of recomputing them.
+  for (int dimensions : {3, 2}) {
+    std::vector<dla::Particle> store{{dla::Vec3::Zero(), -1, 0}};
+    dla::GridIndex grid(store, 1.0, dimensions);
+    grid.insert(0);
+    for (double cover : {10.0, 600.0}) {
+      grid.cover(dla::Vec3::Zero(), cover);
+      dla::Rng rng(3);
+      double ratio_sum = 0.0;
+      constexpr int probes = 400;
+      for (int i = 0; i < probes; ++i) {
+        const double r = 2.5 + 11.0 * rng.uniform();
+        const double bound = grid.probe(r * dla::random_direction(rng, dimensions)).distance;
+        ASSERT_LE(bound, r * (1 + 1e-12)) << dimensions << "D, r " << r;
+        ASSERT_GE(bound, r - 4.0 * std::sqrt(3.0) - 0.125) << dimensions << "D, r " << r;
+        ratio_sum += bound / r;
+      }
+      EXPECT_GE(ratio_sum / probes, 0.78) << dimensions << "D, cover " << cover;
+    }
   }
 }

@@ -1,15 +1,16 @@
 #pragma once
 //! \file grid_index.h
-//! The default nearest-particle look-up: a grid of cells five spacings wide, stored in blocks
-//! allocated where particles are, with an occupancy bit per cell and a pyramid of coarser
-//! occupancy bits above.
+//! The default nearest-particle look-up: a grid of cells four spacings wide, stored in blocks
+//! allocated where they are needed, with an occupancy bit per cell, a gap map (per cell, a
+//! lower bound on the distance from the cell to the nearest particle, kept within four cells
+//! of the structure) and a pyramid of coarser occupancy bits above.
 //!
-//! Within about five spacings of the structure a probe returns the exact nearest particle,
-//! visiting the occupied cells of the 3x3x3 block about the point nearest first (the occupancy
-//! bits of a row of cells are read in one load). Farther out it reads one bit per pyramid
-//! level and returns a lower bound on the distance: the walk only needs a ball free of
-//! particles. See docs/index.md for the layout
-//! and the measurements that made it the default.
+//! Next to the structure a probe returns the exact nearest particle, walking the lists of the
+//! occupied cells of the 3x3x3 block about the point (the occupancy bits of a row of cells are
+//! read in one load). From half a cell out it reads the point's gap, and beyond the gap map's
+//! reach one bit per pyramid level, and returns a lower bound on the distance: the walk only
+//! needs a ball free of particles. See docs/index.md for the layout and the measurements that
+//! chose it.
 
 #include "dla/errors.h"
 #include "dla/spatial_index.h"
@@ -28,14 +29,13 @@ namespace dla {
 class GridIndex {
  public:
   GridIndex(const std::vector<Particle>& particles, double spacing, int dimensions)
-      : particles_(particles), cell_(5.0 * spacing), planar_(dimensions == 2) {}
+      : particles_(particles), cell_(4.0 * spacing), planar_(dimensions == 2) {}
 
   void insert(std::int32_t id) {
     const Vec3& p = particles_[static_cast<std::size_t>(id)].position;
     if (cells_ == 0) start(p, 0.0);
     while (!inside(p, 0.0)) grow();
     next_.push_back(-1);
-    ++inserted_;
     place(id);
   }
 
@@ -53,17 +53,15 @@ class GridIndex {
       if (!(f[a] >= 0.0 && f[a] < dims_[a])) return {-1, distance_to_domain(x)};
       c[a] = static_cast<int>(f[a]);
     }
-    // The coarsest level whose 3x3x3 block about x is empty bounds the distance by its cell
-    // size plus x's distance to its own cell's faces; that beats what the block search can
-    // promise.
-    int clear = -1;
-    for (int l = 0; l < static_cast<int>(levels_.size()); ++l) {
-      if (levels_[l].near.test(levels_[l].up(c, planar_))) break;
-      clear = l;
-    }
-    if (clear >= 0) {
-      const int shift = levels_[clear].shift;
-      return {-1, ((1 << shift) + face_margin(f, c, shift)) * cell_};
+    const std::int32_t gap_block = gap_block_of_[block_of(c)];
+    const int gap = gap_block < 0 ? kFarGap : gaps_[slot_of(c, gap_block)];
+    // Every particle is at least `gap` from x's cell, and a particle outside the cell is
+    // farther from x by x's distance to the cell's faces. From half a cell out that bound
+    // saves the block search (measured: from a whole cell, which no block search beats, the
+    // searches cost more than the steps they save).
+    if (gap >= kGapUnits / 2) {
+      const double bound = (gap * (1.0 / kGapUnits) + face_margin(f, c, 0)) * cell_;
+      return {-1, gap == kFarGap ? std::max(bound, pyramid_bound(f, c)) : bound};
     }
     return nearest_in_block(x, f, c);
   }
@@ -93,6 +91,9 @@ class GridIndex {
   static constexpr int kBlockShift = 3;                   // blocks of 8 cells a side
   static constexpr int kMaxCells = 1024;                  // cells a side at most
   static constexpr std::size_t kMaxLevelWords = 1 << 22;  // 32 MiB; finer levels are skipped
+  static constexpr int kGapUnits = 32;                    // gap map units per cell width
+  static constexpr int kGapReach = 4;                     // cells a particle lowers gaps around
+  static constexpr int kFarGap = kGapReach * kGapUnits;   // gap of cells beyond every reach
 
   using Cell = std::array<int, 3>;
 
@@ -193,15 +194,24 @@ class GridIndex {
     for (int ring = 0; ring < 2; ++ring) {
       const double reach = ring == 0 ? 0.0 : margin * cell_;  // nearest the 26 around get
       if (reach * reach >= best2) break;
+      // The cells' lists are walked side by side: their loads do not wait on one another.
+      std::array<std::int32_t, 27> at;
+      std::size_t lanes = 0;
       for (std::size_t i = 0; i < counts[ring]; ++i) {
         if (rings[ring][i].gap2 >= best2) continue;
-        for_each_in_cell(rings[ring][i].cell, [&](std::int32_t id) {
+        at[lanes++] = head(rings[ring][i].cell);
+      }
+      while (lanes > 0) {
+        for (std::size_t i = 0; i < lanes;) {
+          const std::int32_t id = at[i];
           const double d2 = (position(id) - x).squaredNorm();
           if (d2 < best2) {
             best2 = d2;
             best = id;
           }
-        });
+          at[i] = next_[static_cast<std::size_t>(id)];
+          if (at[i] < 0) at[i] = at[--lanes]; else ++i;
+        }
       }
     }
     const double boundary = (1.0 + margin) * cell_;
@@ -229,37 +239,55 @@ class GridIndex {
     return std::sqrt(d2);
   }
 
+  //! Whether the ball lies in the domain with kGapReach cells to spare, so that every cell a
+  //! particle lowers the gap of exists.
   bool inside(const Vec3& center, double radius) const {
+    const double reach = radius + kGapReach * cell_;
     for (int a = 0; a < axes(); ++a)
-      if (!(center[a] - radius >= origin_[a] && center[a] + radius < origin_[a] + dims_[a] * cell_))
-        return false;
+      if (!(center[a] - reach >= origin_[a] && center[a] + reach < origin_[a] + dims_[a] * cell_)) return false;
     return true;
   }
 
   void start(const Vec3& center, double radius) {
     center_ = center;
     cells_ = 32;
-    while (cells_ < kMaxCells && cells_ * cell_ < 2.0 * radius + 4.0 * cell_) cells_ *= 2;
-    rebuild();
+    while (cells_ < kMaxCells && cells_ * cell_ < 2.0 * (radius + (kGapReach + 1) * cell_)) cells_ *= 2;
+    lay_out();
   }
 
-  //! Doubles the domain about its centre and files every particle again.
+  //! Doubles the domain about its centre. The domain's corner moves by a whole number of
+  //! blocks, so the blocks (cell lists and gaps) stay as they are: only the block table and
+  //! the occupancy bits are made again.
   void grow() {
     if (cells_ >= kMaxCells)
       throw GrowthError("the structure reaches beyond " + std::to_string(cells_ / 2) +
                         " grid cells from the seeds' centre, more than the grid index holds;"
                         " use the kdtree index");
+    const std::vector<std::int32_t> old_blocks = std::move(block_of_), old_gap_blocks = std::move(gap_block_of_);
+    const Cell old_dims = block_dims_;
+    const int shift = (cells_ / 2) >> kBlockShift;  // blocks the corner moves by, per axis
     cells_ *= 2;
-    rebuild();
+    lay_out();
+    for (int z = 0; z < old_dims[2]; ++z)
+      for (int y = 0; y < old_dims[1]; ++y)
+        for (int x = 0; x < old_dims[0]; ++x) {
+          const std::size_t old_index = (static_cast<std::size_t>(z) * old_dims[1] + y) * old_dims[0] + x;
+          const Cell first{(x + shift) << kBlockShift, (y + shift) << kBlockShift,
+                           planar_ ? 0 : (z + shift) << kBlockShift};
+          gap_block_of_[block_of(first)] = old_gap_blocks[old_index];
+          block_of_[block_of(first)] = old_blocks[old_index];
+          if (old_blocks[old_index] >= 0) mark_occupied(first, old_blocks[old_index]);
+        }
   }
 
-  void rebuild() {
+  //! Sizes the domain, the block table and the occupancy bits for cells_ cells a side, empty.
+  void lay_out() {
     dims_ = {cells_, cells_, planar_ ? 1 : cells_};
     origin_ = center_ - Vec3::Constant(0.5 * cells_ * cell_);
     if (planar_) origin_.z() = center_.z() - 0.5 * cell_;
     block_dims_ = {cells_ >> kBlockShift, cells_ >> kBlockShift, planar_ ? 1 : cells_ >> kBlockShift};
     block_of_.assign(static_cast<std::size_t>(block_dims_[0]) * block_dims_[1] * block_dims_[2], -1);
-    heads_.clear();
+    gap_block_of_.assign(block_of_.size(), -1);
     occupied_.reset(dims_);
     levels_.clear();
     for (int shift = 1; (cells_ >> shift) >= 4; ++shift) {
@@ -269,7 +297,20 @@ class GridIndex {
       level.near.reset(dims);
       levels_.push_back(std::move(level));
     }
-    for (std::int32_t id = 0; id < inserted_; ++id) place(id);
+  }
+
+  //! Sets the occupancy bits of the cells of a block (whose first cell is `first`) that hold
+  //! particles.
+  void mark_occupied(const Cell& first, std::int32_t block) {
+    const int side = 1 << kBlockShift;
+    for (int z = 0; z < (planar_ ? 1 : side); ++z)
+      for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x) {
+          const Cell c{first[0] + x, first[1] + y, first[2] + z};
+          if (heads_[slot_of(c, block)] < 0) continue;
+          occupied_.set(c);
+          for (Level& level : levels_) level.mark(c, planar_);
+        }
   }
 
   Cell cell_of(const Vec3& p) const {
@@ -294,6 +335,9 @@ class GridIndex {
            (((c[2] & m) << kBlockShift | (c[1] & m)) << kBlockShift | (c[0] & m));
   }
 
+  //! The first particle of cell c's list (the cell must be occupied).
+  std::int32_t head(const Cell& c) const { return heads_[slot_of(c, block_of_[block_of(c)])]; }
+
   template <class Visit>
   void for_each_in_cell(const Cell& c, Visit&& visit) const {
     const std::int32_t block = block_of_[block_of(c)];
@@ -302,34 +346,101 @@ class GridIndex {
       visit(id);
   }
 
-  void place(std::int32_t id) {
-    const Cell c = cell_of(position(id));
+  //! The block of cell lists holding cell c, allocated (no particles) if it was not.
+  std::int32_t block_at(const Cell& c) {
     std::int32_t& block = block_of_[block_of(c)];
     if (block < 0) {
       block = static_cast<std::int32_t>(heads_.size() / block_cells());
       heads_.resize(heads_.size() + block_cells(), -1);
     }
-    const std::size_t slot = slot_of(c, block);
+    return block;
+  }
+
+  //! The block of gaps holding cell c, allocated (gaps beyond reach) if it was not.
+  std::int32_t gap_block_at(const Cell& c) {
+    std::int32_t& block = gap_block_of_[block_of(c)];
+    if (block < 0) {
+      block = static_cast<std::int32_t>(gaps_.size() / block_cells());
+      gaps_.resize(gaps_.size() + block_cells(), kFarGap);
+    }
+    return block;
+  }
+
+  void place(std::int32_t id) {
+    const Vec3& p = position(id);
+    const Cell c = cell_of(p);
+    const std::size_t slot = slot_of(c, block_at(c));
     next_[static_cast<std::size_t>(id)] = heads_[slot];
     heads_[slot] = id;
     occupied_.set(c);
     for (Level& level : levels_) level.mark(c, planar_);
+    lower_gaps(p, c);
+  }
+
+  //! Lowers the gap of every cell within kGapReach cells of p's cell `home` to the distance
+  //! from the cell's box to p, where that is smaller.
+  void lower_gaps(const Vec3& p, const Cell& home) {
+    constexpr int span = 2 * kGapReach + 1;
+    std::array<std::array<double, span>, 3> axis_gap2{};  // [axis][offset + reach], in units²
+    std::array<int, 3> lo{0, 0, 0}, hi{0, 0, 0};
+    for (int a = 0; a < axes(); ++a) {
+      lo[a] = std::max(home[a] - kGapReach, 0);
+      hi[a] = std::min(home[a] + kGapReach, dims_[a] - 1);
+      for (int n = lo[a]; n <= hi[a]; ++n) {
+        const double from = origin_[a] + n * cell_;
+        const double gap = std::max({from - p[a], p[a] - from - cell_, 0.0}) * (kGapUnits / cell_);
+        axis_gap2[a][n - home[a] + kGapReach] = gap * gap;
+      }
+    }
+    constexpr double far2 = static_cast<double>(kFarGap) * kFarGap;
+    for (int z = lo[2]; z <= hi[2]; ++z)
+      for (int y = lo[1]; y <= hi[1]; ++y) {
+        const double yz2 = axis_gap2[1][y - home[1] + kGapReach] + axis_gap2[2][z - home[2] + kGapReach];
+        if (yz2 >= far2) continue;
+        // The row's cells in each block it crosses are consecutive bytes of that block.
+        for (int x = lo[0]; x <= hi[0];) {
+          const int end = std::min(hi[0], x | ((1 << kBlockShift) - 1));
+          std::uint8_t* row = &gaps_[slot_of({x, y, z}, gap_block_at({x, y, z}))] - (x & ((1 << kBlockShift) - 1));
+          for (; x <= end; ++x) {
+            const double d2 = yz2 + axis_gap2[0][x - home[0] + kGapReach];
+            std::uint8_t& gap = row[x & ((1 << kBlockShift) - 1)];
+            // Rounded down (and a hair below, against sqrt's last bit): a bound, never above.
+            if (d2 < static_cast<double>(gap) * gap) gap = static_cast<std::uint8_t>(std::sqrt(d2) * (1.0 - 1e-12));
+          }
+        }
+      }
+  }
+
+  //! A bound from the pyramid: the coarsest level whose 3x3x3 block about cell c is empty
+  //! bounds the distance by its cell size plus f's distance to its own cell's faces; 0 when
+  //! even the finest level's block holds a particle.
+  double pyramid_bound(const std::array<double, 3>& f, const Cell& c) const {
+    int clear = -1;
+    for (int l = 0; l < static_cast<int>(levels_.size()); ++l) {
+      if (levels_[l].near.test(levels_[l].up(c, planar_))) break;
+      clear = l;
+    }
+    if (clear < 0) return 0.0;
+    const int shift = levels_[clear].shift;
+    return ((1 << shift) + face_margin(f, c, shift)) * cell_;
   }
 
   const std::vector<Particle>& particles_;
-  double cell_;  // cell edge: five spacings (measured best of 4, 4.5, 5, 6 and 8)
+  double cell_;  // cell edge: four spacings (with the gap map, faster than five; docs/index.md)
   bool planar_;
   Vec3 center_ = Vec3::Zero();
   Vec3 origin_ = Vec3::Zero();
   int cells_ = 0;  // cells a side (z is one cell when planar); 0 until the first use
   Cell dims_{0, 0, 0};
   Cell block_dims_{0, 0, 0};
-  std::vector<std::int32_t> block_of_;  // block table: block number, or -1 while empty
+  std::vector<std::int32_t> block_of_;  // block table: block of cell lists, or -1 while empty
+  std::vector<std::int32_t> gap_block_of_;  // block table: block of gaps, or -1 while beyond reach
   std::vector<std::int32_t> heads_;     // per cell of every block: first particle, or -1
   std::vector<std::int32_t> next_;      // per particle: next particle in its cell, or -1
+  std::vector<std::uint8_t> gaps_;      // per cell of every block: distance from the cell to the
+                                        // nearest particle, rounded down, in cell widths / kGapUnits
   BitGrid occupied_;                    // per cell: holds a particle
   std::vector<Level> levels_;           // finest first
-  std::int32_t inserted_ = 0;
 };
 
 }  // namespace dla
