@@ -232,25 +232,28 @@ TEST(Growth, MassRadiusDimension3D) {
 }
 
 // The ensemble figures of Tolman and Meakin, Phys. Rev. A 40, 428 (1989): D = 2.495 in 3D and
-// 1.715 in 2D for off-lattice hard-sphere DLA, from the radius of gyration. Ten clusters of
-// 10^5 each: about 25 s, so only with -DDLA_SLOW_TESTS=ON.
+// 1.715 in 2D for off-lattice hard-sphere DLA, from the radius of gyration. Twenty clusters of
+// 10^5 each (the standard error of the mean is about 0.01 in 3D), about 40 s, so only with
+// -DDLA_SLOW_TESTS=ON. The fit takes the last decade of the growth history: the local slope
+// of log R_g against log n still falls at n = 10^3 (on the same ten 3D clusters, 2.550 from
+// n = 10^3 and 2.513 from 10^4; docs/algorithm.md).
 void expect_ensemble_dimension(int dimensions, double expected, double tolerance) {
   if (!DLA_SLOW_TESTS) GTEST_SKIP() << "slow: configure with -DDLA_SLOW_TESTS=ON";
   double sum_gyration = 0.0, sum_mass = 0.0;
-  constexpr int clusters = 10;
+  constexpr int clusters = 20;
   for (int i = 0; i < clusters; ++i) {
     GrowthOptions o = small(100000);
     o.dimensions = dimensions;
     o.rng_seed = 1000 + static_cast<std::uint64_t>(i);
     const Cluster c = grow(o);
-    sum_gyration += fractal_dimension_by_gyration(c, 1000).dimension;
+    sum_gyration += fractal_dimension_by_gyration(c).dimension;  // the last decade
     sum_mass += fractal_dimension_by_mass_radius(c).dimension;
   }
   std::printf("%dD ensemble of %d: D by gyration %.3f, by mass-radius %.3f\n", dimensions, clusters,
               sum_gyration / clusters, sum_mass / clusters);
   EXPECT_NEAR(sum_gyration / clusters, expected, tolerance);
   // Mass within r of the seed converges to D more slowly (10^5 particles span only about a
-  // decade of r): measured 2.43 and 1.69 here, so a looser band.
+  // decade of r): measured 2.43 and 1.70 here, so a looser band.
   EXPECT_NEAR(sum_mass / clusters, expected, 0.1);
 }
 
