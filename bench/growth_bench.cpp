@@ -1,6 +1,6 @@
-// Unconstrained 3D growth (spacing = contact distance = 1, stickiness 1, one thread) for
-// 10^4, 10^5 and 10^6 particles with each index: particles per second and peak bytes per
-// particle (peak heap in use during growth). Run:
+// Unconstrained 3D growth (spacing = contact distance = 1, stickiness 1) for 10^4, 10^5 and
+// 10^6 particles with each index, on one thread and (grid) on two: particles per second and
+// peak bytes per particle (peak heap in use during growth). Run:
 //   build/bench/dla_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 // (medians in docs/performance.md).
 
@@ -27,6 +27,7 @@ template <class Index>
 void grow_cluster(benchmark::State& state) {
   dla::GrowthOptions options;
   options.particles = static_cast<std::size_t>(state.range(0));
+  options.threads = static_cast<int>(state.range(1));
   double peak_bytes = 0.0;
   for (auto _ : state) {
     state.PauseTiming();
@@ -52,13 +53,13 @@ void grow_cluster(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(grow_cluster<dla::GridIndex>)
-    ->Name("grow/grid")->Arg(10'000)->Arg(100'000)->Arg(1'000'000)
+    ->Name("grow/grid")->ArgNames({"n", "threads"})->ArgsProduct({{10'000, 100'000, 1'000'000}, {1, 2}})
     ->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(grow_cluster<dla::KdTreeIndex>)
-    ->Name("grow/kdtree")->Arg(10'000)->Arg(100'000)
+    ->Name("grow/kdtree")->ArgNames({"n", "threads"})->Args({10'000, 1})->Args({100'000, 1})
     ->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(grow_cluster<dla::BruteForceIndex>)
-    ->Name("grow/brute")->Arg(10'000)
+    ->Name("grow/brute")->ArgNames({"n", "threads"})->Args({10'000, 1})
     ->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
 BENCHMARK_MAIN();

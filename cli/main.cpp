@@ -253,6 +253,9 @@ int run(const std::vector<std::string>& args, const dla::Checkpoint* resumed = n
       ->capture_default_str()->group(growth);
   app.add_option("--index", index, "nearest-particle look-up: grid, kdtree or brute")
       ->capture_default_str()->group(growth);
+  app.add_option("--threads", options.threads,
+                 "walkers run at once, 1-256 (grid index); the files do not depend on it")
+      ->capture_default_str()->group(growth);
 
   const char* meshes = "Mesh constraint";
   app.add_option("--stl,--mesh", mesh_path, "grow constrained by this mesh: STL, OFF, OBJ or PLY")

@@ -116,6 +116,10 @@ void write_run_report(const Cluster& cluster, const GrowthOptions& o, const PovO
   out.number(timings.grow_seconds, 6) << ",\n    \"write_seconds\": ";
   out.number(timings.write_seconds, 6) << ",\n    \"particles_per_second\": ";
   out.number(timings.grow_seconds > 0 ? static_cast<double>(attached) / timings.grow_seconds : 0.0, 6);
+  // How the run was spread over threads changes how long it took, never what it grew.
+  out << ",\n    \"threads\": ";
+  out.integer(o.threads) << ",\n    \"replays\": ";
+  out.integer(static_cast<long long>(cluster.replays));
   out << "\n  }\n}\n";
   out.commit();
 }

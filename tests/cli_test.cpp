@@ -53,6 +53,18 @@ TEST(Cli, SameSeedSameFiles) {
     EXPECT_EQ(read_file(dir / (std::string("a") + ext)), read_file(dir / (std::string("b") + ext)));
 }
 
+TEST(Cli, ThreadsChangeNoFile) {
+  ScratchDir dir;
+  ASSERT_EQ(dla3d(dir, "-n 5000 -o a -q").exit_code, 0);
+  ASSERT_EQ(dla3d(dir, "-n 5000 -o b -q --threads 2").exit_code, 0);
+  for (const char* ext : {".csv", ".ply", ".inc"})
+    EXPECT_EQ(read_file(dir / (std::string("a") + ext)), read_file(dir / (std::string("b") + ext))) << ext;
+  // The sidecar differs only in its timings, which say how the run was spread.
+  const std::string a = read_file(dir / "a.json"), b = read_file(dir / "b.json");
+  EXPECT_EQ(a.substr(0, a.find("\"timings\"")), b.substr(0, b.find("\"timings\"")));
+  EXPECT_NE(b.find("\"threads\": 2"), std::string::npos);
+}
+
 TEST(Cli, QuietPrintsNothing) {
   ScratchDir dir;
   const CliRun run = dla3d(dir, "-n 300 -o q --quiet --dimensions 2 --spawn disk --spawn-axis y");
@@ -249,6 +261,8 @@ TEST(Cli, BadInputIsOneLineAndNoFiles) {
       "--spacing 0",
       "--spawn cube",
       "--index octree",
+      "--threads 0",
+      "--threads 2 --index kdtree",
       "--dimensions 4",
       "--seed-at 1,2",
       "--seed-at 0,0,0 --seed-at 0.5,0,0",

@@ -72,6 +72,26 @@ TEST(Constraint, TwoSeedsGrowInsideTheBustWithoutCrossingIt) {
   EXPECT_EQ(grow(o, constraint).particles.back().position, cluster.particles.back().position) << "not deterministic";
 }
 
+TEST(Constraint, SameResultOnEveryThreadCount) {
+  DLA_NEED_BUST(path);
+  for (ConstraintMode mode : {ConstraintMode::reject, ConstraintMode::clip}) {
+    ConstraintOptions c;
+    c.mode = mode;
+    const MeshConstraint constraint(read_mesh(path), c, 0.5);
+    GrowthOptions o = options_for(constraint, 3000, 2);
+    const Cluster one = grow(o, constraint);
+    o.threads = 2;
+    const Cluster two = grow(o, constraint);
+    ASSERT_EQ(two.particles.size(), one.particles.size());
+    for (std::size_t i = 0; i < one.particles.size(); ++i)
+      ASSERT_EQ(two.particles[i].position, one.particles[i].position) << to_string(mode) << ", particle " << i;
+    EXPECT_EQ(two.stats.lost, one.stats.lost);
+    EXPECT_EQ(two.stats.rejected, one.stats.rejected);
+    EXPECT_EQ(two.stats.clipped, one.stats.clipped);
+    EXPECT_GT(two.replays, 0u);
+  }
+}
+
 TEST(Constraint, ClippedBranchesTouchTheBustButDoNotCross) {
   DLA_NEED_BUST(path);
   ConstraintOptions c;

@@ -177,6 +177,66 @@ TEST(Growth, ResumedGrowthIsTheUninterruptedOne) {
   EXPECT_THROW(resume(o, foreign), InvalidInput);
 }
 
+// Walkers on several threads commit in launch order and run again when a particle attached
+// meanwhile could have changed their path: every thread count gives the one-thread result.
+void expect_same_for_every_thread_count(GrowthOptions o) {
+  o.threads = 1;
+  const Cluster one = grow(o);
+  for (int threads : {2, 3, 4}) {
+    o.threads = threads;
+    const Cluster many = grow(o);
+    ASSERT_EQ(many.particles.size(), one.particles.size());
+    for (std::size_t i = 0; i < one.particles.size(); ++i) {
+      ASSERT_EQ(many.particles[i].position, one.particles[i].position) << threads << " threads, particle " << i;
+      ASSERT_EQ(many.particles[i].parent, one.particles[i].parent) << threads << " threads, particle " << i;
+    }
+    EXPECT_EQ(many.stats.steps, one.stats.steps);
+    EXPECT_EQ(many.stats.near_steps, one.stats.near_steps);
+    EXPECT_EQ(many.stats.returns, one.stats.returns);
+    EXPECT_EQ(many.stats.relaunches, one.stats.relaunches);
+    EXPECT_EQ(many.stats.contacts, one.stats.contacts);
+    EXPECT_GT(many.replays, 0u) << "walkers never met: the test shows nothing";
+  }
+}
+
+TEST(Threads, SameResultForEveryCount3D) { expect_same_for_every_thread_count(small(20000)); }
+
+TEST(Threads, SameResultForEveryCount2D) {
+  GrowthOptions o = small(8000);
+  o.dimensions = 2;
+  expect_same_for_every_thread_count(o);
+}
+
+TEST(Threads, SameResultWithDriftStickinessAndSeveralSeeds) {
+  GrowthOptions o = small(6000);
+  o.drift = Vec3(0.0, 0.0, -0.3);
+  o.stickiness = 0.4;
+  o.seeds = {Vec3(-10, 0, 0), Vec3(10, 0, 0), Vec3(0, 12, 0)};
+  expect_same_for_every_thread_count(o);
+}
+
+TEST(Threads, StoppedAndResumedGrowthIsTheOneThreadRun) {
+  GrowthOptions o = small(4000);
+  const Cluster whole = grow(o);
+  o.threads = 2;
+  const Cluster part = grow(o, [](const Cluster& so_far) { return attached(so_far) < 1536; });
+  ASSERT_EQ(attached(part), 1536u);
+  EXPECT_FALSE(part.complete);
+  const Cluster resumed = resume(o, part);
+  ASSERT_EQ(resumed.particles.size(), whole.particles.size());
+  for (std::size_t i = 0; i < whole.particles.size(); ++i)
+    ASSERT_EQ(resumed.particles[i].position, whole.particles[i].position) << i;
+  EXPECT_EQ(resumed.stats.steps, whole.stats.steps);
+}
+
+TEST(Threads, ErrorsAreTheOneThreadErrors) {
+  GrowthOptions o = small(10);
+  o.spawn = SpawnMode::box;
+  o.spawn_box = Box{Vec3(-0.5, -0.5, -0.5), Vec3(0.5, 0.5, 0.5)};
+  o.threads = 2;
+  EXPECT_THROW(grow(o), GrowthError);
+}
+
 TEST(Growth, FilledSpawnBoxIsAnErrorNotAHang) {
   GrowthOptions o = small(10);
   o.spawn = SpawnMode::box;
@@ -287,6 +347,9 @@ TEST(Options, BadValuesAreRefusedWithAClearMessage) {
             "spawn box is empty: its min corner is not below its max corner");
   EXPECT_EQ(message([](GrowthOptions& o) { o.dimensions = 2, o.spawn = SpawnMode::disk; }),
             "the disk spawn axis must be x or y in 2 dimensions");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.threads = 0; }), "threads 0 is not in 1-256");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.threads = 2, o.index = IndexKind::kdtree; }),
+            "threads above 1 need the grid index, not kdtree");
   EXPECT_EQ(message([](GrowthOptions&) {}), "accepted");
   EXPECT_THROW(parse_spawn_mode("cube"), InvalidInput);
   EXPECT_EQ(parse_spawn_mode("disk"), SpawnMode::disk);

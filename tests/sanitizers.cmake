@@ -1,6 +1,7 @@
 # The sanitizer pass (ctest's `sanitizers` test): builds the project with AddressSanitizer and
-# UndefinedBehaviorSanitizer in its own folder, runs the unit tests there, then fuzzes every
-# mesh reader for FUZZ_SECONDS from the seed corpus. With clang the fuzzers are built too;
+# UndefinedBehaviorSanitizer in its own folder and runs the unit tests there; builds the unit
+# tests with ThreadSanitizer in another and runs those of the threaded growth; then fuzzes
+# every mesh reader for FUZZ_SECONDS from the seed corpus. With clang the fuzzers are built too;
 # without it the pass says so and fuzzes nothing.
 #   cmake -DSOURCE_DIR=... -DWORK_DIR=... -DFUZZ_SECONDS=15 -P tests/sanitizers.cmake
 find_program(CLANGXX NAMES clang++ clang++-14)
@@ -23,6 +24,15 @@ step(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR} -DCMAKE_BUILD_TYPE=RelWith
 step(${CMAKE_COMMAND} --build ${WORK_DIR} -j2)
 # The consumer example installs a package: nothing the sanitizers add to.
 step(${CMAKE_CTEST_COMMAND} --test-dir ${WORK_DIR} --output-on-failure -j2 -E consumer_example)
+
+# Walkers on several threads share the index while one of them attaches: TSan checks that every
+# word they share is read and written atomically.
+set(tsan_dir ${WORK_DIR}-thread)
+step(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${tsan_dir} -DCMAKE_BUILD_TYPE=RelWithDebInfo ${compiler}
+     -DDLA_FUZZ=OFF -DDLA_TSAN=ON -DDLA_SANITIZER_TESTS=OFF -DDLA_BUILD_BENCH=OFF -DDLA_BUILD_EXAMPLES=OFF)
+step(${CMAKE_COMMAND} --build ${tsan_dir} -j2 --target dla_tests)
+step(${CMAKE_COMMAND} -E env TSAN_OPTIONS=halt_on_error=1
+     ${tsan_dir}/tests/dla_tests --gtest_filter=Threads.*:Constraint.SameResultOnEveryThreadCount)
 
 if(CLANGXX)
   foreach(format stl off obj ply)

@@ -43,6 +43,8 @@ struct Cluster {
   int dimensions = 3;
   bool complete = true;             //!< false when growth was stopped before the count
   WalkStats stats;
+  std::uint64_t replays = 0;        //!< walkers run again because a particle attached by an
+                                    //!< earlier walker on another thread changed their path
 };
 
 //! Particles attached so far, seeds not counted.

@@ -19,8 +19,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -30,6 +30,8 @@ class GridIndex {
  public:
   GridIndex(const std::vector<Particle>& particles, double spacing, int dimensions)
       : particles_(particles), cell_(4.0 * spacing), planar_(dimensions == 2) {}
+
+  void reserve(std::size_t particles) { next_.reserve(particles); }
 
   void insert(std::int32_t id) {
     const Vec3& p = particles_[static_cast<std::size_t>(id)].position;
@@ -44,24 +46,35 @@ class GridIndex {
     while (!inside(center, radius)) grow();
   }
 
+  //! Whether inserting a particle within `radius` of `center`, or covering that ball, leaves the
+  //! domain as it is. Only a change of domain moves what concurrent probes read (see below).
+  bool holds(const Vec3& center, double radius) const { return cells_ > 0 && inside(center, radius); }
+
   Probe probe(const Vec3& x) const {
-    if (cells_ == 0) return {};
+    if (cells_ == 0) return {};  // reach: any particle changes it
     std::array<double, 3> f{0.0, 0.0, 0.0};  // position in cells from the domain's corner
     std::array<int, 3> c{0, 0, 0};
     for (int a = 0; a < axes(); ++a) {
       f[a] = (x[a] - origin_[a]) / cell_;
-      if (!(f[a] >= 0.0 && f[a] < dims_[a])) return {-1, distance_to_domain(x)};
+      if (!(f[a] >= 0.0 && f[a] < dims_[a])) return outside_domain(x);
       c[a] = static_cast<int>(f[a]);
     }
-    const std::int32_t gap_block = gap_block_of_[block_of(c)];
-    const int gap = gap_block < 0 ? kFarGap : gaps_[slot_of(c, gap_block)];
+    const std::uint8_t* gaps = load_acquire(gaps_of_[block_of(c)]);
+    const int gap = gaps ? load(gaps[cell_in_block(c)]) : kFarGap;
     // Every particle is at least `gap` from x's cell, and a particle outside the cell is
     // farther from x by x's distance to the cell's faces. From half a cell out that bound
     // saves the block search (measured: from a whole cell, which no block search beats, the
     // searches cost more than the steps they save).
     if (gap >= kGapUnits / 2) {
-      const double bound = (gap * (1.0 / kGapUnits) + face_margin(f, c, 0)) * cell_;
-      return {-1, gap == kFarGap ? std::max(bound, pyramid_bound(f, c)) : bound};
+      Probe answer{-1, (gap * (1.0 / kGapUnits) + face_margin(f, c, 0)) * cell_};
+      // Only a particle nearer to the cell than its gap (and a unit of rounding) lowers it.
+      block_box(c, 0, 0, (gap + 1) * (cell_ / kGapUnits), answer);
+      if (gap < kFarGap) return answer;
+      const Probe coarse = pyramid_bound(f, c);
+      answer.distance = std::max(answer.distance, coarse.distance);
+      answer.reach_min = answer.reach_min.cwiseMin(coarse.reach_min);
+      answer.reach_max = answer.reach_max.cwiseMax(coarse.reach_max);
+      return answer;
     }
     return nearest_in_block(x, f, c);
   }
@@ -97,6 +110,17 @@ class GridIndex {
 
   using Cell = std::array<int, 3>;
 
+  // What probes read may be written meanwhile by the one thread that inserts (see
+  // growth.h): word-sized atomic loads and stores, which cost nothing more than plain ones.
+  template <class T>
+  static T load(const T& v) { return __atomic_load_n(&v, __ATOMIC_RELAXED); }
+  template <class T>
+  static T load_acquire(const T& v) { return __atomic_load_n(&v, __ATOMIC_ACQUIRE); }
+  template <class T>
+  static void store(T& v, T value) { __atomic_store_n(&v, value, __ATOMIC_RELAXED); }
+  template <class T>
+  static void store_release(T& v, T value) { __atomic_store_n(&v, value, __ATOMIC_RELEASE); }
+
   //! One bit per cell of a box of cells, x fastest.
   struct BitGrid {
     Cell dims{0, 0, 0};
@@ -111,19 +135,23 @@ class GridIndex {
     }
     bool test(const Cell& c) const {
       const std::size_t b = bit(c);
-      return (words[b >> 6] >> (b & 63)) & 1u;
+      return (load(words[b >> 6]) >> (b & 63)) & 1u;
     }
+    //! One writer: no read-modify-write instruction needed. A bit already set is not written
+    //! again, which would take the cache line from the cores reading it.
     void set(const Cell& c) {
       const std::size_t b = bit(c);
-      words[b >> 6] |= std::uint64_t{1} << (b & 63);
+      const std::uint64_t word = load(words[b >> 6]), with = word | std::uint64_t{1} << (b & 63);
+      if (with != word) store(words[b >> 6], with);
     }
-    //! The bits of `length` (<= 56) cells from `first` along x, lowest bit first: one
-    //! unaligned load (the words are padded so it never reads past the end).
+    //! The bits of `length` (<= 56) cells from `first` along x, lowest bit first, from the
+    //! two words they may straddle (the words are padded so it never reads past the end).
     std::uint64_t row(const Cell& first, int length) const {
       const std::size_t b = bit(first);
-      std::uint64_t bits;
-      std::memcpy(&bits, reinterpret_cast<const unsigned char*>(words.data()) + (b >> 3), sizeof bits);
-      return (bits >> (b & 7)) & ((std::uint64_t{1} << length) - 1);
+      const int shift = static_cast<int>(b & 63);
+      std::uint64_t bits = load(words[b >> 6]) >> shift;
+      if (shift + length > 64) bits |= load(words[(b >> 6) + 1]) << (64 - shift);
+      return bits & ((std::uint64_t{1} << length) - 1);
     }
   };
 
@@ -199,7 +227,8 @@ class GridIndex {
       std::size_t lanes = 0;
       for (std::size_t i = 0; i < counts[ring]; ++i) {
         if (rings[ring][i].gap2 >= best2) continue;
-        at[lanes++] = head(rings[ring][i].cell);
+        const std::int32_t first = head(rings[ring][i].cell);
+        if (first >= 0) at[lanes++] = first;
       }
       while (lanes > 0) {
         for (std::size_t i = 0; i < lanes;) {
@@ -209,14 +238,14 @@ class GridIndex {
             best2 = d2;
             best = id;
           }
-          at[i] = next_[static_cast<std::size_t>(id)];
+          at[i] = next(id);
           if (at[i] < 0) at[i] = at[--lanes]; else ++i;
         }
       }
     }
     const double boundary = (1.0 + margin) * cell_;
-    if (best >= 0 && best2 <= boundary * boundary) return {best, std::sqrt(best2)};
-    return {-1, boundary};
+    if (best >= 0 && best2 <= boundary * boundary) return Probe{best, std::sqrt(best2)}.reaching(x, std::sqrt(best2));
+    return Probe{-1, boundary}.reaching(x, boundary);
   }
 
   //! Distance from fractional cell position f to the faces of its cell at level `shift`, in cells.
@@ -256,14 +285,15 @@ class GridIndex {
   }
 
   //! Doubles the domain about its centre. The domain's corner moves by a whole number of
-  //! blocks, so the blocks (cell lists and gaps) stay as they are: only the block table and
+  //! blocks, so the blocks (cell lists and gaps) stay as they are: only the block tables and
   //! the occupancy bits are made again.
   void grow() {
     if (cells_ >= kMaxCells)
       throw GrowthError("the structure reaches beyond " + std::to_string(cells_ / 2) +
                         " grid cells from the seeds' centre, more than the grid index holds;"
                         " use the kdtree index");
-    const std::vector<std::int32_t> old_blocks = std::move(block_of_), old_gap_blocks = std::move(gap_block_of_);
+    const std::vector<std::int32_t*> old_heads = std::move(heads_of_);
+    const std::vector<std::uint8_t*> old_gaps = std::move(gaps_of_);
     const Cell old_dims = block_dims_;
     const int shift = (cells_ / 2) >> kBlockShift;  // blocks the corner moves by, per axis
     cells_ *= 2;
@@ -274,20 +304,20 @@ class GridIndex {
           const std::size_t old_index = (static_cast<std::size_t>(z) * old_dims[1] + y) * old_dims[0] + x;
           const Cell first{(x + shift) << kBlockShift, (y + shift) << kBlockShift,
                            planar_ ? 0 : (z + shift) << kBlockShift};
-          gap_block_of_[block_of(first)] = old_gap_blocks[old_index];
-          block_of_[block_of(first)] = old_blocks[old_index];
-          if (old_blocks[old_index] >= 0) mark_occupied(first, old_blocks[old_index]);
+          gaps_of_[block_of(first)] = old_gaps[old_index];
+          heads_of_[block_of(first)] = old_heads[old_index];
+          if (old_heads[old_index]) mark_occupied(first, old_heads[old_index]);
         }
   }
 
-  //! Sizes the domain, the block table and the occupancy bits for cells_ cells a side, empty.
+  //! Sizes the domain, the block tables and the occupancy bits for cells_ cells a side, empty.
   void lay_out() {
     dims_ = {cells_, cells_, planar_ ? 1 : cells_};
     origin_ = center_ - Vec3::Constant(0.5 * cells_ * cell_);
     if (planar_) origin_.z() = center_.z() - 0.5 * cell_;
     block_dims_ = {cells_ >> kBlockShift, cells_ >> kBlockShift, planar_ ? 1 : cells_ >> kBlockShift};
-    block_of_.assign(static_cast<std::size_t>(block_dims_[0]) * block_dims_[1] * block_dims_[2], -1);
-    gap_block_of_.assign(block_of_.size(), -1);
+    heads_of_.assign(static_cast<std::size_t>(block_dims_[0]) * block_dims_[1] * block_dims_[2], nullptr);
+    gaps_of_.assign(heads_of_.size(), nullptr);
     occupied_.reset(dims_);
     levels_.clear();
     for (int shift = 1; (cells_ >> shift) >= 4; ++shift) {
@@ -301,13 +331,13 @@ class GridIndex {
 
   //! Sets the occupancy bits of the cells of a block (whose first cell is `first`) that hold
   //! particles.
-  void mark_occupied(const Cell& first, std::int32_t block) {
+  void mark_occupied(const Cell& first, const std::int32_t* heads) {
     const int side = 1 << kBlockShift;
     for (int z = 0; z < (planar_ ? 1 : side); ++z)
       for (int y = 0; y < side; ++y)
         for (int x = 0; x < side; ++x) {
           const Cell c{first[0] + x, first[1] + y, first[2] + z};
-          if (heads_[slot_of(c, block)] < 0) continue;
+          if (heads[cell_in_block(c)] < 0) continue;
           occupied_.set(c);
           for (Level& level : levels_) level.mark(c, planar_);
         }
@@ -328,50 +358,55 @@ class GridIndex {
            (c[0] >> kBlockShift);
   }
 
-  //! Where a cell's list head lives in heads_; the cell's block must exist.
-  std::size_t slot_of(const Cell& c, std::int32_t block) const {
+  //! A cell's place within its block.
+  static std::size_t cell_in_block(const Cell& c) {
     const int m = (1 << kBlockShift) - 1;
-    return static_cast<std::size_t>(block) * block_cells() +
-           (((c[2] & m) << kBlockShift | (c[1] & m)) << kBlockShift | (c[0] & m));
+    return static_cast<std::size_t>(((c[2] & m) << kBlockShift | (c[1] & m)) << kBlockShift | (c[0] & m));
   }
 
-  //! The first particle of cell c's list (the cell must be occupied).
-  std::int32_t head(const Cell& c) const { return heads_[slot_of(c, block_of_[block_of(c)])]; }
+  //! The first particle of cell c's list, or -1.
+  std::int32_t head(const Cell& c) const {
+    const std::int32_t* heads = load_acquire(heads_of_[block_of(c)]);
+    return heads ? load_acquire(heads[cell_in_block(c)]) : -1;
+  }
+
+  std::int32_t next(std::int32_t id) const { return load(next_[static_cast<std::size_t>(id)]); }
 
   template <class Visit>
   void for_each_in_cell(const Cell& c, Visit&& visit) const {
-    const std::int32_t block = block_of_[block_of(c)];
-    if (block < 0) return;
-    for (std::int32_t id = heads_[slot_of(c, block)]; id >= 0; id = next_[static_cast<std::size_t>(id)])
-      visit(id);
+    for (std::int32_t id = head(c); id >= 0; id = next(id)) visit(id);
   }
 
   //! The block of cell lists holding cell c, allocated (no particles) if it was not.
-  std::int32_t block_at(const Cell& c) {
-    std::int32_t& block = block_of_[block_of(c)];
-    if (block < 0) {
-      block = static_cast<std::int32_t>(heads_.size() / block_cells());
-      heads_.resize(heads_.size() + block_cells(), -1);
+  std::int32_t* heads_at(const Cell& c) {
+    std::int32_t*& heads = heads_of_[block_of(c)];
+    if (!heads) {
+      head_blocks_.emplace_back(new std::int32_t[static_cast<std::size_t>(block_cells())]);
+      std::fill_n(head_blocks_.back().get(), block_cells(), -1);
+      store_release(heads, head_blocks_.back().get());
     }
-    return block;
+    return heads;
   }
 
   //! The block of gaps holding cell c, allocated (gaps beyond reach) if it was not.
-  std::int32_t gap_block_at(const Cell& c) {
-    std::int32_t& block = gap_block_of_[block_of(c)];
-    if (block < 0) {
-      block = static_cast<std::int32_t>(gaps_.size() / block_cells());
-      gaps_.resize(gaps_.size() + block_cells(), kFarGap);
+  std::uint8_t* gaps_at(const Cell& c) {
+    std::uint8_t*& gaps = gaps_of_[block_of(c)];
+    if (!gaps) {
+      gap_blocks_.emplace_back(new std::uint8_t[static_cast<std::size_t>(block_cells())]);
+      std::fill_n(gap_blocks_.back().get(), block_cells(), static_cast<std::uint8_t>(kFarGap));
+      store_release(gaps, gap_blocks_.back().get());
     }
-    return block;
+    return gaps;
   }
 
+  //! Files a particle. Probes may run on other threads meanwhile: each store publishes a
+  //! consistent state (the particle is in the store before its id is in a list).
   void place(std::int32_t id) {
     const Vec3& p = position(id);
     const Cell c = cell_of(p);
-    const std::size_t slot = slot_of(c, block_at(c));
-    next_[static_cast<std::size_t>(id)] = heads_[slot];
-    heads_[slot] = id;
+    std::int32_t& head = heads_at(c)[cell_in_block(c)];
+    store(next_[static_cast<std::size_t>(id)], head);
+    store_release(head, id);
     occupied_.set(c);
     for (Level& level : levels_) level.mark(c, planar_);
     lower_gaps(p, c);
@@ -393,19 +428,20 @@ class GridIndex {
       }
     }
     constexpr double far2 = static_cast<double>(kFarGap) * kFarGap;
+    constexpr int m = (1 << kBlockShift) - 1;
     for (int z = lo[2]; z <= hi[2]; ++z)
       for (int y = lo[1]; y <= hi[1]; ++y) {
         const double yz2 = axis_gap2[1][y - home[1] + kGapReach] + axis_gap2[2][z - home[2] + kGapReach];
         if (yz2 >= far2) continue;
         // The row's cells in each block it crosses are consecutive bytes of that block.
         for (int x = lo[0]; x <= hi[0];) {
-          const int end = std::min(hi[0], x | ((1 << kBlockShift) - 1));
-          std::uint8_t* row = &gaps_[slot_of({x, y, z}, gap_block_at({x, y, z}))] - (x & ((1 << kBlockShift) - 1));
+          const int end = std::min(hi[0], x | m);
+          std::uint8_t* row = gaps_at({x, y, z}) + cell_in_block({x & ~m, y, z});
           for (; x <= end; ++x) {
             const double d2 = yz2 + axis_gap2[0][x - home[0] + kGapReach];
-            std::uint8_t& gap = row[x & ((1 << kBlockShift) - 1)];
+            std::uint8_t& gap = row[x & m];
             // Rounded down (and a hair below, against sqrt's last bit): a bound, never above.
-            if (d2 < static_cast<double>(gap) * gap) gap = static_cast<std::uint8_t>(std::sqrt(d2) * (1.0 - 1e-12));
+            if (d2 < static_cast<double>(gap) * gap) store(gap, static_cast<std::uint8_t>(std::sqrt(d2) * (1.0 - 1e-12)));
           }
         }
       }
@@ -413,16 +449,45 @@ class GridIndex {
 
   //! A bound from the pyramid: the coarsest level whose 3x3x3 block about cell c is empty
   //! bounds the distance by its cell size plus f's distance to its own cell's faces; 0 when
-  //! even the finest level's block holds a particle.
-  double pyramid_bound(const std::array<double, 3>& f, const Cell& c) const {
+  //! even the finest level's block holds a particle. Only a particle in that block sets a bit
+  //! the answer read.
+  Probe pyramid_bound(const std::array<double, 3>& f, const Cell& c) const {
     int clear = -1;
     for (int l = 0; l < static_cast<int>(levels_.size()); ++l) {
       if (levels_[l].near.test(levels_[l].up(c, planar_))) break;
       clear = l;
     }
-    if (clear < 0) return 0.0;
+    if (clear < 0) return unchangeable(0.0);
     const int shift = levels_[clear].shift;
-    return ((1 << shift) + face_margin(f, c, shift)) * cell_;
+    Probe answer{-1, ((1 << shift) + face_margin(f, c, shift)) * cell_};
+    block_box(c, shift, 1, 0.0, answer);
+    return answer;
+  }
+
+  //! Sets a probe's reach to the box of the cells at level `shift` (2^shift cells wide) within
+  //! `ring` of the one holding base cell c, widened by `margin`. In the plane it spans all z.
+  void block_box(const Cell& c, int shift, int ring, double margin, Probe& probe) const {
+    for (int a = 0; a < 3; ++a) {
+      if (a == 2 && planar_) {
+        probe.reach_min[a] = -std::numeric_limits<double>::infinity();
+        probe.reach_max[a] = std::numeric_limits<double>::infinity();
+        continue;
+      }
+      const int up = c[a] >> shift;
+      probe.reach_min[a] = origin_[a] + static_cast<double>((up - ring) << shift) * cell_ - margin;
+      probe.reach_max[a] = origin_[a] + static_cast<double>((up + ring + 1) << shift) * cell_ + margin;
+    }
+  }
+
+  //! Outside the domain the bound is the distance to it, which no particle changes.
+  Probe outside_domain(const Vec3& x) const { return unchangeable(distance_to_domain(x)); }
+
+  //! A bound no particle inserted later changes: its reach is empty.
+  static Probe unchangeable(double distance) {
+    Probe probe{-1, distance};
+    probe.reach_min = Vec3::Constant(std::numeric_limits<double>::infinity());
+    probe.reach_max = -probe.reach_min;
+    return probe;
   }
 
   const std::vector<Particle>& particles_;
@@ -433,12 +498,16 @@ class GridIndex {
   int cells_ = 0;  // cells a side (z is one cell when planar); 0 until the first use
   Cell dims_{0, 0, 0};
   Cell block_dims_{0, 0, 0};
-  std::vector<std::int32_t> block_of_;  // block table: block of cell lists, or -1 while empty
-  std::vector<std::int32_t> gap_block_of_;  // block table: block of gaps, or -1 while beyond reach
-  std::vector<std::int32_t> heads_;     // per cell of every block: first particle, or -1
-  std::vector<std::int32_t> next_;      // per particle: next particle in its cell, or -1
-  std::vector<std::uint8_t> gaps_;      // per cell of every block: distance from the cell to the
-                                        // nearest particle, rounded down, in cell widths / kGapUnits
+  // Blocks never move once allocated, so probes on other threads may follow a table's pointer
+  // while the writer allocates more (the tables themselves change only with the domain).
+  std::vector<std::int32_t*> heads_of_;  // block table: per cell of the block, its first
+                                         // particle or -1; null while the block is empty
+  std::vector<std::uint8_t*> gaps_of_;   // block table: per cell of the block, its distance to
+                                         // the nearest particle, rounded down, in cell widths /
+                                         // kGapUnits; null while beyond reach
+  std::vector<std::unique_ptr<std::int32_t[]>> head_blocks_;
+  std::vector<std::unique_ptr<std::uint8_t[]>> gap_blocks_;
+  std::vector<std::int32_t> next_;       // per particle: next particle in its cell, or -1
   BitGrid occupied_;                    // per cell: holds a particle
   std::vector<Level> levels_;           // finest first
 };

@@ -11,9 +11,16 @@
 #include "dla/spatial_index.h"
 #include "dla/walk.h"
 
+#include <atomic>
 #include <cmath>
 #include <cstddef>
+#include <deque>
+#include <exception>
 #include <functional>
+#include <mutex>
+#include <thread>
+#include <utility>
+#include <vector>
 
 namespace dla {
 
@@ -52,6 +59,52 @@ Cluster grow_with(const GrowthOptions& options, const ProgressFn& progress = {},
 
 namespace detail {
 
+//! What a walker reads of the structure besides the index: the sphere around every particle
+//! and the sphere walkers are put back on. A new value is a new object, so a walker that ran
+//! ahead can tell whether it saw the one its turn would have.
+struct Sight {
+  double cluster_radius = 0.0;  // largest particle distance from the centre
+  double return_radius = 0.0;
+};
+
+//! A walker running ahead of earlier ones records, for each look-up, the box outside which no
+//! particle attached meanwhile could have changed the answer.
+struct Read {
+  Vec3 min, max;
+};
+
+//! Walkers on other threads stop at their next step while the grid's domain grows.
+class Pause {
+ public:
+  void check() {
+    if (requested_.load(std::memory_order_relaxed)) park();
+  }
+  //! Around a walk on a worker thread.
+  void enter() {
+    active_.fetch_add(1);
+    if (requested_.load()) park();
+  }
+  void leave() { active_.fetch_sub(1); }
+  //! Stops every walker in a walk, calls `f`, and lets them go on.
+  template <class F>
+  void while_stopped(F&& f) {
+    requested_.store(true);
+    while (active_.load() != 0) std::this_thread::yield();
+    f();
+    requested_.store(false);
+  }
+
+ private:
+  void park() {
+    active_.fetch_sub(1);
+    while (requested_.load()) std::this_thread::yield();
+    active_.fetch_add(1);
+    if (requested_.load()) park();
+  }
+  alignas(64) std::atomic<bool> requested_{false};  // read at every step: a line of its own
+  alignas(64) std::atomic<int> active_{0};
+};
+
 template <class Index>
 class Aggregation {
  public:
@@ -65,7 +118,9 @@ class Aggregation {
     cluster_.spacing = options.spacing;
     cluster_.dimensions = options.dimensions;
     cluster_.seed_count = options.seeds.size();
+    // Walkers on other threads read particles while one is appended: the store never moves.
     cluster_.particles.reserve(options.seeds.size() + options.particles);
+    index_.reserve(options.seeds.size() + options.particles);
     for (const Vec3& s : options.seeds) cluster_.center += s;
     cluster_.center /= static_cast<double>(options.seeds.size());
     if (partial) {
@@ -79,66 +134,216 @@ class Aggregation {
   }
 
   Cluster run(const ProgressFn& progress) {
-    constexpr std::size_t report_every = 256;
+    if (opt_.threads > 1) return run_in_parallel(progress);
     for (std::size_t k = attached(cluster_); k < opt_.particles; ++k) {
-      add(walk(k));
-      if (progress && ((k + 1) % report_every == 0 || k + 1 == opt_.particles) && !progress(cluster_)) {
-        cluster_.complete = k + 1 == opt_.particles;
-        break;
-      }
+      add(walk(k, *sight_, cluster_.stats, nullptr));
+      if (!report(k, progress)) break;
     }
     return std::move(cluster_);
   }
 
  private:
+  //! Calls `progress` after walker k's particle, every 256 particles and at the end; false
+  //! when it asks to stop.
+  bool report(std::size_t k, const ProgressFn& progress) {
+    constexpr std::size_t report_every = 256;
+    if (progress && ((k + 1) % report_every == 0 || k + 1 == opt_.particles) && !progress(cluster_)) {
+      cluster_.complete = k + 1 == opt_.particles;
+      return false;
+    }
+    return true;
+  }
+
+  //! Walker k's result as it ran on a worker thread (a cache line of its own).
+  struct alignas(64) Slot {
+    std::atomic<bool> done{false};
+    bool failed = false;            // threw (it runs again in turn, where the error is real),
+                                    // or a particle attached since it started changed its path
+    std::size_t seen = 0;           // particles attached when it started, then when it was
+                                    // last checked
+    const Sight* sight = nullptr;   // the sight it walked with
+    Particle result{};
+    WalkStats stats;
+    std::vector<Read> reads;
+  };
+
+  //! Several walkers at once, committed in launch order. Walker k runs against the structure
+  //! as it is when it starts and records what it read; at its turn, if a particle attached
+  //! since could have changed any answer it got, or the sight changed, it runs again, now
+  //! against exactly the structure of a one-thread run. Walker k draws from its own stream, so
+  //! the run again draws the same numbers, and the result is the one-thread result.
+  Cluster run_in_parallel(const ProgressFn& progress) {
+    const std::size_t first = attached(cluster_), last = opt_.particles;
+    const std::size_t window = 4 * static_cast<std::size_t>(opt_.threads);  // walkers ahead at most
+    std::vector<Slot> slots(window);
+    alignas(64) std::atomic<std::size_t> next{first};
+    alignas(64) std::atomic<std::size_t> committed{first};
+    alignas(64) std::atomic<bool> stop{false};
+    std::mutex commit_mutex;
+    std::exception_ptr error;
+
+    // Commits finished walkers in order while the next one is done; one thread at a time.
+    const auto commit = [&] {
+      std::unique_lock<std::mutex> lock(commit_mutex, std::try_to_lock);
+      if (!lock) return;
+      try {
+        for (std::size_t k = committed.load(); k < last && !stop.load(); k = committed.load()) {
+          Slot& slot = slots[k % window];
+          if (!slot.done.load(std::memory_order_acquire)) break;
+          if (slot.failed || slot.sight != sight_ || !unchanged(slot.reads, slot.seen, k)) {
+            ++cluster_.replays;
+            slot.stats = {};
+            slot.result = walk(k, *sight_, slot.stats, nullptr);
+          }
+          add_stopping(slot.result);
+          accumulate(cluster_.stats, slot.stats);
+          slot.done.store(false, std::memory_order_relaxed);
+          committed.store(k + 1, std::memory_order_release);
+          if (!report(k, progress)) stop.store(true);
+        }
+      } catch (...) {
+        error = std::current_exception();
+        stop.store(true);
+      }
+    };
+
+    const auto work = [&] {
+      std::vector<Read> reads;
+      for (;;) {
+        const std::size_t k = next.fetch_add(1);
+        if (k >= last) break;
+        while (k >= committed.load(std::memory_order_acquire) + window && !stop.load()) {
+          commit();
+          std::this_thread::yield();
+        }
+        if (stop.load()) break;
+        Slot& slot = slots[k % window];
+        pause_.enter();
+        slot.seen = committed.load(std::memory_order_acquire);
+        slot.sight = sight_published_.load(std::memory_order_acquire);
+        // The walk writes to this thread's own stats and reads, not to the shared slots.
+        WalkStats stats;
+        reads.clear();
+        try {
+          slot.result = walk(k, *slot.sight, stats, &reads);
+          slot.failed = false;
+        } catch (...) {
+          slot.failed = true;
+        }
+        pause_.leave();
+        // Checked here against what is attached by now, while the reads are in this core's
+        // cache: at its turn only the particles attached since remain to check.
+        const std::size_t attached_now = committed.load(std::memory_order_acquire);
+        if (!slot.failed && !unchanged(reads, slot.seen, attached_now)) slot.failed = true;
+        slot.seen = attached_now;
+        slot.stats = stats;
+        std::swap(slot.reads, reads);
+        slot.done.store(true, std::memory_order_release);
+        commit();
+      }
+      while (committed.load() < last && !stop.load()) {
+        commit();
+        std::this_thread::yield();
+      }
+    };
+
+    std::vector<std::thread> helpers;
+    for (int t = 1; t < opt_.threads; ++t) helpers.emplace_back(work);
+    work();
+    for (std::thread& helper : helpers) helper.join();
+    if (error) std::rethrow_exception(error);
+    return std::move(cluster_);
+  }
+
+  //! Whether no particle attached by walkers [from, to) lies in a box of `reads`.
+  bool unchanged(const std::vector<Read>& reads, std::size_t from, std::size_t to) const {
+    for (std::size_t j = from; j < to; ++j) {
+      const Vec3& p = position(static_cast<std::int32_t>(cluster_.seed_count + j));
+      for (const Read& read : reads)
+        if ((p.array() >= read.min.array()).all() && (p.array() <= read.max.array()).all()) return false;
+    }
+    return true;
+  }
+
+  static void accumulate(WalkStats& total, const WalkStats& s) {
+    total.walkers += s.walkers, total.steps += s.steps, total.near_steps += s.near_steps;
+    total.contacts += s.contacts, total.returns += s.returns, total.relaunches += s.relaunches;
+    total.lost += s.lost, total.rejected += s.rejected, total.clipped += s.clipped;
+  }
+
   bool drifting() const { return opt_.drift.squaredNorm() > 0.0; }
+
+  //! add() while walkers run on other threads: they stop while the grid's domain grows.
+  void add_stopping(const Particle& p) {
+    const double radius = std::max(sight_->cluster_radius, (p.position - cluster_.center).norm());
+    if (index_.holds(p.position, 0.0) && index_.holds(cluster_.center, radius + 2.0 * contact_)) {
+      add(p);
+      return;
+    }
+    pause_.while_stopped([&] {
+      add(p);
+      // The domain changed under the walkers in flight: a new sight sends them all round again.
+      sights_.push_back(*sight_);
+      sight_ = &sights_.back();
+      sight_published_.store(sight_, std::memory_order_release);
+    });
+  }
 
   void add(const Particle& p) {
     cluster_.particles.push_back(p);
     index_.insert(static_cast<std::int32_t>(cluster_.particles.size() - 1));
-    cluster_radius_ = std::max(cluster_radius_, (p.position - cluster_.center).norm());
+    const double r = (p.position - cluster_.center).norm();
+    if (sight_ && r <= sight_->cluster_radius) return;
     // Walkers are put back on this sphere from outside; two spacings of margin keep a returned
     // walker clear of every contact ball.
-    return_radius_ = cluster_radius_ + 2.0 * contact_;
-    index_.cover(cluster_.center, return_radius_);
+    sights_.push_back({r, r + 2.0 * contact_});
+    sight_ = &sights_.back();
+    index_.cover(cluster_.center, sight_->return_radius);
+    sight_published_.store(sight_, std::memory_order_release);
+  }
+
+  //! Records, for a walker running ahead, what a look-up's answer depends on.
+  static void read(std::vector<Read>* reads, const Probe& probe) {
+    if (reads) reads->push_back({probe.reach_min, probe.reach_max});
   }
 
   //! Runs walker number k from launch to contact and returns the particle it becomes.
-  Particle walk(std::size_t k) {
-    WalkStats& stats = cluster_.stats;
+  Particle walk(std::size_t k, const Sight& sight, WalkStats& stats, std::vector<Read>* reads) {
     ++stats.walkers;
     Rng rng(opt_.rng_seed, k);
     const Vec3& center = cluster_.center;
-    Vec3 x = launch(rng);
+    const double return_radius = sight.return_radius;
+    Vec3 x = launch(rng, sight, reads);
     // Bounds that turn a setup where nothing can stick into an error rather than a hang.
     constexpr std::uint64_t max_lost = 10'000'000, max_rejected = 1'000'000;
     std::uint64_t lost = 0, rejected = 0;
     for (;;) {
+      if (reads) pause_.check();
       ++stats.steps;
       const Vec3 offset = x - center;
       const double r2 = offset.squaredNorm();
       // Walkers put on the return sphere sit on it up to rounding: they count as inside.
-      if (r2 > return_radius_ * return_radius_ * (1.0 + 1e-9)) {
+      if (r2 > return_radius * return_radius * (1.0 + 1e-9)) {
         if (!drifting()) {
-          const ReturnPoint back = return_to_sphere(offset, return_radius_, rng, opt_.dimensions);
+          const ReturnPoint back = return_to_sphere(offset, return_radius, rng, opt_.dimensions);
           if (back.returned) {
             ++stats.returns;
             x = center + back.offset;
           } else {
             ++stats.relaunches;
-            x = launch(rng);
+            x = launch(rng, sight, reads);
           }
           continue;
         }
         // With drift there is no closed-form return: walk on, with the distance to the
         // bounding sphere as the free radius, and start afresh far away.
-        const double kill = std::max(3.0 * return_radius_, return_radius_ + 64.0 * contact_);
+        const double kill = std::max(3.0 * return_radius, return_radius + 64.0 * contact_);
         if (r2 > kill * kill) {
           ++stats.relaunches;
-          x = launch(rng);
+          x = launch(rng, sight, reads);
           continue;
         }
-        x += jump(rng, std::sqrt(r2) - cluster_radius_ - contact_);
+        x += jump(rng, std::sqrt(r2) - sight.cluster_radius - contact_);
         continue;
       }
 
@@ -147,12 +352,14 @@ class Aggregation {
         if (++lost == max_lost)
           throw GrowthError("walker " + std::to_string(k + 1) + " left the growing side of the mesh " +
                             std::to_string(max_lost) + " times: walkers cannot reach the seeds");
-        x = launch(rng);
+        x = launch(rng, sight, reads);
         continue;
       }
 
       // Outside the sphere around every particle, its distance is a bound the index may not beat.
-      const double free = std::max(index_.probe(x).distance, std::sqrt(r2) - cluster_radius_) - contact_;
+      const Probe probe = index_.probe(x);
+      read(reads, probe);
+      const double free = std::max(probe.distance, std::sqrt(r2) - sight.cluster_radius) - contact_;
       if (free > near_step_) {
         x += jump(rng, free);
         continue;
@@ -163,7 +370,9 @@ class Aggregation {
       const Vec3 step = near_step_ * (random_direction(rng, opt_.dimensions) + opt_.drift);
       double first = 2.0;
       std::int32_t touched = -1;
-      index_.for_each_within(x, contact_ + step.norm(), [&](std::int32_t id, double) {
+      const double search = contact_ + step.norm();
+      read(reads, Probe{}.reaching(x, search));
+      index_.for_each_within(x, search, [&](std::int32_t id, double) {
         const double t = contact_along(x, step, position(id), contact_);
         if (t >= 0.0 && t < first) {
           first = t;
@@ -197,7 +406,7 @@ class Aggregation {
 
   //! A step to a uniform point on the sphere of radius `free` (less any drift), which lies in
   //! a ball free of contacts: the walk-on-spheres move.
-  Vec3 jump(Rng& rng, double free) {
+  Vec3 jump(Rng& rng, double free) const {
     return free * drift_scale_ * (random_direction(rng, opt_.dimensions) + opt_.drift);
   }
 
@@ -207,45 +416,50 @@ class Aggregation {
 
   //! A walker's start. Starts beyond the return sphere are fine: the walk's first step applies
   //! the return rule. A start within contact of the structure, or lost, is drawn again.
-  Vec3 launch(Rng& rng) {
+  Vec3 launch(Rng& rng, const Sight& sight, std::vector<Read>* reads) const {
     const Vec3& center = cluster_.center;
-    const double R2 = return_radius_ * return_radius_;
+    const double R2 = sight.return_radius * sight.return_radius;
     constexpr int max_draws = 1'000'000;
     for (int draw = 0; draw < max_draws; ++draw) {
-      const Vec3 x = draw_start(rng);
+      const Vec3 x = draw_start(rng, sight);
       if (constraint_ && constraint_->lost(x)) continue;
-      if ((x - center).squaredNorm() >= R2 || index_.probe(x).distance >= contact_) return x;
+      if ((x - center).squaredNorm() >= R2) return x;
+      const Probe probe = index_.probe(x);
+      read(reads, probe);
+      if (probe.distance >= contact_) return x;
     }
     throw GrowthError("no free start in " + std::to_string(max_draws) + " draws from the " +
                       std::string(to_string(opt_.spawn)) + " spawn" +
                       (constraint_ ? " on the growing side of the mesh" : ": the structure fills it"));
   }
 
-  Vec3 draw_start(Rng& rng) const {
+  Vec3 draw_start(Rng& rng, const Sight& sight) const {
     if (constraint_) {
       switch (opt_.spawn) {
         case SpawnMode::inside: return constraint_->draw_inside(rng);
         case SpawnMode::radial: return constraint_->draw_radial(rng);
         case SpawnMode::sphere: {  // around the mesh and the structure
           const Vec3& c = constraint_->center();
-          const double R = std::max(constraint_->radius(), (c - cluster_.center).norm() + return_radius_);
+          const double R = std::max(constraint_->radius(), (c - cluster_.center).norm() + sight.return_radius);
           return draw_spawn(opt_, c, R, rng);
         }
         default: break;
       }
     }
-    return draw_spawn(opt_, cluster_.center, return_radius_, rng);
+    return draw_spawn(opt_, cluster_.center, sight.return_radius, rng);
   }
 
   const GrowthOptions& opt_;
   const MeshConstraint* constraint_;  // null: unconstrained
   const double contact_;      // centre distance at which a walker touches a particle
-  const double near_step_;    // step length next to the structure
+  const double near_step_;    // step length near the structure
   const double drift_scale_;  // keeps a drifted jump inside its free ball
-  Cluster cluster_;
-  Index index_;
-  double cluster_radius_ = 0.0;  // largest particle distance from the centre
-  double return_radius_ = 0.0;
+  alignas(64) Cluster cluster_;  // written at every attachment: apart from what walkers read
+  alignas(64) Index index_;
+  std::deque<Sight> sights_;                     // every sight so far: walkers may hold any
+  const Sight* sight_ = nullptr;                // the current one
+  std::atomic<const Sight*> sight_published_{nullptr};  // the current one, for worker threads
+  Pause pause_;
 };
 
 }  // namespace detail

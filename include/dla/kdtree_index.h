@@ -28,6 +28,8 @@ class KdTreeIndex {
   KdTreeIndex(const KdTreeIndex&) = delete;
   KdTreeIndex& operator=(const KdTreeIndex&) = delete;
 
+  void reserve(std::size_t /*particles*/) {}
+  bool holds(const Vec3& /*center*/, double /*radius*/) const { return true; }
   void insert(std::int32_t id) {
     adaptor_.count = static_cast<std::size_t>(id) + 1;
     tree_.addPoints(static_cast<std::uint32_t>(id), static_cast<std::uint32_t>(id));
@@ -43,7 +45,7 @@ class KdTreeIndex {
     found.init(&id, &d2);
     tree_.findNeighbors(found, x.data(), nanoflann::SearchParams());
     result.nearest = static_cast<std::int32_t>(id);
-    result.distance = std::sqrt(d2);
+    result.reaching(x, result.distance = std::sqrt(d2));
     return result;
   }
 

@@ -61,6 +61,8 @@ struct GrowthOptions {
                                      //!< |drift| < 1 (gravity, wind)
   double min_step = 0.5;             //!< step length near the structure, in spacings, (0, 1]
   IndexKind index = IndexKind::grid; //!< nearest-particle look-up
+  int threads = 1;                   //!< walkers run at once, 1-256, with the grid index; the
+                                     //!< result is the same for every count, byte for byte
 };
 
 std::string_view to_string(SpawnMode mode);
@@ -193,6 +195,9 @@ inline void validate(const GrowthOptions& o) {
     throw InvalidInput("drift has a z component but growth in 2 dimensions is in the plane z = 0");
   if (!(o.min_step > 0.0 && o.min_step <= 1.0))
     throw InvalidInput("min step " + format_number(o.min_step) + " is not in (0, 1]");
+  if (o.threads < 1 || o.threads > 256) throw InvalidInput("threads " + std::to_string(o.threads) + " is not in 1-256");
+  if (o.threads > 1 && o.index != IndexKind::grid)
+    throw InvalidInput("threads above 1 need the grid index, not " + std::string(to_string(o.index)));
 }
 
 }  // namespace dla

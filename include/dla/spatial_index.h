@@ -11,6 +11,12 @@
 //!   void insert(std::int32_t id);                 // particles[id] was appended; ids come in order
 //!   void cover(const Vec3& center, double radius); // later queries lie in this ball
 //!   Probe probe(const Vec3& x) const;
+//!   void reserve(std::size_t particles);          // room for this many, made before growth
+//!   bool holds(const Vec3& center, double radius) const;
+//!                                                  // whether inserting or covering within the
+//!                                                  // ball keeps the index's layout: probes on
+//!                                                  // other threads may run meanwhile (growth.h;
+//!                                                  // only GridIndex is used so)
 //!   template <class Visit> void for_each_within(const Vec3& x, double radius, Visit&& visit) const;
 //!                                                  // visit(id, squared distance) for every
 //!                                                  // particle centre within radius of x
@@ -33,6 +39,17 @@ struct Probe {
   std::int32_t nearest = -1;  //!< the nearest particle, or -1 if the index only has a bound
   double distance = std::numeric_limits<double>::infinity();  //!< exact distance to `nearest`,
                                                               //!< else a lower bound
+  //! No particle inserted outside this box would change the answer: what a walker running
+  //! ahead of others must check (growth.h). Unbounded unless the index says otherwise.
+  Vec3 reach_min = Vec3::Constant(-std::numeric_limits<double>::infinity());
+  Vec3 reach_max = Vec3::Constant(std::numeric_limits<double>::infinity());
+
+  //! Sets the reach to the cube of half-side `radius` about x (around the ball that matters).
+  Probe& reaching(const Vec3& x, double radius) {
+    reach_min = x.array() - radius;
+    reach_max = x.array() + radius;
+    return *this;
+  }
 };
 
 //! Checks every particle: exact, O(n) per query. The reference the fast indexes are tested
@@ -42,6 +59,8 @@ class BruteForceIndex {
   BruteForceIndex(const std::vector<Particle>& particles, double /*spacing*/, int /*dimensions*/)
       : particles_(particles) {}
 
+  void reserve(std::size_t /*particles*/) {}
+  bool holds(const Vec3& /*center*/, double /*radius*/) const { return true; }
   void insert(std::int32_t id) { count_ = static_cast<std::size_t>(id) + 1; }
   void cover(const Vec3& /*center*/, double /*radius*/) {}
 
@@ -55,7 +74,7 @@ class BruteForceIndex {
         result.nearest = static_cast<std::int32_t>(i);
       }
     }
-    if (result.nearest >= 0) result.distance = std::sqrt(best);
+    if (result.nearest >= 0) result.reaching(x, result.distance = std::sqrt(best));
     return result;
   }
 
