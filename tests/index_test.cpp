@@ -131,3 +131,52 @@ TEST(GridIndex, MidRangeBoundsAreTight) {
     }
   }
 }
+
+TEST(GridIndex, AParticleOutsideAProbesReachChangesNothing) {
+  // What lets walkers run ahead on other threads (growth.h): a probe's answer stays the same
+  // when a particle is inserted outside its reach box; a particle inside it may change it.
+  for (int dimensions : {3, 2}) {
+    std::vector<dla::Particle> store;
+    const std::vector<dla::Particle> all = dla::points(dimensions, 2500, 5);
+    dla::GridIndex grid(store, 1.0, dimensions);
+    grid.reserve(all.size());
+    dla::Rng rng(17);
+    std::size_t outside = 0, changed = 0;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      const double reach = 30.0 + 0.2 * static_cast<double>(i);
+      grid.cover(dla::Vec3::Zero(), reach);
+      // Probes near particle i, near others and anywhere, before it goes in; the same after.
+      std::vector<dla::Vec3> xs;
+      std::vector<dla::Probe> before;
+      for (int q = 0; q < 9; ++q) {
+        dla::Vec3 x = reach * dla::random_direction(rng, dimensions) * rng.uniform();
+        if (q % 2 && i > 0) x = store[rng() % i].position + 4.0 * rng.uniform() * dla::random_direction(rng, dimensions);
+        if (q % 3 == 0) x = all[i].position + 12.0 * rng.uniform() * dla::random_direction(rng, dimensions);
+        xs.push_back(x);
+        before.push_back(grid.probe(x));
+      }
+      if (!grid.holds(all[i].position, 0.0)) {  // a new layout: every walker runs again anyway
+        store.push_back(all[i]);
+        grid.insert(static_cast<std::int32_t>(i));
+        continue;
+      }
+      store.push_back(all[i]);
+      grid.insert(static_cast<std::int32_t>(i));
+      const dla::Vec3& p = all[i].position;
+      for (std::size_t q = 0; q < xs.size(); ++q) {
+        const dla::Probe after = grid.probe(xs[q]);
+        const bool in_reach = (p.array() >= before[q].reach_min.array()).all() &&
+                              (p.array() <= before[q].reach_max.array()).all();
+        const bool same = after.nearest == before[q].nearest && after.distance == before[q].distance;
+        if (!in_reach) {
+          ++outside;
+          ASSERT_TRUE(same) << dimensions << "D, particle " << i << " outside the reach changed a probe";
+        } else if (!same) {
+          ++changed;
+        }
+      }
+    }
+    EXPECT_GT(outside, 1000u) << "reaches so wide that no particle falls outside them prove nothing";
+    EXPECT_GT(changed, 500u) << "insertions hardly changed a probe: a wrong reach would go unseen";
+  }
+}
