@@ -473,9 +473,9 @@ class GridIndex {
         probe.reach_max[a] = std::numeric_limits<double>::infinity();
         continue;
       }
-      const int up = c[a] >> shift;
-      probe.reach_min[a] = origin_[a] + static_cast<double>((up - ring) << shift) * cell_ - margin;
-      probe.reach_max[a] = origin_[a] + static_cast<double>((up + ring + 1) << shift) * cell_ + margin;
+      const int up = c[a] >> shift, width = 1 << shift;  // up - ring may be -1: multiplied, not shifted
+      probe.reach_min[a] = origin_[a] + static_cast<double>((up - ring) * width) * cell_ - margin;
+      probe.reach_max[a] = origin_[a] + static_cast<double>((up + ring + 1) * width) * cell_ + margin;
     }
   }
 
