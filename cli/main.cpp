@@ -340,18 +340,26 @@ int run(const std::vector<std::string>& args, const dla::Checkpoint* resumed = n
 
   if (resume_option->count()) {
     if (resumed) throw dla::InvalidInput("a checkpoint's command cannot itself resume");
-    // Only -q may go with --resume: every other option comes from the checkpoint.
+    // Only -q and --threads may go with --resume: every other option comes from the checkpoint.
+    // The thread count changes how fast it goes on, never what it grows.
+    const auto is_threads = [](const std::string& arg) { return arg == "--threads" || arg.rfind("--threads=", 0) == 0; };
     std::size_t others = 0;
     for (std::size_t i = 0; i < args.size(); ++i) {
-      if (args[i] == "--resume") ++i;
-      else if (args[i].rfind("--resume=", 0) != 0 && args[i] != "-q" && args[i] != "--quiet") ++others;
+      if (args[i] == "--resume" || args[i] == "--threads") ++i;
+      else if (args[i].rfind("--resume=", 0) != 0 && !is_threads(args[i]) && args[i] != "-q" && args[i] != "--quiet")
+        ++others;
     }
     if (others > 0) {
-      std::fprintf(stderr, "dla3d: error: --resume takes no other options but -q: they come from the checkpoint\n");
+      std::fprintf(stderr, "dla3d: error: --resume takes no other options but -q and --threads: they come from the checkpoint\n");
       return 2;
     }
     const dla::Checkpoint checkpoint = dla::read_checkpoint(resume_path);
-    std::vector<std::string> command = checkpoint.command;
+    std::vector<std::string> command;
+    for (std::size_t i = 0; i < checkpoint.command.size(); ++i) {
+      if (checkpoint.command[i] == "--threads" && app.count("--threads")) ++i;  // replaced below
+      else if (!(is_threads(checkpoint.command[i]) && app.count("--threads"))) command.push_back(checkpoint.command[i]);
+    }
+    if (app.count("--threads")) command.insert(command.end(), {"--threads", std::to_string(options.threads)});
     if (quiet) command.push_back("-q");
     return run(command, &checkpoint);
   }
