@@ -47,7 +47,8 @@ class GridIndex {
   }
 
   //! Whether inserting a particle within `radius` of `center`, or covering that ball, leaves the
-  //! domain as it is. Only a change of domain moves what concurrent probes read (see below).
+  //! domain as it is. Only a change of domain moves what probes on other threads read: growth.h
+  //! stops them first.
   bool holds(const Vec3& center, double radius) const { return cells_ > 0 && inside(center, radius); }
 
   Probe probe(const Vec3& x) const {

@@ -276,7 +276,7 @@ class Aggregation {
   //! add() while walkers run on other threads: they stop while the grid's domain grows.
   void add_stopping(const Particle& p) {
     const double radius = std::max(sight_->cluster_radius, (p.position - cluster_.center).norm());
-    if (index_.holds(p.position, 0.0) && index_.holds(cluster_.center, radius + 2.0 * contact_)) {
+    if (index_.holds(p.position, 0.0) && index_.holds(cluster_.center, return_radius_for(radius))) {
       add(p);
       return;
     }
@@ -289,14 +289,16 @@ class Aggregation {
     });
   }
 
+  //! Walkers are put back on this sphere from outside; two spacings of margin keep a returned
+  //! walker clear of every contact ball.
+  double return_radius_for(double cluster_radius) const { return cluster_radius + 2.0 * contact_; }
+
   void add(const Particle& p) {
     cluster_.particles.push_back(p);
     index_.insert(static_cast<std::int32_t>(cluster_.particles.size() - 1));
     const double r = (p.position - cluster_.center).norm();
     if (sight_ && r <= sight_->cluster_radius) return;
-    // Walkers are put back on this sphere from outside; two spacings of margin keep a returned
-    // walker clear of every contact ball.
-    sights_.push_back({r, r + 2.0 * contact_});
+    sights_.push_back({r, return_radius_for(r)});
     sight_ = &sights_.back();
     index_.cover(cluster_.center, sight_->return_radius);
     sight_published_.store(sight_, std::memory_order_release);
