@@ -4,6 +4,7 @@
 
 #include "dla/csv_writer.h"
 #include "dla/growth.h"
+#include "dla/hash.h"
 #include "test_util.h"
 
 #include <gtest/gtest.h>
@@ -12,12 +13,6 @@
 
 namespace dla {
 namespace {
-
-std::uint64_t fnv1a(const std::string& bytes) {
-  std::uint64_t hash = 0xcbf29ce484222325ULL;
-  for (unsigned char c : bytes) hash = (hash ^ c) * 0x100000001b3ULL;
-  return hash;
-}
 
 TEST(Golden, TwoThousandParticlesFromSeedOne) {
   testing::ScratchDir dir;

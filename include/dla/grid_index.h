@@ -245,7 +245,10 @@ class GridIndex {
       }
     }
     const double boundary = (1.0 + margin) * cell_;
-    if (best >= 0 && best2 <= boundary * boundary) return Probe{best, std::sqrt(best2)}.reaching(x, std::sqrt(best2));
+    if (best >= 0 && best2 <= boundary * boundary) {
+      const double distance = std::sqrt(best2);
+      return Probe{best, distance}.reaching(x, distance);
+    }
     return Probe{-1, boundary}.reaching(x, boundary);
   }
 
