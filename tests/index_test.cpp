@@ -61,6 +61,10 @@ void check_against_brute_force(int dimensions) {
       if (expected.distance < 2.0) {
         EXPECT_EQ(got.nearest, expected.nearest);
       }
+      // Skipping the reach (one thread) leaves the answer as it is.
+      const Probe unreached = index.probe(x, Reach::skip);
+      ASSERT_EQ(unreached.nearest, got.nearest);
+      ASSERT_EQ(unreached.distance, got.distance);
       const double radius = 0.5 + 2.5 * rng.uniform();
       std::set<std::int32_t> want, have;
       brute.for_each_within(x, radius, [&](std::int32_t id, double) { want.insert(id); });

@@ -51,7 +51,7 @@ class GridIndex {
   //! stops them first.
   bool holds(const Vec3& center, double radius) const { return cells_ > 0 && inside(center, radius); }
 
-  Probe probe(const Vec3& x) const {
+  Probe probe(const Vec3& x, Reach reach = Reach::set) const {
     if (cells_ == 0) return {};  // reach: any particle changes it
     std::array<double, 3> f{0.0, 0.0, 0.0};  // position in cells from the domain's corner
     std::array<int, 3> c{0, 0, 0};
@@ -69,15 +69,17 @@ class GridIndex {
     if (gap >= kGapUnits / 2) {
       Probe answer{-1, (gap * (1.0 / kGapUnits) + face_margin(f, c, 0)) * cell_};
       // Only a particle nearer to the cell than its gap (and a unit of rounding) lowers it.
-      block_box(c, 0, 0, (gap + 1) * (cell_ / kGapUnits), answer);
+      if (reach == Reach::set) block_box(c, 0, 0, (gap + 1) * (cell_ / kGapUnits), answer);
       if (gap < kFarGap) return answer;
-      const Probe coarse = pyramid_bound(f, c);
+      const Probe coarse = pyramid_bound(f, c, reach);
       answer.distance = std::max(answer.distance, coarse.distance);
-      answer.reach_min = answer.reach_min.cwiseMin(coarse.reach_min);
-      answer.reach_max = answer.reach_max.cwiseMax(coarse.reach_max);
+      if (reach == Reach::set) {
+        answer.reach_min = answer.reach_min.cwiseMin(coarse.reach_min);
+        answer.reach_max = answer.reach_max.cwiseMax(coarse.reach_max);
+      }
       return answer;
     }
-    return nearest_in_block(x, f, c);
+    return nearest_in_block(x, f, c, reach);
   }
 
   template <class Visit>
@@ -201,7 +203,7 @@ class GridIndex {
   //! The nearest particle if it lies within the 3x3x3 block of cells about x and nearer than
   //! the block's boundary, else the distance to that boundary as a bound. Occupied cells are
   //! read a row at a time from the occupancy bits and searched nearest ring first.
-  Probe nearest_in_block(const Vec3& x, const std::array<double, 3>& f, const Cell& c) const {
+  Probe nearest_in_block(const Vec3& x, const std::array<double, 3>& f, const Cell& c, Reach reach) const {
     const auto gaps = axis_gaps(x, c);
     const int dz = planar_ ? 0 : 1;
     std::array<std::array<Candidate, 27>, 2> rings;  // occupied cells: x's own, the 26 around
@@ -245,11 +247,10 @@ class GridIndex {
       }
     }
     const double boundary = (1.0 + margin) * cell_;
-    if (best >= 0 && best2 <= boundary * boundary) {
-      const double distance = std::sqrt(best2);
-      return Probe{best, distance}.reaching(x, distance);
-    }
-    return Probe{-1, boundary}.reaching(x, boundary);
+    Probe answer{-1, boundary};
+    if (best >= 0 && best2 <= boundary * boundary) answer = {best, std::sqrt(best2)};
+    if (reach == Reach::set) answer.reaching(x, answer.distance);
+    return answer;
   }
 
   //! Distance from fractional cell position f to the faces of its cell at level `shift`, in cells.
@@ -455,7 +456,7 @@ class GridIndex {
   //! bounds the distance by its cell size plus f's distance to its own cell's faces; 0 when
   //! even the finest level's block holds a particle. Only a particle in that block sets a bit
   //! the answer read.
-  Probe pyramid_bound(const std::array<double, 3>& f, const Cell& c) const {
+  Probe pyramid_bound(const std::array<double, 3>& f, const Cell& c, Reach reach) const {
     int clear = -1;
     for (int l = 0; l < static_cast<int>(levels_.size()); ++l) {
       if (levels_[l].near.test(levels_[l].up(c, planar_))) break;
@@ -464,7 +465,7 @@ class GridIndex {
     if (clear < 0) return unchangeable(0.0);
     const int shift = levels_[clear].shift;
     Probe answer{-1, ((1 << shift) + face_margin(f, c, shift)) * cell_};
-    block_box(c, shift, 1, 0.0, answer);
+    if (reach == Reach::set) block_box(c, shift, 1, 0.0, answer);
     return answer;
   }
 

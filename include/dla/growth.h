@@ -359,7 +359,7 @@ class Aggregation {
       }
 
       // Outside the sphere around every particle, its distance is a bound the index may not beat.
-      const Probe probe = index_.probe(x);
+      const Probe probe = index_.probe(x, reads ? Reach::set : Reach::skip);
       read(reads, probe);
       const double free = std::max(probe.distance, std::sqrt(r2) - sight.cluster_radius) - contact_;
       if (free > near_step_) {
@@ -426,7 +426,7 @@ class Aggregation {
       const Vec3 x = draw_start(rng, sight);
       if (constraint_ && constraint_->lost(x)) continue;
       if ((x - center).squaredNorm() >= R2) return x;
-      const Probe probe = index_.probe(x);
+      const Probe probe = index_.probe(x, reads ? Reach::set : Reach::skip);
       read(reads, probe);
       if (probe.distance >= contact_) return x;
     }

@@ -36,7 +36,7 @@ class KdTreeIndex {
   }
   void cover(const Vec3& /*center*/, double /*radius*/) {}
 
-  Probe probe(const Vec3& x) const {
+  Probe probe(const Vec3& x, Reach /*reach*/ = Reach::set) const {  // the reach costs nothing here
     Probe result;
     if (adaptor_.count == 0) return result;
     std::uint32_t id = 0;

@@ -10,7 +10,9 @@
 //!   Index(const std::vector<Particle>& particles, double spacing, int dimensions);
 //!   void insert(std::int32_t id);                 // particles[id] was appended; ids come in order
 //!   void cover(const Vec3& center, double radius); // later queries lie in this ball
-//!   Probe probe(const Vec3& x) const;
+//!   Probe probe(const Vec3& x, Reach reach = Reach::set) const;
+//!                                                  // Reach::skip: the probe's reach may be
+//!                                                  // left unbounded
 //!   void reserve(std::size_t particles);          // room for this many, made before growth
 //!   bool holds(const Vec3& center, double radius) const;
 //!                                                  // whether inserting or covering within the
@@ -52,6 +54,10 @@ struct Probe {
   }
 };
 
+//! Whether a probe must bound its reach. Only a walker running ahead of others reads it
+//! (growth.h); on one thread the grid saves the few percent its boxes cost.
+enum class Reach { skip, set };
+
 //! Checks every particle: exact, O(n) per query. The reference the fast indexes are tested
 //! against.
 class BruteForceIndex {
@@ -64,7 +70,7 @@ class BruteForceIndex {
   void insert(std::int32_t id) { count_ = static_cast<std::size_t>(id) + 1; }
   void cover(const Vec3& /*center*/, double /*radius*/) {}
 
-  Probe probe(const Vec3& x) const {
+  Probe probe(const Vec3& x, Reach /*reach*/ = Reach::set) const {  // the reach costs nothing here
     Probe result;
     double best = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < count_; ++i) {
