@@ -309,6 +309,14 @@ class Aggregation {
     if (reads) reads->push_back({probe.reach_min, probe.reach_max});
   }
 
+  //! Probes the index at x and records the answer for a walker running ahead, the only one
+  //! that needs its reach.
+  Probe probe(const Vec3& x, std::vector<Read>* reads) const {
+    const Probe answer = index_.probe(x, reads ? Reach::set : Reach::skip);
+    read(reads, answer);
+    return answer;
+  }
+
   //! Runs walker number k from launch to contact and returns the particle it becomes.
   Particle walk(std::size_t k, const Sight& sight, WalkStats& stats, std::vector<Read>* reads) {
     ++stats.walkers;
@@ -359,9 +367,7 @@ class Aggregation {
       }
 
       // Outside the sphere around every particle, its distance is a bound the index may not beat.
-      const Probe probe = index_.probe(x, reads ? Reach::set : Reach::skip);
-      read(reads, probe);
-      const double free = std::max(probe.distance, std::sqrt(r2) - sight.cluster_radius) - contact_;
+      const double free = std::max(probe(x, reads).distance, std::sqrt(r2) - sight.cluster_radius) - contact_;
       if (free > near_step_) {
         x += jump(rng, free);
         continue;
@@ -426,9 +432,7 @@ class Aggregation {
       const Vec3 x = draw_start(rng, sight);
       if (constraint_ && constraint_->lost(x)) continue;
       if ((x - center).squaredNorm() >= R2) return x;
-      const Probe probe = index_.probe(x, reads ? Reach::set : Reach::skip);
-      read(reads, probe);
-      if (probe.distance >= contact_) return x;
+      if (probe(x, reads).distance >= contact_) return x;
     }
     throw GrowthError("no free start in " + std::to_string(max_draws) + " draws from the " +
                       std::string(to_string(opt_.spawn)) + " spawn" +
