@@ -3,14 +3,15 @@
 //! The default nearest-particle look-up: a grid of cells four spacings wide, stored in blocks
 //! allocated where they are needed, with an occupancy bit per cell, a gap map (per cell, a
 //! lower bound on the distance from the cell to the nearest particle, kept within four cells
-//! of the structure) and a pyramid of coarser occupancy bits above.
+//! of the structure), a node map (every fourth cell corner, its distance to the nearest
+//! occupied cell, kept within sixteen cells) and a pyramid of coarser occupancy bits.
 //!
 //! Next to the structure a probe returns the exact nearest particle, walking the lists of the
 //! occupied cells of the 3x3x3 block about the point (the occupancy bits of a row of cells are
-//! read in one load). From half a cell out it reads the point's gap, and beyond the gap map's
-//! reach one bit per pyramid level, and returns a lower bound on the distance: the walk only
-//! needs a ball free of particles. See docs/index.md for the layout and the measurements that
-//! chose it.
+//! read in one load). From half a cell out it reads the point's gap, beyond the gap map's
+//! reach the eight nodes about the point, and beyond theirs one bit per pyramid level, and
+//! returns a lower bound on the distance: the walk only needs a ball free of particles. See
+//! docs/index.md for the layout and the measurements that chose it.
 
 #include "dla/errors.h"
 #include "dla/spatial_index.h"
@@ -33,12 +34,14 @@ class GridIndex {
 
   void reserve(std::size_t particles) { next_.reserve(particles); }
 
-  void insert(std::int32_t id) {
+  //! True when the particle is the first in its cell: only such a particle changes the
+  //! occupancy bits, the pyramid and the node map.
+  bool insert(std::int32_t id) {
     const Vec3& p = particles_[static_cast<std::size_t>(id)].position;
     if (cells_ == 0) start(p, 0.0);
     while (!inside(p, 0.0)) grow();
     next_.push_back(-1);
-    place(id);
+    return place(id);
   }
 
   void cover(const Vec3& center, double radius) {
@@ -69,14 +72,12 @@ class GridIndex {
     if (gap >= kGapUnits / 2) {
       Probe answer{-1, (gap * (1.0 / kGapUnits) + face_margin(f, c, 0)) * cell_};
       // Only a particle nearer to the cell than its gap (and a unit of rounding) lowers it.
-      if (reach == Reach::set) block_box(c, 0, 0, (gap + 1) * (cell_ / kGapUnits), answer);
+      if (reach == Reach::set) block_box(c, 0, 0, (gap + 1) * (cell_ / kGapUnits), answer.reach_min, answer.reach_max);
       if (gap < kFarGap) return answer;
-      const Probe coarse = pyramid_bound(f, c, reach);
+      const Probe coarse = far_bound(f, c, reach);
       answer.distance = std::max(answer.distance, coarse.distance);
-      if (reach == Reach::set) {
-        answer.reach_min = answer.reach_min.cwiseMin(coarse.reach_min);
-        answer.reach_max = answer.reach_max.cwiseMax(coarse.reach_max);
-      }
+      answer.opening_min = coarse.opening_min;
+      answer.opening_max = coarse.opening_max;
       return answer;
     }
     return nearest_in_block(x, f, c, reach);
@@ -110,6 +111,10 @@ class GridIndex {
   static constexpr int kGapUnits = 32;                    // gap map units per cell width
   static constexpr int kGapReach = 4;                     // cells a particle lowers gaps around
   static constexpr int kFarGap = kGapReach * kGapUnits;   // gap of cells beyond every reach
+  static constexpr int kNodeShift = 2;                    // a node every 4 cells along each axis
+  static constexpr int kNodeUnits = 8;                    // node map units per cell width
+  static constexpr int kNodeReach = 16;                   // cells an occupied cell lowers nodes within
+  static constexpr int kNodeCap = kNodeReach * kNodeUnits;  // value of nodes beyond every reach
 
   using Cell = std::array<int, 3>;
 
@@ -290,8 +295,8 @@ class GridIndex {
   }
 
   //! Doubles the domain about its centre. The domain's corner moves by a whole number of
-  //! blocks, so the blocks (cell lists and gaps) stay as they are: only the block tables and
-  //! the occupancy bits are made again.
+  //! blocks, so the blocks (cell lists and gaps) stay as they are: only the block tables, the
+  //! occupancy bits and the node map are made again.
   void grow() {
     if (cells_ >= kMaxCells)
       throw GrowthError("the structure reaches beyond " + std::to_string(cells_ / 2) +
@@ -324,6 +329,9 @@ class GridIndex {
     heads_of_.assign(static_cast<std::size_t>(block_dims_[0]) * block_dims_[1] * block_dims_[2], nullptr);
     gaps_of_.assign(heads_of_.size(), nullptr);
     occupied_.reset(dims_);
+    const int nodes = (cells_ >> kNodeShift) + 1;  // corners of the cells at both ends
+    node_dims_ = {nodes, nodes, planar_ ? 1 : nodes};
+    nodes_.assign(static_cast<std::size_t>(nodes) * nodes * node_dims_[2], static_cast<std::uint8_t>(kNodeCap));
     levels_.clear();
     for (int shift = 1; (cells_ >> shift) >= 4; ++shift) {
       const Cell dims{cells_ >> shift, cells_ >> shift, planar_ ? 1 : cells_ >> shift};
@@ -335,7 +343,7 @@ class GridIndex {
   }
 
   //! Sets the occupancy bits of the cells of a block (whose first cell is `first`) that hold
-  //! particles.
+  //! particles, and lowers the nodes about them.
   void mark_occupied(const Cell& first, const std::int32_t* heads) {
     const int side = 1 << kBlockShift;
     for (int z = 0; z < (planar_ ? 1 : side); ++z)
@@ -345,6 +353,7 @@ class GridIndex {
           if (heads[cell_in_block(c)] < 0) continue;
           occupied_.set(c);
           for (Level& level : levels_) level.mark(c, planar_);
+          lower_nodes(c);
         }
   }
 
@@ -404,17 +413,22 @@ class GridIndex {
     return gaps;
   }
 
-  //! Files a particle. Probes may run on other threads meanwhile: each store publishes a
-  //! consistent state (the particle is in the store before its id is in a list).
-  void place(std::int32_t id) {
+  //! Files a particle; true if its cell held none. Probes may run on other threads meanwhile:
+  //! each store publishes a consistent state (the particle is in the store before its id is
+  //! in a list).
+  bool place(std::int32_t id) {
     const Vec3& p = position(id);
     const Cell c = cell_of(p);
     std::int32_t& head = heads_at(c)[cell_in_block(c)];
+    const bool opens = head < 0;
     store(next_[static_cast<std::size_t>(id)], head);
     store_release(head, id);
+    lower_gaps(p, c);
+    if (!opens) return false;  // the bits, the pyramid and the nodes already know the cell
     occupied_.set(c);
     for (Level& level : levels_) level.mark(c, planar_);
-    lower_gaps(p, c);
+    lower_nodes(c);
+    return true;
   }
 
   //! Lowers the gap of every cell within kGapReach cells of p's cell `home` to the distance
@@ -452,6 +466,100 @@ class GridIndex {
       }
   }
 
+  std::size_t node_index(const Cell& n) const {
+    return (static_cast<std::size_t>(n[2]) * node_dims_[1] + n[1]) * node_dims_[0] + n[0];
+  }
+
+  //! Beyond the gap map's reach: from each corner k of the node cell (4 cells a side) holding
+  //! base cell c, every particle is at least the node's value V_k away, so at least V_k less
+  //! the corner's distance from f. The largest of the eight, or where every node is beyond
+  //! the node map's reach, the larger of that and the pyramid's bound. Only a particle that
+  //! opens a cell changes a node or the pyramid.
+  Probe far_bound(const std::array<double, 3>& f, const Cell& c, Reach reach) const {
+    const Cell n0{c[0] >> kNodeShift, c[1] >> kNodeShift, planar_ ? 0 : c[2] >> kNodeShift};
+    const std::size_t first = node_index(n0);
+    const std::size_t step_y = static_cast<std::size_t>(node_dims_[0]);
+    const std::size_t step_z = planar_ ? 0 : step_y * static_cast<std::size_t>(node_dims_[1]);
+    // Squared offsets along each axis from f to the node cell's low and high faces, in cells.
+    std::array<std::array<double, 2>, 3> offset2{};
+    for (int a = 0; a < axes(); ++a) {
+      const double low = f[a] - static_cast<double>(n0[a] << kNodeShift), high = low - (1 << kNodeShift);
+      offset2[a] = {low * low, high * high};
+    }
+    // The eight terms are independent (no chain of maxima through square roots).
+    std::array<double, 8> term;
+    int capped = 0;
+    for (int k = 0; k < 8; ++k) {
+      const int value = load(nodes_[first + (k & 1) + (k >> 1 & 1) * step_y + (k >> 2 & 1) * step_z]);
+      capped += value == kNodeCap;
+      term[k] = value * (1.0 / kNodeUnits) -
+                std::sqrt(offset2[0][k & 1] + offset2[1][k >> 1 & 1] + offset2[2][k >> 2 & 1]);
+    }
+    const double best = std::max({term[0], term[1], term[2], term[3], term[4], term[5], term[6], term[7], 0.0});
+    if (capped == 8) {
+      // A node lowered later would take the pyramid out of the answer: any of them counts.
+      Probe coarse = pyramid_bound(f, c, reach);
+      if (reach == Reach::set) node_box(n0, 1, kNodeCap, coarse);
+      coarse.distance = std::max(coarse.distance, best * cell_);
+      return coarse;
+    }
+    Probe answer = unchangeable(best * cell_);
+    if (reach == Reach::set) {  // only a lower winning node lowers the answer
+      const int win = static_cast<int>(std::max_element(term.begin(), term.end()) - term.begin());
+      const Cell n{n0[0] + (win & 1), n0[1] + (win >> 1 & 1), n0[2] + (win >> 2 & 1)};
+      node_box(n, 0, load(nodes_[node_index(n)]), answer);
+    }
+    return answer;
+  }
+
+  //! Widens a probe's opening box over every cell that lowers a node from n to n + span (in
+  //! nodes, per axis) below `value`: a cell whose box is nearer than that, rounding included.
+  void node_box(const Cell& n, int span, int value, Probe& probe) const {
+    const double widen = (value + 1) * (cell_ / kNodeUnits) + cell_;
+    for (int a = 0; a < 3; ++a) {
+      if (a == 2 && planar_) {
+        probe.opening_min[a] = -std::numeric_limits<double>::infinity();
+        probe.opening_max[a] = std::numeric_limits<double>::infinity();
+        continue;
+      }
+      const double low = origin_[a] + static_cast<double>(n[a] << kNodeShift) * cell_;
+      probe.opening_min[a] = std::min(probe.opening_min[a], low - widen);
+      probe.opening_max[a] = std::max(probe.opening_max[a], low + static_cast<double>(span << kNodeShift) * cell_ + widen);
+    }
+  }
+
+  //! Lowers every node within kNodeReach cells of cell c, newly occupied, to its distance from
+  //! the cell's box, in kNodeUnits per cell, rounded down.
+  void lower_nodes(const Cell& c) {
+    constexpr int most = 3 * (kNodeReach + 1) * (kNodeReach + 1);  // squared distances, in cells²
+    static const std::array<std::uint8_t, most> units = [] {
+      std::array<std::uint8_t, most> table{};
+      for (int d2 = 0; d2 < most; ++d2)
+        table[d2] = static_cast<std::uint8_t>(std::min(static_cast<double>(kNodeCap), std::floor(std::sqrt(d2) * kNodeUnits)));
+      return table;
+    }();
+    Cell low{0, 0, 0}, high{0, 0, 0};
+    for (int a = 0; a < axes(); ++a) {
+      low[a] = std::max((c[a] - kNodeReach + (1 << kNodeShift) - 1) >> kNodeShift, 0);
+      high[a] = std::min((c[a] + 1 + kNodeReach) >> kNodeShift, node_dims_[a] - 1);
+    }
+    // Whole cells along each axis between a node and the cell's box.
+    const auto gap = [](int cell, int node) { return std::max({cell - node, node - cell - 1, 0}); };
+    for (int z = low[2]; z <= high[2]; ++z) {
+      const int gz = planar_ ? 0 : gap(c[2], z << kNodeShift);
+      for (int y = low[1]; y <= high[1]; ++y) {
+        const int gy = gap(c[1], y << kNodeShift), gyz2 = gy * gy + gz * gz;
+        if (gyz2 >= kNodeReach * kNodeReach) continue;
+        std::uint8_t* row = &nodes_[node_index({0, y, z})];
+        for (int x = low[0]; x <= high[0]; ++x) {
+          const int gx = gap(c[0], x << kNodeShift);
+          const std::uint8_t value = units[static_cast<std::size_t>(gyz2 + gx * gx)];
+          if (value < row[x]) store(row[x], value);
+        }
+      }
+    }
+  }
+
   //! A bound from the pyramid: the coarsest level whose 3x3x3 block about cell c is empty
   //! bounds the distance by its cell size plus f's distance to its own cell's faces; 0 when
   //! even the finest level's block holds a particle. Only a particle in that block sets a bit
@@ -464,23 +572,25 @@ class GridIndex {
     }
     if (clear < 0) return unchangeable(0.0);
     const int shift = levels_[clear].shift;
-    Probe answer{-1, ((1 << shift) + face_margin(f, c, shift)) * cell_};
-    if (reach == Reach::set) block_box(c, shift, 1, 0.0, answer);
+    Probe answer = unchangeable(((1 << shift) + face_margin(f, c, shift)) * cell_);
+    // Only a particle that opens a cell sets a bit.
+    if (reach == Reach::set) block_box(c, shift, 1, 0.0, answer.opening_min, answer.opening_max);
     return answer;
   }
 
-  //! Sets a probe's reach to the box of the cells at level `shift` (2^shift cells wide) within
-  //! `ring` of the one holding base cell c, widened by `margin`. In the plane it spans all z.
-  void block_box(const Cell& c, int shift, int ring, double margin, Probe& probe) const {
+  //! Sets a box (a probe's reach or opening box) to the cells at level `shift` (2^shift cells
+  //! wide) within `ring` of the one holding base cell c, widened by `margin`. In the plane it
+  //! spans all z.
+  void block_box(const Cell& c, int shift, int ring, double margin, Vec3& min, Vec3& max) const {
     for (int a = 0; a < 3; ++a) {
       if (a == 2 && planar_) {
-        probe.reach_min[a] = -std::numeric_limits<double>::infinity();
-        probe.reach_max[a] = std::numeric_limits<double>::infinity();
+        min[a] = -std::numeric_limits<double>::infinity();
+        max[a] = std::numeric_limits<double>::infinity();
         continue;
       }
       const int up = c[a] >> shift, width = 1 << shift;  // up - ring may be -1: multiplied, not shifted
-      probe.reach_min[a] = origin_[a] + static_cast<double>((up - ring) * width) * cell_ - margin;
-      probe.reach_max[a] = origin_[a] + static_cast<double>((up + ring + 1) * width) * cell_ + margin;
+      min[a] = origin_[a] + static_cast<double>((up - ring) * width) * cell_ - margin;
+      max[a] = origin_[a] + static_cast<double>((up + ring + 1) * width) * cell_ + margin;
     }
   }
 
@@ -514,6 +624,10 @@ class GridIndex {
   std::vector<std::unique_ptr<std::uint8_t[]>> gap_blocks_;
   std::vector<std::int32_t> next_;       // per particle: next particle in its cell, or -1
   BitGrid occupied_;                    // per cell: holds a particle
+  Cell node_dims_{0, 0, 0};
+  std::vector<std::uint8_t> nodes_;     // per node (every 4th cell corner, x fastest): distance
+                                        // to the nearest occupied cell's box, rounded down, in
+                                        // cell widths / kNodeUnits; kNodeCap beyond reach
   std::vector<Level> levels_;           // finest first
 };
 

@@ -68,9 +68,11 @@ struct Sight {
 };
 
 //! A walker running ahead of earlier ones records, for each look-up, the box outside which no
-//! particle attached meanwhile could have changed the answer.
+//! particle attached meanwhile could have changed the answer, and the box where only one that
+//! opened a cell could have (see Probe).
 struct Read {
   Vec3 min, max;
+  Vec3 opening_min, opening_max;
 };
 
 //! Walkers on other threads stop at their next step while the grid's domain grows.
@@ -120,6 +122,7 @@ class Aggregation {
     cluster_.seed_count = options.seeds.size();
     // Walkers on other threads read particles while one is appended: the store never moves.
     cluster_.particles.reserve(options.seeds.size() + options.particles);
+    if (options.threads > 1) opened_.reserve(options.seeds.size() + options.particles);
     index_.reserve(options.seeds.size() + options.particles);
     for (const Vec3& s : options.seeds) cluster_.center += s;
     cluster_.center /= static_cast<double>(options.seeds.size());
@@ -255,12 +258,18 @@ class Aggregation {
     return std::move(cluster_);
   }
 
-  //! Whether no particle attached by walkers [from, to) lies in a box of `reads`.
+  //! Whether no particle attached by walkers [from, to) lies in a box of `reads` (an opening
+  //! box only counts for a particle that opened a cell).
   bool unchanged(const std::vector<Read>& reads, std::size_t from, std::size_t to) const {
+    const auto in = [](const Vec3& p, const Vec3& min, const Vec3& max) {
+      return (p.array() >= min.array()).all() && (p.array() <= max.array()).all();
+    };
     for (std::size_t j = from; j < to; ++j) {
-      const Vec3& p = position(static_cast<std::int32_t>(cluster_.seed_count + j));
+      const std::size_t id = cluster_.seed_count + j;
+      const Vec3& p = position(static_cast<std::int32_t>(id));
+      const bool opened = opened_[id] != 0;
       for (const Read& read : reads)
-        if ((p.array() >= read.min.array()).all() && (p.array() <= read.max.array()).all()) return false;
+        if (in(p, read.min, read.max) || (opened && in(p, read.opening_min, read.opening_max))) return false;
     }
     return true;
   }
@@ -295,7 +304,8 @@ class Aggregation {
 
   void add(const Particle& p) {
     cluster_.particles.push_back(p);
-    index_.insert(static_cast<std::int32_t>(cluster_.particles.size() - 1));
+    const bool opened = index_.insert(static_cast<std::int32_t>(cluster_.particles.size() - 1));
+    if (opt_.threads > 1) opened_.push_back(opened);
     const double r = (p.position - cluster_.center).norm();
     if (sight_ && r <= sight_->cluster_radius) return;
     sights_.push_back({r, return_radius_for(r)});
@@ -306,7 +316,7 @@ class Aggregation {
 
   //! Records, for a walker running ahead, what a look-up's answer depends on.
   static void read(std::vector<Read>* reads, const Probe& probe) {
-    if (reads) reads->push_back({probe.reach_min, probe.reach_max});
+    if (reads) reads->push_back({probe.reach_min, probe.reach_max, probe.opening_min, probe.opening_max});
   }
 
   //! Probes the index at x and records the answer for a walker running ahead, the only one
@@ -461,6 +471,7 @@ class Aggregation {
   const double near_step_;    // step length near the structure
   const double drift_scale_;  // keeps a drifted jump inside its free ball
   alignas(64) Cluster cluster_;  // written at every attachment: apart from what walkers read
+  std::vector<std::uint8_t> opened_;  // per particle, with threads: whether it opened a cell
   alignas(64) Index index_;
   std::deque<Sight> sights_;                     // every sight so far: walkers may hold any
   const Sight* sight_ = nullptr;                // the current one

@@ -30,9 +30,10 @@ class KdTreeIndex {
 
   void reserve(std::size_t /*particles*/) {}
   bool holds(const Vec3& /*center*/, double /*radius*/) const { return true; }
-  void insert(std::int32_t id) {
+  bool insert(std::int32_t id) {
     adaptor_.count = static_cast<std::size_t>(id) + 1;
     tree_.addPoints(static_cast<std::uint32_t>(id), static_cast<std::uint32_t>(id));
+    return true;
   }
   void cover(const Vec3& /*center*/, double /*radius*/) {}
 

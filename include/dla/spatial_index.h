@@ -8,7 +8,8 @@
 //!
 //! \code
 //!   Index(const std::vector<Particle>& particles, double spacing, int dimensions);
-//!   void insert(std::int32_t id);                 // particles[id] was appended; ids come in order
+//!   bool insert(std::int32_t id);                 // particles[id] was appended; ids come in
+//!                                                  // order. True if it opened a cell (below)
 //!   void cover(const Vec3& center, double radius); // later queries lie in this ball
 //!   Probe probe(const Vec3& x, Reach reach = Reach::set) const;
 //!                                                  // Reach::skip: the probe's reach may be
@@ -41,10 +42,16 @@ struct Probe {
   std::int32_t nearest = -1;  //!< the nearest particle, or -1 if the index only has a bound
   double distance = std::numeric_limits<double>::infinity();  //!< exact distance to `nearest`,
                                                               //!< else a lower bound
-  //! No particle inserted outside this box would change the answer: what a walker running
-  //! ahead of others must check (growth.h). Unbounded unless the index says otherwise.
+  //! No particle inserted outside this box would change the answer, except one that opens a
+  //! cell (insert() returns true) in the `opening` box: what a walker running ahead of others
+  //! must check (growth.h). Unbounded unless the index says otherwise.
   Vec3 reach_min = Vec3::Constant(-std::numeric_limits<double>::infinity());
   Vec3 reach_max = Vec3::Constant(std::numeric_limits<double>::infinity());
+  //! Where only a particle that opens a cell would change the answer: coarse bounds that read
+  //! which cells hold particles, not where the particles are. Empty unless the index says
+  //! otherwise.
+  Vec3 opening_min = Vec3::Constant(std::numeric_limits<double>::infinity());
+  Vec3 opening_max = Vec3::Constant(-std::numeric_limits<double>::infinity());
 
   //! Sets the reach to the cube of half-side `radius` about x (around the ball that matters).
   Probe& reaching(const Vec3& x, double radius) {
@@ -67,7 +74,10 @@ class BruteForceIndex {
 
   void reserve(std::size_t /*particles*/) {}
   bool holds(const Vec3& /*center*/, double /*radius*/) const { return true; }
-  void insert(std::int32_t id) { count_ = static_cast<std::size_t>(id) + 1; }
+  bool insert(std::int32_t id) {
+    count_ = static_cast<std::size_t>(id) + 1;
+    return true;
+  }
   void cover(const Vec3& /*center*/, double /*radius*/) {}
 
   Probe probe(const Vec3& x, Reach /*reach*/ = Reach::set) const {  // the reach costs nothing here
