@@ -74,6 +74,7 @@ class GridIndex {
       // Only a particle nearer to the cell than its gap (and a unit of rounding) lowers it.
       if (reach == Reach::set) block_box(c, 0, 0, (gap + 1) * (cell_ / kGapUnits), answer.reach_min, answer.reach_max);
       if (gap < kFarGap) return answer;
+      // The nodes and pyramid bits change only when a particle opens a cell: an opening box.
       const Probe coarse = far_bound(f, c, reach);
       answer.distance = std::max(answer.distance, coarse.distance);
       answer.opening_min = coarse.opening_min;
