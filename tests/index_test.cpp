@@ -109,31 +109,44 @@ TEST(GridIndex, FarQueriesGetLargeBounds) {
   }
 }
 
+namespace {
+
+// Probes at a uniform distance r in [from, from + span) from a lone particle, in 3D and 2D,
+// with the domain covering `covers` in turn (the larger makes it double): every bound at most
+// r and at least least(r), and on average at least `mean` of r.
+template <class Least>
+void expect_tight_bounds(double from, double span, std::initializer_list<double> covers, Least least,
+                         double mean) {
+  for (int dimensions : {3, 2}) {
+    std::vector<dla::Particle> store{{dla::Vec3::Zero(), -1, 0}};
+    dla::GridIndex grid(store, 1.0, dimensions);
+    grid.insert(0);
+    for (double cover : covers) {
+      grid.cover(dla::Vec3::Zero(), cover);
+      dla::Rng rng(3);
+      double ratio_sum = 0.0;
+      constexpr int probes = 400;
+      for (int i = 0; i < probes; ++i) {
+        const double r = from + span * rng.uniform();
+        const double bound = grid.probe(r * dla::random_direction(rng, dimensions)).distance;
+        ASSERT_LE(bound, r * (1 + 1e-12)) << dimensions << "D, r " << r;
+        ASSERT_GE(bound, least(r)) << dimensions << "D, r " << r;
+        ratio_sum += bound / r;
+      }
+      EXPECT_GE(ratio_sum / probes, mean) << dimensions << "D, cover " << cover;
+    }
+  }
+}
+
+}  // namespace
+
 TEST(GridIndex, MidRangeBoundsAreTight) {
   // Between half a cell and the gap map's reach (2 to 16 spacings with cells of 4), the bound is
   // at least the distance less the diagonal of a cell (4 sqrt(3) spacings) and one gap unit
   // (1/8 spacing); on average within a fifth of it (the pyramid alone gave about half). That
   // is what keeps walks short. It must survive the domain doubling, which moves blocks of gaps
   // instead of recomputing them.
-  for (int dimensions : {3, 2}) {
-    std::vector<dla::Particle> store{{dla::Vec3::Zero(), -1, 0}};
-    dla::GridIndex grid(store, 1.0, dimensions);
-    grid.insert(0);
-    for (double cover : {10.0, 600.0}) {
-      grid.cover(dla::Vec3::Zero(), cover);
-      dla::Rng rng(3);
-      double ratio_sum = 0.0;
-      constexpr int probes = 400;
-      for (int i = 0; i < probes; ++i) {
-        const double r = 2.5 + 11.0 * rng.uniform();
-        const double bound = grid.probe(r * dla::random_direction(rng, dimensions)).distance;
-        ASSERT_LE(bound, r * (1 + 1e-12)) << dimensions << "D, r " << r;
-        ASSERT_GE(bound, r - 4.0 * std::sqrt(3.0) - 0.125) << dimensions << "D, r " << r;
-        ratio_sum += bound / r;
-      }
-      EXPECT_GE(ratio_sum / probes, 0.78) << dimensions << "D, cover " << cover;
-    }
-  }
+  expect_tight_bounds(2.5, 11.0, {10.0, 600.0}, [](double r) { return r - 4.0 * std::sqrt(3.0) - 0.125; }, 0.78);
 }
 
 TEST(GridIndex, FarBoundsAreTight) {
@@ -141,25 +154,7 @@ TEST(GridIndex, FarBoundsAreTight) {
   // diagonal of a cell and the corners' offsets: on average within a seventh of it at 18-58
   // spacings (the pyramid alone gave about half). It must survive the domain doubling, which
   // makes the node map again.
-  for (int dimensions : {3, 2}) {
-    std::vector<dla::Particle> store{{dla::Vec3::Zero(), -1, 0}};
-    dla::GridIndex grid(store, 1.0, dimensions);
-    grid.insert(0);
-    for (double cover : {70.0, 600.0}) {
-      grid.cover(dla::Vec3::Zero(), cover);
-      dla::Rng rng(3);
-      double ratio_sum = 0.0;
-      constexpr int probes = 400;
-      for (int i = 0; i < probes; ++i) {
-        const double r = 18.0 + 40.0 * rng.uniform();
-        const double bound = grid.probe(r * dla::random_direction(rng, dimensions)).distance;
-        ASSERT_LE(bound, r * (1 + 1e-12)) << dimensions << "D, r " << r;
-        ASSERT_GE(bound, r / 2) << dimensions << "D, r " << r;
-        ratio_sum += bound / r;
-      }
-      EXPECT_GE(ratio_sum / probes, 0.8) << dimensions << "D, cover " << cover;
-    }
-  }
+  expect_tight_bounds(18.0, 40.0, {70.0, 600.0}, [](double r) { return r / 2; }, 0.8);
 }
 
 TEST(GridIndex, AParticleOutsideAProbesReachChangesNothing) {
