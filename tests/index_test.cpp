@@ -189,13 +189,10 @@ TEST(GridIndex, AParticleOutsideAProbesReachChangesNothing) {
       store.push_back(all[i]);
       const bool opened = grid.insert(static_cast<std::int32_t>(i));
       const dla::Vec3& p = all[i].position;
-      const auto in = [&p](const dla::Vec3& min, const dla::Vec3& max) {
-        return (p.array() >= min.array()).all() && (p.array() <= max.array()).all();
-      };
       for (std::size_t q = 0; q < xs.size(); ++q) {
         const dla::Probe after = grid.probe(xs[q]);
-        const bool in_opening = in(before[q].opening_min, before[q].opening_max);
-        const bool in_reach = in(before[q].reach_min, before[q].reach_max) || (opened && in_opening);
+        const bool in_opening = dla::in_box(p, before[q].opening_min, before[q].opening_max);
+        const bool in_reach = dla::in_box(p, before[q].reach_min, before[q].reach_max) || (opened && in_opening);
         const bool same = after.nearest == before[q].nearest && after.distance == before[q].distance;
         if (!in_reach && in_opening) ++opening_only;
         if (!in_reach) {

@@ -261,15 +261,12 @@ class Aggregation {
   //! Whether no particle attached by walkers [from, to) lies in a box of `reads` (an opening
   //! box only counts for a particle that opened a cell).
   bool unchanged(const std::vector<Read>& reads, std::size_t from, std::size_t to) const {
-    const auto in = [](const Vec3& p, const Vec3& min, const Vec3& max) {
-      return (p.array() >= min.array()).all() && (p.array() <= max.array()).all();
-    };
     for (std::size_t j = from; j < to; ++j) {
       const std::size_t id = cluster_.seed_count + j;
       const Vec3& p = position(static_cast<std::int32_t>(id));
       const bool opened = opened_[id] != 0;
       for (const Read& read : reads)
-        if (in(p, read.min, read.max) || (opened && in(p, read.opening_min, read.opening_max))) return false;
+        if (in_box(p, read.min, read.max) || (opened && in_box(p, read.opening_min, read.opening_max))) return false;
     }
     return true;
   }

@@ -61,6 +61,11 @@ struct Probe {
   }
 };
 
+//! Whether p lies in the box [min, max] (an empty box, min above max, holds nothing).
+inline bool in_box(const Vec3& p, const Vec3& min, const Vec3& max) {
+  return (p.array() >= min.array()).all() && (p.array() <= max.array()).all();
+}
+
 //! Whether a probe must bound its reach. Only a walker running ahead of others reads it
 //! (growth.h); on one thread the grid saves the few percent its boxes cost.
 enum class Reach { skip, set };
