@@ -6,11 +6,12 @@
 
 #include "output_file.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
-#include <iterator>
 #include <string_view>
+#include <vector>
 
 namespace dla {
 
@@ -19,100 +20,133 @@ namespace {
 constexpr std::string_view kMagic = "DLA3D-CHECKPOINT";
 constexpr std::uint32_t kVersion = 1;
 
-template <class T>
-void put(std::string& out, const T& value) {
-  out.append(reinterpret_cast<const char*>(&value), sizeof value);
-}
+//! Writes to the file through a buffer, hashing every byte: the checkpoint streams, whatever
+//! the structure's size.
+class Writer {
+ public:
+  explicit Writer(detail::OutputFile& file) : file_(file) { buffer_.reserve(kChunk + 64); }
+  template <class T>
+  void put(const T& value) {
+    buffer_.append(reinterpret_cast<const char*>(&value), sizeof value);
+    if (buffer_.size() >= kChunk) flush();
+  }
+  void put_bytes(std::string_view bytes) {
+    buffer_ += bytes;
+    if (buffer_.size() >= kChunk) flush();
+  }
+  //! Writes what is buffered and the hash of everything.
+  void finish() {
+    flush();
+    const std::uint64_t hash = hash_;
+    file_ << std::string_view(reinterpret_cast<const char*>(&hash), sizeof hash);
+  }
 
+ private:
+  static constexpr std::size_t kChunk = 1 << 16;
+  void flush() {
+    hash_ = fnv1a(buffer_, hash_);
+    file_ << buffer_;
+    buffer_.clear();
+  }
+  detail::OutputFile& file_;
+  std::string buffer_;
+  std::uint64_t hash_ = fnv1a({});
+};
+
+//! Reads a checkpoint through a buffer, hashing every byte but the last eight (the stored
+//! hash): memory stays that of the structure read, not of the file besides.
 class Reader {
  public:
-  Reader(std::string_view bytes, const std::string& path) : bytes_(bytes), path_(path) {}
+  Reader(const std::string& path) : in_(path, std::ios::binary), path_(path) {
+    if (!in_) throw IOError("cannot read '" + path + "': " + std::strerror(errno));
+    in_.seekg(0, std::ios::end);
+    const std::streamoff size = in_.tellg();
+    in_.seekg(0);
+    body_ = size < 8 ? 0 : static_cast<std::uint64_t>(size) - 8;  // too short: no magic
+  }
   template <class T>
   T get() {
     T value;
-    need(sizeof value);
-    std::memcpy(&value, bytes_.data() + at_, sizeof value);
-    at_ += sizeof value;
+    read(reinterpret_cast<char*>(&value), sizeof value);
     return value;
   }
-  std::string_view take(std::size_t n) {
-    need(n);
-    const std::string_view part = bytes_.substr(at_, n);
+  void read(char* to, std::size_t n) {
+    if (n > body_ - at_) damaged();
+    in_.read(to, static_cast<std::streamsize>(n));
+    if (!in_) damaged();
+    hash_ = fnv1a(std::string_view(to, n), hash_);
     at_ += n;
-    return part;
   }
   //! Refuses a count whose items (of at least `size` bytes each) the file cannot hold.
   std::uint64_t count(std::size_t size) {
     const auto n = get<std::uint64_t>();
-    if (n > (bytes_.size() - at_) / size) damaged();
+    if (n > (body_ - at_) / size) damaged();
     return n;
   }
-  std::size_t at() const { return at_; }
+  //! Checks that the body is all read and its hash is the one stored after it.
+  void finish() {
+    std::uint64_t stored = 0;
+    if (at_ != body_ || !in_.read(reinterpret_cast<char*>(&stored), sizeof stored) || stored != hash_) damaged();
+  }
   [[noreturn]] void damaged() const { throw InvalidInput(path_ + ": the checkpoint is cut short or damaged"); }
 
  private:
-  void need(std::size_t n) const {
-    if (n > bytes_.size() - at_) damaged();
-  }
-  std::string_view bytes_;
+  std::ifstream in_;
   const std::string& path_;
-  std::size_t at_ = 0;
+  std::uint64_t body_ = 0;  // bytes before the stored hash
+  std::uint64_t at_ = 0;
+  std::uint64_t hash_ = fnv1a({});
 };
 
 }  // namespace
 
 void write_checkpoint(const Checkpoint& checkpoint, const std::string& path) {
   const Cluster& c = checkpoint.cluster;
-  std::string out;
-  out.reserve(128 + 32 * c.particles.size());
-  out += kMagic;
-  put(out, kVersion);
-  put(out, checkpoint.input_hash);
-  put(out, static_cast<std::uint64_t>(checkpoint.command.size()));
+  detail::OutputFile file(path);
+  Writer out(file);
+  out.put_bytes(kMagic);
+  out.put(kVersion);
+  out.put(checkpoint.input_hash);
+  out.put(static_cast<std::uint64_t>(checkpoint.command.size()));
   for (const std::string& word : checkpoint.command) {
-    put(out, static_cast<std::uint64_t>(word.size()));
-    out += word;
+    out.put(static_cast<std::uint64_t>(word.size()));
+    out.put_bytes(word);
   }
-  put(out, static_cast<std::uint64_t>(c.seed_count));
-  put(out, c.spacing);
-  put(out, static_cast<std::int32_t>(c.dimensions));
-  for (int a = 0; a < 3; ++a) put(out, c.center[a]);
+  out.put(static_cast<std::uint64_t>(c.seed_count));
+  out.put(c.spacing);
+  out.put(static_cast<std::int32_t>(c.dimensions));
+  for (int a = 0; a < 3; ++a) out.put(c.center[a]);
   const WalkStats& s = c.stats;
   for (std::uint64_t v : {s.walkers, s.steps, s.near_steps, s.contacts, s.returns, s.relaunches, s.lost, s.rejected,
                           s.clipped})
-    put(out, v);
-  put(out, static_cast<std::uint64_t>(c.particles.size()));
+    out.put(v);
+  out.put(static_cast<std::uint64_t>(c.particles.size()));
   for (const Particle& p : c.particles) {
-    for (int a = 0; a < 3; ++a) put(out, p.position[a]);
-    put(out, p.parent);
-    put(out, p.seed);
+    for (int a = 0; a < 3; ++a) out.put(p.position[a]);
+    out.put(p.parent);
+    out.put(p.seed);
   }
-  put(out, fnv1a(out));
-  detail::OutputFile file(path);
-  file << out;
+  out.finish();
   file.commit();
 }
 
 Checkpoint read_checkpoint(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IOError("cannot read '" + path + "': " + std::strerror(errno));
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (bytes.compare(0, kMagic.size(), kMagic) != 0) throw InvalidInput(path + ": is not a dla3d checkpoint");
-  if (bytes.size() < kMagic.size() + 8) throw InvalidInput(path + ": the checkpoint is cut short or damaged");
-  const std::string_view body(bytes.data(), bytes.size() - 8);
-  std::uint64_t stored;
-  std::memcpy(&stored, bytes.data() + body.size(), 8);
-  if (fnv1a(body) != stored) throw InvalidInput(path + ": the checkpoint is cut short or damaged");
-
-  Reader r(body, path);
-  r.take(kMagic.size());
+  Reader r(path);
+  std::string magic(kMagic.size(), '\0');
+  try {
+    r.read(magic.data(), magic.size());
+  } catch (const InvalidInput&) {
+    magic.clear();
+  }
+  if (magic != kMagic) throw InvalidInput(path + ": is not a dla3d checkpoint");
   if (r.get<std::uint32_t>() != kVersion) throw InvalidInput(path + ": was written by another version of dla3d");
   Checkpoint checkpoint;
   checkpoint.input_hash = r.get<std::uint64_t>();
   const std::uint64_t words = r.count(8);
   for (std::uint64_t i = 0; i < words; ++i) {
-    const std::uint64_t length = r.count(1);
-    checkpoint.command.emplace_back(r.take(length));
+    std::string word(r.count(1), '\0');
+    r.read(word.data(), word.size());
+    checkpoint.command.push_back(std::move(word));
   }
   Cluster& c = checkpoint.cluster;
   c.seed_count = r.get<std::uint64_t>();
@@ -125,12 +159,21 @@ Checkpoint read_checkpoint(const std::string& path) {
     *v = r.get<std::uint64_t>();
   const std::uint64_t particles = r.count(32);
   c.particles.resize(particles);
-  for (Particle& p : c.particles) {
-    for (int a = 0; a < 3; ++a) p.position[a] = r.get<double>();
-    p.parent = r.get<std::int32_t>();
-    p.seed = r.get<std::int32_t>();
+  constexpr std::size_t kBlock = 4096, kBytes = 32;  // particles read at once, bytes each
+  std::vector<char> block(kBlock * kBytes);
+  for (std::size_t first = 0; first < particles; first += kBlock) {
+    const std::size_t count = std::min<std::size_t>(kBlock, particles - first);
+    r.read(block.data(), count * kBytes);
+    for (std::size_t i = 0; i < count; ++i) {
+      Particle& p = c.particles[first + i];
+      const char* bytes = block.data() + i * kBytes;
+      std::memcpy(p.position.data(), bytes, 24);
+      std::memcpy(&p.parent, bytes + 24, 4);
+      std::memcpy(&p.seed, bytes + 28, 4);
+    }
   }
-  if (r.at() != body.size() || c.seed_count > particles) r.damaged();
+  r.finish();
+  if (c.seed_count > particles) r.damaged();
   c.complete = false;
   return checkpoint;
 }

@@ -12,11 +12,11 @@ namespace dla {
 namespace {
 
 Cluster grow_any(const GrowthOptions& options, const ProgressFn& progress, const MeshConstraint* constraint,
-                 const Cluster* partial) {
+                 const Cluster* partial, const StopFlag* stop) {
   switch (options.index) {
-    case IndexKind::grid: return grow_with<GridIndex>(options, progress, constraint, partial);
-    case IndexKind::kdtree: return grow_with<KdTreeIndex>(options, progress, constraint, partial);
-    case IndexKind::brute: return grow_with<BruteForceIndex>(options, progress, constraint, partial);
+    case IndexKind::grid: return grow_with<GridIndex>(options, progress, constraint, partial, stop);
+    case IndexKind::kdtree: return grow_with<KdTreeIndex>(options, progress, constraint, partial, stop);
+    case IndexKind::brute: return grow_with<BruteForceIndex>(options, progress, constraint, partial, stop);
   }
   throw InvalidInput("unknown index");
 }
@@ -50,24 +50,25 @@ std::string point(const Vec3& p) {
 
 }  // namespace
 
-Cluster grow(const GrowthOptions& options, const ProgressFn& progress) {
+Cluster grow(const GrowthOptions& options, const ProgressFn& progress, const StopFlag* stop) {
   validate(options);
   if (options.spawn == SpawnMode::inside || options.spawn == SpawnMode::radial)
     throw InvalidInput("spawn " + std::string(to_string(options.spawn)) + " needs a constraint mesh");
-  return grow_any(options, progress, nullptr, nullptr);
+  return grow_any(options, progress, nullptr, nullptr, stop);
 }
 
-Cluster resume(const GrowthOptions& options, const Cluster& partial, const ProgressFn& progress) {
+Cluster resume(const GrowthOptions& options, const Cluster& partial, const ProgressFn& progress,
+               const StopFlag* stop) {
   validate(options);
   validate_partial(options, partial);
-  return grow_any(options, progress, nullptr, &partial);
+  return grow_any(options, progress, nullptr, &partial, stop);
 }
 
 Cluster resume(const GrowthOptions& options, const MeshConstraint& constraint, const Cluster& partial,
-               const ProgressFn& progress) {
+               const ProgressFn& progress, const StopFlag* stop) {
   validate(options, constraint);
   validate_partial(options, partial);
-  return grow_any(options, progress, &constraint, &partial);
+  return grow_any(options, progress, &constraint, &partial, stop);
 }
 
 void validate(const GrowthOptions& options, const MeshConstraint& constraint) {
@@ -87,9 +88,10 @@ void validate(const GrowthOptions& options, const MeshConstraint& constraint) {
                          std::string(to_string(side)) + " it");
 }
 
-Cluster grow(const GrowthOptions& options, const MeshConstraint& constraint, const ProgressFn& progress) {
+Cluster grow(const GrowthOptions& options, const MeshConstraint& constraint, const ProgressFn& progress,
+             const StopFlag* stop) {
   validate(options, constraint);
-  return grow_any(options, progress, &constraint, nullptr);
+  return grow_any(options, progress, &constraint, nullptr, stop);
 }
 
 }  // namespace dla

@@ -1,47 +1,32 @@
 #include "dla/run_report.h"
 
 #include "dla/analysis.h"
+#include "dla/json.h"
 #include "dla/strands.h"
 #include "dla/version.h"
 #include "output_file.h"
+
+#include <cmath>
 
 namespace dla {
 
 namespace {
 
 void vector(detail::OutputFile& out, const Vec3& v) {
-  out << '[';
-  out.number(v.x()) << ", ";
-  out.number(v.y()) << ", ";
-  out.number(v.z()) << ']';
+  out << '[' << json::number(v.x()) << ", " << json::number(v.y()) << ", " << json::number(v.z()) << ']';
 }
 
 }  // namespace
 
-//! A JSON string: quotes, backslashes and control characters escaped.
-void string(detail::OutputFile& out, const std::string& text) {
-  out << '"';
-  for (const char c : text) {
-    if (c == '"' || c == '\\') {
-      out << '\\' << c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char escaped[8];
-      std::snprintf(escaped, sizeof escaped, "\\u%04x", c);
-      out << escaped;
-    } else {
-      out << c;
-    }
-  }
-  out << '"';
-}
-
 void write_run_report(const Cluster& cluster, const GrowthOptions& o, const PovOptions& pov,
-                      const RunTimings& timings, const std::string& path, const MeshConstraint* constraint,
+                      const RunRecord& record, const std::string& path, const MeshConstraint* constraint,
                       const std::string& mesh_file) {
   const std::size_t attached = cluster.particles.size() - cluster.seed_count;
   detail::OutputFile out(path);
   out << "{\n  \"generator\": \"dla3d\",\n  \"version\": \"" << version << "\",\n";
+  if (!record.command.empty()) out << "  \"command\": " << json::string(record.command) << ",\n";
   out << "  \"complete\": " << (cluster.complete ? "true" : "false") << ",\n";
+  if (!record.stopped_by.empty()) out << "  \"stopped_by\": " << json::string(record.stopped_by) << ",\n";
   out << "  \"rng_seed\": ";
   out.integer(static_cast<long long>(o.rng_seed)) << ",\n  \"options\": {\n    \"particles\": ";
   out.integer(static_cast<long long>(o.particles)) << ",\n    \"spacing\": ";
@@ -74,12 +59,12 @@ void write_run_report(const Cluster& cluster, const GrowthOptions& o, const PovO
   if (constraint) {
     const RepairReport& r = constraint->repair_report();
     out << "  \"constraint\": {\n    \"mesh\": ";
-    string(out, mesh_file);
+    out << json::string(mesh_file);
     out << ",\n    \"side\": \"" << to_string(constraint->options().side) << "\",\n    \"mode\": \""
         << to_string(constraint->options().mode) << "\",\n    \"input_triangles\": ";
     out.integer(static_cast<long long>(r.input_triangles)) << ",\n    \"triangles\": ";
     out.integer(static_cast<long long>(constraint->mesh().triangles.size())) << ",\n    \"repair\": ";
-    string(out, r.summary());
+    out << json::string(r.summary());
     out << ",\n    \"closed\": " << (r.closed ? "true" : "false") << "\n  },\n";
   }
   out << "  \"counts\": {\n    \"particles\": ";
@@ -101,21 +86,16 @@ void write_run_report(const Cluster& cluster, const GrowthOptions& o, const PovO
   out << "  \"measures\": {\n    \"center\": ";
   vector(out, cluster.center);
   out << ",\n    \"bounding_radius\": ";
-  out.number(bounding_radius(cluster), 9) << ",\n    \"radius_of_gyration\": ";
-  out.number(radius_of_gyration(cluster), 9) << ",\n    \"fractal_dimension_gyration\": ";
-  const auto dimension = [&](const FractalFit& fit) {
-    if (fit.samples >= 2)
-      out.number(fit.dimension, 5);
-    else
-      out << "null";
-  };
+  out << json::number(bounding_radius(cluster), 9) << ",\n    \"radius_of_gyration\": ";
+  out << json::number(radius_of_gyration(cluster), 9) << ",\n    \"fractal_dimension_gyration\": ";
+  const auto dimension = [&](const FractalFit& fit) { out << json::number(fit.samples >= 2 ? fit.dimension : NAN, 5); };
   dimension(fractal_dimension_by_gyration(cluster));
   out << ",\n    \"fractal_dimension_mass_radius\": ";
   dimension(fractal_dimension_by_mass_radius(cluster));
   out << "\n  },\n  \"timings\": {\n    \"grow_seconds\": ";
-  out.number(timings.grow_seconds, 6) << ",\n    \"write_seconds\": ";
-  out.number(timings.write_seconds, 6) << ",\n    \"particles_per_second\": ";
-  out.number(timings.grow_seconds > 0 ? static_cast<double>(attached) / timings.grow_seconds : 0.0, 6);
+  out.number(record.grow_seconds, 6) << ",\n    \"write_seconds\": ";
+  out.number(record.write_seconds, 6) << ",\n    \"particles_per_second\": ";
+  out.number(record.grow_seconds > 0 ? static_cast<double>(attached) / record.grow_seconds : 0.0, 6);
   // How the run was spread over threads changes how long it took, never what it grew.
   out << ",\n    \"threads\": ";
   out.integer(o.threads) << ",\n    \"replays\": ";

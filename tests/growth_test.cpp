@@ -335,10 +335,10 @@ TEST(Options, BadValuesAreRefusedWithAClearMessage) {
     }
     return std::string("accepted");
   };
-  EXPECT_EQ(message([](GrowthOptions& o) { o.stickiness = 1.7; }), "stickiness 1.7 is not in (0, 1]");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.stickiness = 0; }), "stickiness 0 is not in (0, 1]");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = -1; }), "spacing -1 is not a positive number");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = NAN; }), "spacing nan is not a positive number");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.stickiness = 1.7; }), "stickiness 1.7 is not in [0.0001, 1]");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.stickiness = 0; }), "stickiness 0 is not in [0.0001, 1]");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = -1; }), "spacing -1 is not in [1e-100, 1e+100]");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = NAN; }), "spacing nan is not in [1e-100, 1e+100]");
   EXPECT_EQ(message([](GrowthOptions& o) { o.dimensions = 4; }), "dimensions 4 is not 2 or 3");
   EXPECT_EQ(message([](GrowthOptions& o) { o.seeds.clear(); }), "there is no seed");
   EXPECT_EQ(message([](GrowthOptions& o) { o.seeds.push_back(Vec3(0.5, 0, 0)); }),
@@ -346,12 +346,24 @@ TEST(Options, BadValuesAreRefusedWithAClearMessage) {
   EXPECT_EQ(message([](GrowthOptions& o) { o.dimensions = 2, o.seeds = {Vec3(0, 0, 1)}; }),
             "seed 1 has z = 1 but growth in 2 dimensions is in the plane z = 0");
   EXPECT_EQ(message([](GrowthOptions& o) { o.drift = Vec3(0, 0, 1); }), "drift length 1 is not below 1");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.min_step = 2; }), "min step 2 is not in (0, 1]");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.min_step = 2; }), "min step 2 is not in [0.01, 1]");
   EXPECT_EQ(message([](GrowthOptions& o) { o.spawn_box = Box{Vec3(1, 0, 0), Vec3(0, 1, 1)}; }),
             "spawn box is empty: its min corner is not below its max corner");
   EXPECT_EQ(message([](GrowthOptions& o) { o.dimensions = 2, o.spawn = SpawnMode::disk; }),
             "the disk spawn axis must be x or y in 2 dimensions");
   EXPECT_EQ(message([](GrowthOptions& o) { o.threads = 0; }), "threads 0 is not in 1-256");
+  // Where the walk's arithmetic breaks down or a walker would practically never stick.
+  EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = 1e300; }), "spacing 1e+300 is not in [1e-100, 1e+100]");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = 1e-300; }), "spacing 1e-300 is not in [1e-100, 1e+100]");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.stickiness = 1e-9; }), "stickiness 1e-09 is not in [0.0001, 1]");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.min_step = 1e-300; }), "min step 1e-300 is not in [0.01, 1]");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.disk_radius = INFINITY; }), "disk radius inf is not in (0, 1000]");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.seeds = {Vec3(1e12, 0, 0)}; }),
+            "seed 1 lies more than 1e+09 spacings from the origin, beyond what double precision resolves");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.seeds = {Vec3(0, NAN, 0)}; }), "seed 1 is not finite");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.spawn = SpawnMode::box, o.spawn_box = Box{Vec3(0, 0, 0), Vec3(1e10, 1, 1)}; }),
+            "spawn box's max corner lies more than 1e+09 spacings from the origin, beyond what double precision "
+            "resolves");
   EXPECT_EQ(message([](GrowthOptions& o) { o.threads = 2, o.index = IndexKind::kdtree; }),
             "threads above 1 need the grid index, not kdtree");
   EXPECT_EQ(message([](GrowthOptions&) {}), "accepted");

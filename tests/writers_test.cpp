@@ -29,7 +29,7 @@ void write_all(const Cluster& c, const std::string& prefix) {
   write_csv(c, prefix + ".csv");
   write_ply(c, prefix + ".ply");
   write_pov(c, prefix);
-  write_run_report(c, GrowthOptions{}, PovOptions{}, RunTimings{}, prefix + ".json");
+  write_run_report(c, GrowthOptions{}, PovOptions{}, RunRecord{}, prefix + ".json");
 }
 
 TEST(Csv, ReadsBackExactly) {
@@ -125,7 +125,7 @@ TEST(RunReport, RecordsOptionsSeedAndCounts) {
   o.rng_seed = 99;
   o.stickiness = 0.5;
   const Cluster c = grow(o);
-  write_run_report(c, o, PovOptions{}, RunTimings{1.0, 0.5}, dir / "r.json");
+  write_run_report(c, o, PovOptions{}, RunRecord{1.0, 0.5, "", ""}, dir / "r.json");
   const std::string json = read_file(dir / "r.json");
   for (const char* expected : {"\"rng_seed\": 99", "\"stickiness\": 0.5", "\"attached\": 500",
                                "\"complete\": true", "\"grow_seconds\": 1", "\"particles_per_second\": 500",

@@ -17,6 +17,9 @@
 #include <deque>
 #include <exception>
 #include <functional>
+#include <memory>
+#include <new>
+#include <string>
 #include <mutex>
 #include <thread>
 #include <utility>
@@ -29,22 +32,44 @@ namespace dla {
 //! saved and grown on with resume()).
 using ProgressFn = std::function<bool(const Cluster& so_far)>;
 
+//! Set from another thread or a signal handler (a lock-free atomic store is async-signal-safe)
+//! to stop growth: walkers look at it every few thousand steps, so growth stops within
+//! milliseconds wherever it is, even in a walk that would never end. The cluster comes back
+//! marked incomplete, as when `progress` returns false.
+using StopFlag = std::atomic<bool>;
+
+//! Growth that failed part way (a walker that cannot stick, a structure beyond the index's
+//! reach, memory run out), with what had grown before the failure, marked incomplete: it can
+//! still be written out.
+class PartialGrowth : public GrowthError {
+ public:
+  PartialGrowth(const std::string& what, Cluster partial)
+      : GrowthError(what), partial_(std::make_shared<const Cluster>(std::move(partial))) {}
+  const Cluster& partial() const { return *partial_; }
+
+ private:
+  std::shared_ptr<const Cluster> partial_;  // shared: exceptions are copied
+};
+
 //! Grows a structure with the index chosen in options.index. Validates the options first.
-//! Defined in libdla (it instantiates grow_with for every index).
-Cluster grow(const GrowthOptions& options, const ProgressFn& progress = {});
+//! Defined in libdla (it instantiates grow_with for every index). Throws PartialGrowth if
+//! growth fails part way.
+Cluster grow(const GrowthOptions& options, const ProgressFn& progress = {}, const StopFlag* stop = nullptr);
 
 //! Grows a structure constrained by a mesh (see constraint.h). Validates the options and
 //! checks them against the constraint: the same spacing, 3 dimensions, seeds on the growing
 //! side, a spawn mode that can start walkers there.
-Cluster grow(const GrowthOptions& options, const MeshConstraint& constraint, const ProgressFn& progress = {});
+Cluster grow(const GrowthOptions& options, const MeshConstraint& constraint, const ProgressFn& progress = {},
+             const StopFlag* stop = nullptr);
 
 //! Grows on a structure that growth with the same options (and constraint) stopped early, up
 //! to options.particles. The result is the one growth without the stop gives, byte for byte:
 //! walker k draws from its own random stream, whenever it runs. Throws InvalidInput if
 //! `partial` cannot have come from these options.
-Cluster resume(const GrowthOptions& options, const Cluster& partial, const ProgressFn& progress = {});
+Cluster resume(const GrowthOptions& options, const Cluster& partial, const ProgressFn& progress = {},
+               const StopFlag* stop = nullptr);
 Cluster resume(const GrowthOptions& options, const MeshConstraint& constraint, const Cluster& partial,
-               const ProgressFn& progress = {});
+               const ProgressFn& progress = {}, const StopFlag* stop = nullptr);
 
 //! Throws InvalidInput where the options and the constraint cannot work together.
 void validate(const GrowthOptions& options, const MeshConstraint& constraint);
@@ -53,7 +78,8 @@ void validate(const GrowthOptions& options, const MeshConstraint& constraint);
 //! `constraint` is set, going on from `partial` if it is set. Does not validate.
 template <class Index>
 Cluster grow_with(const GrowthOptions& options, const ProgressFn& progress = {},
-                  const MeshConstraint* constraint = nullptr, const Cluster* partial = nullptr);
+                  const MeshConstraint* constraint = nullptr, const Cluster* partial = nullptr,
+                  const StopFlag* stop = nullptr);
 
 // ---------------------------------------------------------------------------------------------
 
@@ -92,8 +118,12 @@ class Pause {
   void while_stopped(F&& f) {
     requested_.store(true);
     while (active_.load() != 0) std::this_thread::yield();
+    // Let them go on even if f throws (the domain cannot grow): they must see the stop.
+    struct Release {
+      std::atomic<bool>& requested;
+      ~Release() { requested.store(false); }
+    } release{requested_};
     f();
-    requested_.store(false);
   }
 
  private:
@@ -110,9 +140,11 @@ class Pause {
 template <class Index>
 class Aggregation {
  public:
-  Aggregation(const GrowthOptions& options, const MeshConstraint* constraint, const Cluster* partial)
+  Aggregation(const GrowthOptions& options, const MeshConstraint* constraint, const Cluster* partial,
+              const StopFlag* stop)
       : opt_(options),
         constraint_(constraint),
+        stop_(stop),
         contact_(options.spacing),
         near_step_(options.min_step * options.spacing),
         drift_scale_(1.0 / (1.0 + options.drift.norm())),
@@ -137,15 +169,34 @@ class Aggregation {
   }
 
   Cluster run(const ProgressFn& progress) {
-    if (opt_.threads > 1) return run_in_parallel(progress);
-    for (std::size_t k = attached(cluster_); k < opt_.particles; ++k) {
-      add(walk(k, *sight_, cluster_.stats, nullptr));
-      if (!report(k, progress)) break;
+    try {
+      if (opt_.threads > 1) {
+        run_in_parallel(progress);
+      } else {
+        for (std::size_t k = attached(cluster_); k < opt_.particles; ++k) {
+          add(walk(k, *sight_, cluster_.stats, nullptr));
+          if (!report(k, progress)) break;
+        }
+      }
+    } catch (const Stopped&) {
+      cluster_.complete = false;
+    } catch (const GrowthError& e) {
+      cluster_.complete = false;
+      throw PartialGrowth(e.what(), std::move(cluster_));
+    } catch (const std::bad_alloc&) {
+      cluster_.complete = false;
+      throw PartialGrowth("out of memory after " + std::to_string(attached(cluster_)) + " particles",
+                          std::move(cluster_));
     }
     return std::move(cluster_);
   }
 
  private:
+  //! Thrown out of a walk when the stop flag is set.
+  struct Stopped {};
+
+  //! Every this many steps a walk looks at the stop flag: ~0.1-1 ms of walking.
+  static constexpr std::uint64_t kStopCheckSteps = 4096;
   //! Calls `progress` after walker k's particle, every 256 particles and at the end; false
   //! when it asks to stop.
   bool report(std::size_t k, const ProgressFn& progress) {
@@ -175,7 +226,7 @@ class Aggregation {
   //! since could have changed any answer it got, or the sight changed, it runs again, now
   //! against exactly the structure of a one-thread run. Walker k draws from its own stream, so
   //! the run again draws the same numbers, and the result is the one-thread result.
-  Cluster run_in_parallel(const ProgressFn& progress) {
+  void run_in_parallel(const ProgressFn& progress) {
     const std::size_t first = attached(cluster_), last = opt_.particles;
     const std::size_t window = 4 * static_cast<std::size_t>(opt_.threads);  // walkers ahead at most
     std::vector<Slot> slots(window);
@@ -255,7 +306,6 @@ class Aggregation {
     work();
     for (std::thread& helper : helpers) helper.join();
     if (error) std::rethrow_exception(error);
-    return std::move(cluster_);
   }
 
   //! Whether no particle attached by walkers [from, to) lies in a box of `reads` (an opening
@@ -332,10 +382,19 @@ class Aggregation {
     const double return_radius = sight.return_radius;
     Vec3 x = launch(rng, sight, reads);
     // Bounds that turn a setup where nothing can stick into an error rather than a hang.
-    constexpr std::uint64_t max_lost = 10'000'000, max_rejected = 1'000'000;
-    std::uint64_t lost = 0, rejected = 0;
+    constexpr std::uint64_t max_lost = 10'000'000, max_rejected = 1'000'000, max_relaunches = 100'000;
+    std::uint64_t lost = 0, rejected = 0, relaunches = 0, steps = 0;
+    const auto relaunch = [&] {
+      ++stats.relaunches;
+      if (++relaunches == max_relaunches)
+        throw GrowthError("walker " + std::to_string(k + 1) + " was started afresh " + std::to_string(max_relaunches) +
+                          " times without reaching the structure: walkers start too far from it, or the drift "
+                          "carries them away");
+      x = launch(rng, sight, reads);
+    };
     for (;;) {
       if (reads) pause_.check();
+      if (++steps % kStopCheckSteps == 0 && stop_ && stop_->load(std::memory_order_relaxed)) throw Stopped{};
       ++stats.steps;
       const Vec3 offset = x - center;
       const double r2 = offset.squaredNorm();
@@ -347,8 +406,7 @@ class Aggregation {
             ++stats.returns;
             x = center + back.offset;
           } else {
-            ++stats.relaunches;
-            x = launch(rng, sight, reads);
+            relaunch();
           }
           continue;
         }
@@ -356,8 +414,7 @@ class Aggregation {
         // bounding sphere as the free radius, and start afresh far away.
         const double kill = std::max(3.0 * return_radius, return_radius + 64.0 * contact_);
         if (r2 > kill * kill) {
-          ++stats.relaunches;
-          x = launch(rng, sight, reads);
+          relaunch();
           continue;
         }
         x += jump(rng, std::sqrt(r2) - sight.cluster_radius - contact_);
@@ -464,6 +521,7 @@ class Aggregation {
 
   const GrowthOptions& opt_;
   const MeshConstraint* constraint_;  // null: unconstrained
+  const StopFlag* stop_;              // null: no stop but by `progress`
   const double contact_;      // centre distance at which a walker touches a particle
   const double near_step_;    // step length near the structure
   const double drift_scale_;  // keeps a drifted jump inside its free ball
@@ -480,8 +538,8 @@ class Aggregation {
 
 template <class Index>
 Cluster grow_with(const GrowthOptions& options, const ProgressFn& progress, const MeshConstraint* constraint,
-                  const Cluster* partial) {
-  return detail::Aggregation<Index>(options, constraint, partial).run(progress);
+                  const Cluster* partial, const StopFlag* stop) {
+  return detail::Aggregation<Index>(options, constraint, partial, stop).run(progress);
 }
 
 }  // namespace dla

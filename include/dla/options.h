@@ -47,23 +47,39 @@ struct Box {
 struct GrowthOptions {
   std::size_t particles = 10000;     //!< particles to attach, seeds not counted
   double spacing = 1.0;              //!< distance between a particle and its parent, and the
-                                     //!< contact distance: no two particles come closer
-  double stickiness = 1.0;           //!< probability of sticking at a contact, in (0, 1]
+                                     //!< contact distance: no two particles come closer;
+                                     //!< in [1e-100, 1e100]
+  double stickiness = 1.0;           //!< probability of sticking at a contact, in [1e-4, 1]
   std::uint64_t rng_seed = 1;        //!< seeds every random choice of the run
   int dimensions = 3;                //!< 3, or 2 for growth in the plane z = 0
-  std::vector<Vec3> seeds = {Vec3::Zero()};  //!< where the structure starts, one tree per seed
+  std::vector<Vec3> seeds = {Vec3::Zero()};  //!< where the structure starts, one tree per
+                                             //!< seed; within kMaxCoordinate spacings of the
+                                             //!< origin
   SpawnMode spawn = SpawnMode::sphere;       //!< where walkers start
   Axis spawn_axis = Axis::z;         //!< disk spawn: the disk sits on the + side of this axis
-  double disk_radius = 0.25;         //!< disk spawn: radius as a fraction of the launch radius
+  double disk_radius = 0.25;         //!< disk spawn: radius as a fraction of the launch
+                                     //!< radius, in (0, 1000]
   std::optional<Box> spawn_box;      //!< box spawn: a fixed box; unset, the cube around the
                                      //!< launch sphere, growing with the structure
   Vec3 drift = Vec3::Zero();         //!< bias added to every step, per unit step length,
                                      //!< |drift| < 1 (gravity, wind)
-  double min_step = 0.5;             //!< step length near the structure, in spacings, (0, 1]
+  double min_step = 0.5;             //!< step length near the structure, in spacings,
+                                     //!< [0.01, 1]
   IndexKind index = IndexKind::grid; //!< nearest-particle look-up
   int threads = 1;                   //!< walkers run at once, 1-256, with the grid index; the
                                      //!< result is the same for every count, byte for byte
 };
+
+//! The limits validate() holds options to. Beyond them the arithmetic of the walk breaks down
+//! (squared distances overflow or underflow, steps vanish in the rounding of a coordinate) or
+//! a walker would take practically for ever to stick.
+inline constexpr double kMinSpacing = 1e-100, kMaxSpacing = 1e100;
+inline constexpr double kMinStickiness = 1e-4;  //!< ~10^4 contacts a particle at the least
+inline constexpr double kMinMinStep = 0.01;     //!< ~10^4 near steps a spacing at the most
+inline constexpr double kMaxDiskRadius = 1000.0;
+//! Largest distance, in spacings, of a seed or a spawn box corner from the origin: a double
+//! then still resolves a ten-millionth of a spacing.
+inline constexpr double kMaxCoordinate = 1e9;
 
 std::string_view to_string(SpawnMode mode);
 std::string_view to_string(Axis axis);
@@ -137,6 +153,23 @@ inline void require_positive(const std::string& what, double value) {
   if (!(value > 0.0) || !std::isfinite(value))
     throw InvalidInput(what + " " + format_number(value) + " is not a positive number");
 }
+
+//! Throws InvalidInput "WHAT VALUE is not in [LOW, HIGH]" unless low <= value <= high (NaN
+//! never is).
+inline void require_in(const std::string& what, double value, double low, double high) {
+  if (!(value >= low && value <= high))
+    throw InvalidInput(what + " " + format_number(value) + " is not in [" + format_number(low) + ", " +
+                       format_number(high) + "]");
+}
+
+//! Throws InvalidInput unless every coordinate of `point` is finite and within
+//! kMaxCoordinate spacings of the origin.
+inline void require_representable(const std::string& what, const Vec3& point, double spacing) {
+  if (!point.allFinite()) throw InvalidInput(what + " is not finite");
+  if (point.cwiseAbs().maxCoeff() > kMaxCoordinate * spacing)
+    throw InvalidInput(what + " lies more than " + format_number(kMaxCoordinate) +
+                       " spacings from the origin, beyond what double precision resolves");
+}
 }  // namespace detail
 
 inline SpawnMode parse_spawn_mode(std::string_view word) {
@@ -157,19 +190,17 @@ inline IndexKind parse_index_kind(std::string_view word) {
 
 inline void validate(const GrowthOptions& o) {
   using detail::format_number;
-  const auto finite = [](const Vec3& v) { return v.allFinite(); };
   // Parents are stored as 32-bit indices.
   if (o.particles + o.seeds.size() > 2'000'000'000u)
     throw InvalidInput("particles " + std::to_string(o.particles) + " is more than 2e9");
-  detail::require_positive("spacing", o.spacing);
-  if (!(o.stickiness > 0.0 && o.stickiness <= 1.0))
-    throw InvalidInput("stickiness " + format_number(o.stickiness) + " is not in (0, 1]");
+  detail::require_in("spacing", o.spacing, kMinSpacing, kMaxSpacing);
+  detail::require_in("stickiness", o.stickiness, kMinStickiness, 1.0);
   if (o.dimensions != 2 && o.dimensions != 3)
     throw InvalidInput("dimensions " + std::to_string(o.dimensions) + " is not 2 or 3");
   if (o.seeds.empty()) throw InvalidInput("there is no seed");
   for (std::size_t i = 0; i < o.seeds.size(); ++i) {
     const Vec3& s = o.seeds[i];
-    if (!finite(s)) throw InvalidInput("seed " + std::to_string(i + 1) + " is not finite");
+    detail::require_representable("seed " + std::to_string(i + 1), s, o.spacing);
     if (o.dimensions == 2 && s.z() != 0.0)
       throw InvalidInput("seed " + std::to_string(i + 1) + " has z = " + format_number(s.z()) +
                          " but growth in 2 dimensions is in the plane z = 0");
@@ -180,21 +211,23 @@ inline void validate(const GrowthOptions& o) {
   }
   if (o.dimensions == 2 && o.spawn == SpawnMode::disk && o.spawn_axis == Axis::z)
     throw InvalidInput("the disk spawn axis must be x or y in 2 dimensions");
-  detail::require_positive("disk radius", o.disk_radius);
+  if (!(o.disk_radius > 0.0 && o.disk_radius <= kMaxDiskRadius))
+    throw InvalidInput("disk radius " + format_number(o.disk_radius) + " is not in (0, " +
+                       format_number(kMaxDiskRadius) + "]");
   if (o.spawn_box) {
     const Box& b = *o.spawn_box;
-    if (!finite(b.min) || !finite(b.max)) throw InvalidInput("spawn box is not finite");
+    detail::require_representable("spawn box's min corner", b.min, o.spacing);
+    detail::require_representable("spawn box's max corner", b.max, o.spacing);
     const int axes = o.dimensions;
     for (int a = 0; a < axes; ++a)
       if (!(b.min[a] < b.max[a]))
         throw InvalidInput("spawn box is empty: its min corner is not below its max corner");
   }
-  if (!finite(o.drift) || !(o.drift.norm() < 1.0))
+  if (!o.drift.allFinite() || !(o.drift.norm() < 1.0))
     throw InvalidInput("drift length " + format_number(o.drift.norm()) + " is not below 1");
   if (o.dimensions == 2 && o.drift.z() != 0.0)
     throw InvalidInput("drift has a z component but growth in 2 dimensions is in the plane z = 0");
-  if (!(o.min_step > 0.0 && o.min_step <= 1.0))
-    throw InvalidInput("min step " + format_number(o.min_step) + " is not in (0, 1]");
+  detail::require_in("min step", o.min_step, kMinMinStep, 1.0);
   if (o.threads < 1 || o.threads > 256) throw InvalidInput("threads " + std::to_string(o.threads) + " is not in 1-256");
   if (o.threads > 1 && o.index != IndexKind::grid)
     throw InvalidInput("threads above 1 need the grid index, not " + std::string(to_string(o.index)));

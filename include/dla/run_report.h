@@ -12,15 +12,18 @@
 
 namespace dla {
 
-struct RunTimings {
+//! What the sidecar records of the run itself, beyond the structure and the options.
+struct RunRecord {
   double grow_seconds = 0.0;
   double write_seconds = 0.0;
+  std::string command;     //!< the command line that made the run, if any
+  std::string stopped_by;  //!< why growth ended before the count (a signal, an error), if it did
 };
 
-//! Throws IOError if the file cannot be written. Everything but `timings` is the same for the
+//! Throws IOError if the file cannot be written. Everything but the timings is the same for the
 //! same options and seed. With a `constraint`, records it and the file it came from.
 void write_run_report(const Cluster& cluster, const GrowthOptions& options,
-                      const PovOptions& pov, const RunTimings& timings, const std::string& path,
+                      const PovOptions& pov, const RunRecord& record, const std::string& path,
                       const MeshConstraint* constraint = nullptr, const std::string& mesh_file = "");
 
 }  // namespace dla

@@ -1,0 +1,55 @@
+#pragma once
+// dla3d's command line, parsed and checked without touching a file: main.cpp runs what it says,
+// and the CLI fuzzer (tests/fuzz/cli_fuzz.cpp) drives it with arbitrary words.
+
+#include "dla/constraint.h"
+#include "dla/options.h"
+#include "dla/pov_writer.h"
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace dla::cli {
+
+//! `dla3d [options]`: grow a structure and write its files.
+struct GrowCommand {
+  GrowthOptions options;
+  PovOptions pov;
+  std::string output = "dla";          //!< prefix of the files written
+  bool quiet = false;
+  bool binary_ply = false;             //!< PLY as binary_little_endian rather than ASCII
+  std::string mesh_path;               //!< empty: no constraint
+  ConstraintOptions constraint;
+  std::size_t seed_count = 0;          //!< --seeds; 0 when not given
+  bool scene_mesh = true;
+  std::string checkpoint_path;         //!< empty: no checkpoint
+  double checkpoint_every = 60.0;      //!< seconds
+  // Options whose default comes from the mesh when they are not given.
+  bool spacing_given = false, up_given = false, spawn_given = false, seeds_given = false;
+};
+
+//! What the command line asks for.
+struct CommandLine {
+  enum class Kind {
+    grow,     //!< `grow` holds the options
+    resume,   //!< --resume FILE, with only -q and --threads beside it
+    convert,  //!< dla3d convert IN OUT.stl
+    analyze,  //!< dla3d analyze PREFIX.csv
+    print,    //!< --help or --version: `text` goes to stdout, exit 0
+  };
+  Kind kind = Kind::grow;
+  GrowCommand grow;
+  std::string resume_path;
+  bool threads_given = false;  //!< with --resume: grow.options.threads replaces the checkpoint's
+  std::string convert_in, convert_out;
+  std::string analyze_csv;
+  std::string text;
+};
+
+//! Parses dla3d's arguments (without the program name). Throws InvalidInput with a one-line
+//! message for a flag or value that cannot work; options that need the mesh to be checked
+//! (the spacing's default, seeds) are checked after it is read.
+CommandLine parse_command_line(const std::vector<std::string>& args);
+
+}  // namespace dla::cli

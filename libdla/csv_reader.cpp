@@ -1,0 +1,85 @@
+#include "dla/csv_reader.h"
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+namespace dla {
+
+namespace {
+
+//! The six numbers of a row, or false if it is not six comma-separated numbers.
+bool parse_row(std::string_view line, std::array<double, 6>& values) {
+  std::size_t field = 0;
+  for (;;) {
+    const std::size_t comma = line.find(',');
+    const std::string_view item = line.substr(0, comma);
+    if (field == values.size() || item.empty()) return false;
+    const auto [end, error] = std::from_chars(item.data(), item.data() + item.size(), values[field]);
+    if (error != std::errc() || end != item.data() + item.size()) return false;
+    ++field;
+    if (comma == std::string_view::npos) break;
+    line.remove_prefix(comma + 1);
+  }
+  return field == values.size();
+}
+
+}  // namespace
+
+Cluster parse_csv(std::string_view text, const std::string& name) {
+  const auto next_line = [&text] {
+    const std::size_t end = text.find('\n');
+    std::string_view line = text.substr(0, end);
+    text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    return line;
+  };
+  if (next_line().rfind("id,x,y,z,parent,seed", 0) != 0)
+    throw InvalidInput(name + ": is not a dla3d CSV (no 'id,x,y,z,parent,seed' header)");
+  Cluster cluster;
+  cluster.dimensions = 2;
+  std::vector<double> lengths;
+  for (std::size_t row = 2; !text.empty(); ++row) {
+    const std::string_view line = next_line();
+    if (line.empty()) continue;
+    std::array<double, 6> v{};
+    if (!parse_row(line, v)) throw InvalidInput(name + ": line " + std::to_string(row) + " is not 6 numbers");
+    const auto index = static_cast<double>(cluster.particles.size());
+    const Vec3 position(v[1], v[2], v[3]);
+    // Compared as doubles before any conversion: a parent of 1e300 is refused, not cast.
+    const bool seed = v[4] == -1.0;
+    const bool parent_ok = seed || (v[4] >= 0.0 && v[4] < index && v[4] == std::floor(v[4]));
+    const bool seed_ok = v[5] >= 0.0 && v[5] <= index && v[5] == std::floor(v[5]);
+    if (v[0] != index || !parent_ok || !seed_ok || !position.allFinite())
+      throw InvalidInput(name + ": line " + std::to_string(row) + " is not a particle after the ones before it");
+    Particle p{position, static_cast<std::int32_t>(v[4]), static_cast<std::int32_t>(v[5])};
+    if (seed) {
+      ++cluster.seed_count;
+    } else {
+      lengths.push_back((p.position - cluster.particles[static_cast<std::size_t>(p.parent)].position).norm());
+    }
+    if (p.position.z() != 0.0) cluster.dimensions = 3;
+    cluster.particles.push_back(p);
+  }
+  if (lengths.empty()) throw InvalidInput(name + ": has no branches to measure");
+  std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2), lengths.end());
+  cluster.spacing = lengths[lengths.size() / 2];
+  if (!(cluster.spacing > 0.0 && std::isfinite(cluster.spacing)))
+    throw InvalidInput(name + ": its median branch length is " + detail::format_number(cluster.spacing) +
+                       ", not a positive number");
+  return cluster;
+}
+
+Cluster read_csv(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IOError("cannot read '" + path + "': " + std::strerror(errno));
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return parse_csv(text, path);
+}
+
+}  // namespace dla
