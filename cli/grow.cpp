@@ -152,10 +152,6 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
       } catch (const InvalidInput& e) {
         throw InvalidInput(command.mesh_path + ": " + e.what());
       }
-      if (!command.quiet)
-        std::fprintf(stderr, "dla3d: %s: %s triangles; %s; spacing %g\n", command.mesh_path.c_str(),
-                     with_commas(static_cast<double>(mesh.triangles.size())).c_str(),
-                     constraint->repair_report().summary().c_str(), options.spacing);
       if (!command.spawn_given)
         options.spawn = command.constraint.side == Side::inside ? SpawnMode::inside : SpawnMode::sphere;
       if (!command.seeds_given)
@@ -163,6 +159,11 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
       validate(options, *constraint);
     }
     check_memory(options.particles);
+    // Only once every option is known good: bad input gets its one line and nothing else.
+    if (constraint && !command.quiet)
+      std::fprintf(stderr, "dla3d: %s: %s triangles; %s; spacing %g\n", command.mesh_path.c_str(),
+                   with_commas(static_cast<double>(constraint->repair_report().input_triangles)).c_str(),
+                   constraint->repair_report().summary().c_str(), options.spacing);
   }
 
   ProgressBar bar(options.particles, !command.quiet && isatty(STDERR_FILENO));
@@ -175,7 +176,8 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
     try {
       write_checkpoint({args, input_hash, so_far}, command.checkpoint_path);
     } catch (const IOError& e) {
-      if (!save_failed) std::fprintf(stderr, "\r\033[Kdla3d: warning: %s; growth goes on\n", e.what());
+      bar.clear();
+      if (!save_failed) std::fprintf(stderr, "dla3d: warning: %s; growth goes on\n", e.what());
       save_failed = true;
     }
   };

@@ -3,6 +3,7 @@
 
 #include "dla/mesh.h"
 #include "dla/shapes.h"
+#include "cli_util.h"
 #include "mesh_util.h"
 #include "test_util.h"
 
@@ -18,20 +19,8 @@ namespace {
 using dla::testing::ScratchDir;
 using dla::testing::read_file;
 
-struct CliRun {
-  int exit_code;
-  std::string err;
-};
-
-CliRun dla3d(const ScratchDir& dir, const std::string& args) {
-  const std::string command =
-      "cd '" + dir.path().string() + "' && '" DLA3D_PATH "' " + args + " > out.txt 2> err.txt";
-  const int status = std::system(command.c_str());
-  CliRun run{WIFEXITED(status) ? WEXITSTATUS(status) : -1, read_file(dir / "err.txt")};
-  std::filesystem::remove(dir / "out.txt");
-  std::filesystem::remove(dir / "err.txt");
-  return run;
-}
+using dla::testing::CliRun;
+using dla::testing::dla3d;
 
 TEST(Cli, WritesEveryFile) {
   ScratchDir dir;
@@ -151,6 +140,109 @@ TEST(Cli, SigtermWritesPartialFiles) {
   const std::string csv = read_file(dir / "part.csv");
   EXPECT_EQ(csv.back(), '\n');
   EXPECT_GT(std::count(csv.begin(), csv.end(), '\n'), 256);
+}
+
+// Issue 14's cases: numbers at their extremes are one-line errors before anything is written.
+TEST(Cli, ExtremeNumbersAreOneLineErrors) {
+  const struct {
+    const char* args;
+    const char* says;
+  } cases[] = {
+      {"--spacing 1e300", "spacing 1e+300 is not in [1e-100, 1e+100]"},
+      {"--spacing 1e-300", "spacing 1e-300 is not in [1e-100, 1e+100]"},
+      {"--spacing 4.9e-324", "spacing 4.94066e-324 is not in"},
+      {"--spacing inf", "spacing inf is not in"},
+      {"--spacing nan", "spacing nan is not in"},
+      {"--spacing -0", "spacing -0 is not in"},
+      {"--stickiness 1e-300", "stickiness 1e-300 is not in [0.0001, 1]"},
+      {"--min-step 1e-300", "min step 1e-300 is not in [0.01, 1]"},
+      {"--disk-radius 1e300 --spawn disk", "disk radius 1e+300 is not in (0, 1000]"},
+      {"--seed-at 1e300,0,0", "seed 1 lies more than 1e+09 spacings from the origin"},
+      {"--seed-at nan,0,0", "seed 1 is not finite"},
+      {"--spawn box --box 0,0,0,1e300,1,1", "spawn box's max corner lies more than 1e+09 spacings"},
+      {"--drift 0,0,nan", "drift length nan is not below 1"},
+      {"--tip-radius 1e300", "tip radius 1e+300 is not in [0.001, 1000]"},
+      {"--base-radius 1e-300", "base radius 1e-300 is not in [0.001, 1000]"},
+      {"--checkpoint-every nan --checkpoint c.ck", "--checkpoint-every nan is not a number of seconds"},
+      {"-n 99999999999999999999", "is more than 2e9"},
+      {"-n 1999999999", "needs about 96 GB of memory"},
+      {"--threads 99999999999", "--threads"},
+      {"--seeds 0 --stl x.stl", "--seeds 0: there must be a seed"},
+  };
+  for (const auto& c : cases) {
+    ScratchDir dir;
+    const CliRun run = dla3d(dir, std::string("-q -o out ") + c.args);
+    EXPECT_EQ(run.exit_code, 2) << c.args << ": " << run.err;
+    EXPECT_EQ(run.err.rfind("dla3d: error: ", 0), 0u) << c.args << ": " << run.err;
+    EXPECT_NE(run.err.find(c.says), std::string::npos) << c.args << ": " << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << c.args << ": " << run.err;
+    EXPECT_TRUE(std::filesystem::is_empty(dir.path())) << c.args << " left files";
+  }
+}
+
+// A prefix with spaces and quotes works in every file or is refused before growing: POV-Ray's
+// #include cannot name a file with a quote or a backslash; a space is fine, and the command
+// line goes into the JSON escaped and into the scene's comment on one line.
+TEST(Cli, AwkwardPrefixesWorkEverywhereOrAreRefused) {
+  ScratchDir dir;
+  for (const char* prefix : {"'we\"ird name'", "'back\\slash'", "\"$(printf 'new\\nline')\""}) {
+    const CliRun run = dla3d(dir, std::string("-n 100 -q -o ") + prefix);
+    EXPECT_EQ(run.exit_code, 2) << prefix << ": " << run.err;
+    EXPECT_NE(run.err.find("which POV-Ray's #include cannot name"), std::string::npos) << run.err;
+    EXPECT_TRUE(std::filesystem::is_empty(dir.path())) << prefix << " left files";
+  }
+  // A number may have white space before it, a newline too: the echoes stay one line.
+  ASSERT_EQ(dla3d(dir, "-n 100 -q -o 'with space' --seed-at \"$(printf '1,\\n0,0')\"").exit_code, 0);
+  const std::string pov = read_file(dir / "with space.pov");
+  EXPECT_EQ(pov.rfind("// dla3d -n 100 -q -o 'with space' --seed-at '1,\\x0a0,0'\n", 0), 0u) << pov;
+  EXPECT_NE(pov.find("#include \"with space.inc\""), std::string::npos);
+  EXPECT_NE(read_file(dir / "with space.json")
+                .find("\"command\": \"dla3d -n 100 -q -o 'with space' --seed-at '1,\\u000a0,0'\""),
+            std::string::npos);
+}
+
+// A run that cannot go on keeps what grew, as Ctrl-C does: the files, marked incomplete, then
+// the message on one line, then exit 1.
+TEST(Cli, AnErrorDuringGrowthKeepsWhatGrew) {
+  ScratchDir dir;
+  const CliRun run = dla3d(dir, "--spawn box --box -2,-2,-2,2,2,2 -n 1000 -o filled");
+  EXPECT_EQ(run.exit_code, 1) << run.err;
+  EXPECT_EQ(run.err.rfind("dla3d: error: no free start in 1000000 draws from the box spawn: the structure fills it; "
+                          "filled.* hold the ", 0), 0u) << run.err;
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  const std::string json = read_file(dir / "filled.json");
+  EXPECT_NE(json.find("\"complete\": false"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"stopped_by\": \"error: no free start"), std::string::npos) << json;
+  const std::string csv = read_file(dir / "filled.csv");
+  EXPECT_GT(std::count(csv.begin(), csv.end(), '\n'), 20) << "the particles grown before the error are lost";
+
+  const CliRun away = dla3d(dir, "--drift 0,0.9,0 --spawn disk --spawn-axis y -n 10 -o away");
+  EXPECT_EQ(away.exit_code, 1) << away.err;
+  EXPECT_NE(away.err.find("the drift carries them away"), std::string::npos) << away.err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "away.csv"));
+}
+
+// 2D DLA of 10^6 particles stopped at 3 x 10^5 with "beyond 512 grid cells" and wrote nothing.
+TEST(Cli, TheGridHoldsAMillionParticlesIn2D) {
+  ScratchDir dir;
+  const CliRun run = dla3d(dir, "-n 1000000 --dimensions 2 -q -o flat --binary --threads 2");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(read_file(dir / "flat.json").find("\"attached\": 1000000"), std::string::npos);
+}
+
+// A stop request ends a run within a second wherever it is, here inside walks that touch the
+// structure ten thousand times before they stick (256 of them, the progress callback's beat,
+// take seconds).
+TEST(Cli, SigtermStopsInsideAWalk) {
+  ScratchDir dir;
+  const std::string command = "cd '" + dir.path().string() + "' && { '" DLA3D_PATH
+                              "' -n 100000 --stickiness 1e-4 -q -o slow 2> err.txt & pid=$!; sleep 1; "
+                              "start=$(date +%s%N); kill -TERM $pid; wait $pid; echo $? > code.txt; "
+                              "echo $(( ($(date +%s%N) - start) / 1000000 )) > ms.txt; }";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  EXPECT_EQ(std::atoi(read_file(dir / "code.txt").c_str()), 143) << read_file(dir / "err.txt");
+  EXPECT_LT(std::atoi(read_file(dir / "ms.txt").c_str()), 1000) << "SIGTERM took more than a second to stop it";
+  EXPECT_NE(read_file(dir / "slow.json").find("\"stopped_by\": \"SIGTERM\""), std::string::npos);
 }
 
 // Every malformed mesh: one line naming the file and the fault, exit 2, no files written.

@@ -23,7 +23,8 @@ step(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${WORK_DIR} -DCMAKE_BUILD_TYPE=RelWith
      -DDLA_SANITIZE=ON -DDLA_SANITIZER_TESTS=OFF -DDLA_BUILD_BENCH=OFF -DDLA_BUILD_EXAMPLES=OFF)
 step(${CMAKE_COMMAND} --build ${WORK_DIR} -j2)
 # The consumer example installs a package: nothing the sanitizers add to.
-step(${CMAKE_CTEST_COMMAND} --test-dir ${WORK_DIR} --output-on-failure -j2 -E consumer_example)
+# The slow entries (the property test at length) run in the plain build only.
+step(${CMAKE_CTEST_COMMAND} --test-dir ${WORK_DIR} --output-on-failure -j2 -E consumer_example -LE slow)
 
 # Walkers on several threads share the index while one of them attaches: TSan checks that every
 # word they share is read and written atomically.

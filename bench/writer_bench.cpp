@@ -1,0 +1,85 @@
+// Writing a structure of 10^6 and 10^7 particles: each file dla3d writes, timed alone, into
+// /tmp (the page cache: the formatting's cost, not the disk's). The tree is made up (each
+// particle a spacing from a random recent one), which writers cannot tell from grown DLA.
+// Run:
+//   build/bench/dla_writer_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+// (medians in docs/performance.md).
+
+#include "dla/checkpoint.h"
+#include "dla/csv_writer.h"
+#include "dla/ply_writer.h"
+#include "dla/pov_writer.h"
+#include "dla/random.h"
+#include "dla/run_report.h"
+
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <map>
+#include <string>
+
+namespace {
+
+const dla::Cluster& made_up_tree(std::size_t n) {
+  static std::map<std::size_t, dla::Cluster> trees;
+  dla::Cluster& tree = trees[n];
+  if (!tree.particles.empty()) return tree;
+  dla::Rng rng(1, 0);
+  tree.seed_count = 1;
+  tree.particles.reserve(n + 1);
+  tree.particles.push_back({dla::Vec3::Zero(), -1, 0});
+  for (std::size_t i = 1; i <= n; ++i) {
+    const std::size_t back = 1 + static_cast<std::size_t>(rng.uniform() * std::min<double>(1000.0, static_cast<double>(i)));
+    const auto parent = static_cast<std::int32_t>(i - std::min(back, i));
+    const dla::Vec3 at = tree.particles[static_cast<std::size_t>(parent)].position + dla::random_direction(rng, 3);
+    tree.particles.push_back({at, parent, 0});
+  }
+  return tree;
+}
+
+template <class Write>
+void write_file(benchmark::State& state, Write write) {
+  const dla::Cluster& tree = made_up_tree(static_cast<std::size_t>(state.range(0)));
+  const std::string prefix = "/tmp/dla_writer_bench";
+  for (auto _ : state) write(tree, prefix);
+  state.counters["particles_per_s"] = benchmark::Counter(static_cast<double>(state.range(0)),
+                                                         benchmark::Counter::kIsIterationInvariantRate);
+  for (const char* ext : {".csv", ".ply", ".pov", ".inc", ".json", ".ck"}) std::remove((prefix + ext).c_str());
+}
+
+void csv(benchmark::State& state) {
+  write_file(state, [](const dla::Cluster& c, const std::string& p) { dla::write_csv(c, p + ".csv"); });
+}
+void ply_ascii(benchmark::State& state) {
+  write_file(state, [](const dla::Cluster& c, const std::string& p) { dla::write_ply(c, p + ".ply"); });
+}
+void ply_binary(benchmark::State& state) {
+  write_file(state, [](const dla::Cluster& c, const std::string& p) {
+    dla::write_ply(c, p + ".ply", dla::PlyEncoding::binary);
+  });
+}
+void pov(benchmark::State& state) {
+  write_file(state, [](const dla::Cluster& c, const std::string& p) { dla::write_pov(c, p); });
+}
+void json(benchmark::State& state) {
+  write_file(state, [](const dla::Cluster& c, const std::string& p) {
+    dla::write_run_report(c, {}, {}, {}, p + ".json");
+  });
+}
+void checkpoint(benchmark::State& state) {
+  write_file(state, [](const dla::Cluster& c, const std::string& p) { dla::write_checkpoint({{}, 0, c}, p + ".ck"); });
+}
+
+}  // namespace
+
+#define DLA_WRITER_BENCH(f) \
+  BENCHMARK(f)->Name("write/" #f)->ArgName("n")->Arg(1'000'000)->Arg(10'000'000) \
+      ->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime()
+DLA_WRITER_BENCH(csv);
+DLA_WRITER_BENCH(ply_ascii);
+DLA_WRITER_BENCH(ply_binary);
+DLA_WRITER_BENCH(pov);
+DLA_WRITER_BENCH(json);
+DLA_WRITER_BENCH(checkpoint);
+
+BENCHMARK_MAIN();

@@ -1,0 +1,98 @@
+// Faults a user meets on long runs: a disk that fills up, and a process killed while it writes.
+// Neither may leave a truncated file under a final name, or spoil a checkpoint already saved.
+
+#include "cli_util.h"
+#include "test_util.h"
+
+#include "dla/checkpoint.h"
+#include "dla/growth.h"
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <filesystem>
+#include <set>
+#include <string>
+
+namespace dla {
+namespace {
+
+using testing::CliRun;
+using testing::ScratchDir;
+using testing::dla3d;
+using testing::read_file;
+
+//! File names in `dir`.
+std::set<std::string> files_in(const std::filesystem::path& dir) {
+  std::set<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) names.insert(entry.path().filename().string());
+  return names;
+}
+
+// A full disk: a tmpfs of 1.2 MB in a mount namespace of the test's own (unshare), holding a
+// checkpoint of 30,000 particles. Resuming it fills the disk: every save fails (a warning,
+// growth goes on), then the files fail: a clear error, no temporary file left, the checkpoint
+// as it was.
+TEST(Faults, AFullDiskIsAClearErrorAndKeepsTheCheckpoint) {
+  ScratchDir dir;
+  GrowthOptions o;
+  o.particles = 30000;
+  Cluster part = grow(o);
+  part.complete = false;
+  write_checkpoint({{"-n", "60000", "-q", "-o", "out", "--checkpoint", "part.ck", "--checkpoint-every", "0"}, 0, part},
+                   dir / "part.ck");
+  const std::string saved = read_file(dir / "part.ck");
+  const std::string small = (dir.path() / "small").string();
+  std::filesystem::create_directory(small);
+  const std::string script =
+      "mount -t tmpfs -o size=1200k tmpfs '" + small + "' || exit 99; cd '" + small + "' && cp ../part.ck . && '" +
+      DLA3D_PATH "' --resume part.ck 2> ../err.txt; echo \\$? > ../code.txt; ls -a > ../files.txt; cp part.ck ../after.ck";
+  const int status = std::system(("unshare -rm sh -c \"" + script + "\"").c_str());
+  if (!WIFEXITED(status) || WEXITSTATUS(status) == 99)
+    GTEST_SKIP() << "cannot mount a small tmpfs here (unshare -rm, mount): the full-disk case is not run";
+  const std::string err = read_file(dir / "err.txt");
+  EXPECT_EQ(std::atoi(read_file(dir / "code.txt").c_str()), 1) << err;
+  EXPECT_NE(err.find("dla3d: warning: cannot write 'part.ck': No space left on device; growth goes on\n"),
+            std::string::npos) << err;
+  EXPECT_NE(err.find("dla3d: error: cannot write 'out."), std::string::npos) << err;
+  EXPECT_NE(err.find("': No space left on device\n"), std::string::npos) << err;
+  const std::string files = read_file(dir / "files.txt");
+  EXPECT_EQ(files.find(".tmp"), std::string::npos) << "a temporary file is left:\n" << files;
+  EXPECT_TRUE(read_file(dir / "after.ck") == saved) << "the checkpoint on disk changed";
+}
+
+// SIGKILL at moments spread over the writing of every file: any file under a final name is
+// whole, the same bytes as an uninterrupted run's (the JSON up to its timings). Every file the
+// run writes is checked, so writers added later are covered too.
+TEST(Faults, AKillWhileWritingNeverLeavesATruncatedFile) {
+  const std::string args = "-n 60000 --threads 2 -q -o out --rng-seed 4";
+  ScratchDir reference;
+  ASSERT_EQ(dla3d(reference, args).exit_code, 0);
+  const std::set<std::string> finals = files_in(reference.path());
+  const auto growth_part = [](const std::string& json) { return json.substr(0, json.find("\"timings\"")); };
+  int killed_while_writing = 0;
+  for (const double delay : {0.0, 0.02, 0.05, 0.1, 0.2}) {
+    ScratchDir dir;
+    // Waits for the first file's temporary (the CSV), then kills after `delay` seconds.
+    const std::string command =
+        "cd '" + dir.path().string() + "' && { '" DLA3D_PATH "' " + args +
+        " & pid=$!; while [ ! -e out.csv.tmp ] && kill -0 $pid 2>/dev/null; do sleep 0.005; done; sleep " +
+        std::to_string(delay) + "; kill -KILL $pid 2>/dev/null; wait $pid; echo $? > code.txt; }";
+    ASSERT_EQ(std::system(command.c_str()), 0);
+    killed_while_writing += std::atoi(read_file(dir / "code.txt").c_str()) == 128 + SIGKILL;
+    std::filesystem::remove(dir / "code.txt");
+    for (const std::string& name : files_in(dir.path())) {
+      if (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0) continue;  // not a final name
+      ASSERT_TRUE(finals.count(name)) << name << " is not a file the run writes";
+      const std::string written = read_file(dir / name), whole = read_file(reference / name);
+      if (name == "out.json")
+        EXPECT_EQ(growth_part(written), growth_part(whole)) << "killed after " << delay << " s";
+      else
+        EXPECT_TRUE(written == whole) << name << " is not whole, killed after " << delay << " s";
+    }
+  }
+  EXPECT_GT(killed_while_writing, 0) << "no run was killed while it wrote";
+}
+
+}  // namespace
+}  // namespace dla

@@ -1,0 +1,277 @@
+// The CLI's property test: random command lines drawn from every option of `dla3d --help`, each
+// value valid, at an edge or invalid, run with a small particle count and a time bound. Whatever
+// the user types:
+//   - dla3d exits within the bound (no hang) and by exit(), never by a signal (no crash; under
+//     the sanitizers, a report ends the run with a multi-line stderr, which fails below);
+//   - exit 0 leaves valid files: the CSV a tree whose branches are at most a spacing, the PLY's
+//     counts and size its header's, the JSON whole, the POV-Ray scene rendered by POV-Ray;
+//   - exit 2 (bad input) prints one line and writes no file;
+//   - exit 1 (growth or I/O failed) prints one line, and any files are marked incomplete.
+// DLA_PROPERTY_RUNS sets the number of command lines (default 150, about a minute; the `slow`
+// ctest entry runs 1,000) and DLA_PROPERTY_SEED the generator's seed. Every option added to
+// dla3d must join the table below: the test fails on an option of --help it does not know.
+
+#include "cli_util.h"
+#include "test_util.h"
+
+#include "dla/checkpoint.h"
+#include "dla/growth.h"
+#include "dla/mesh.h"
+#include "dla/shapes.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace dla {
+namespace {
+
+using testing::ScratchDir;
+using testing::read_file;
+
+//! Every option of --help with values to draw from: valid ones first, then edges and faults.
+//! A flag with no values is a switch.
+const std::map<std::string, std::vector<std::string>>& option_table() {
+  static const std::map<std::string, std::vector<std::string>> table = {
+      {"--particles", {"0", "1", "40", "150", "-1", "abc", "1e3", "99999999999999999999", "''"}},
+      {"--spacing", {"1", "0.5", "1e-6", "1e6", "0", "-1", "inf", "nan", "1e-300", "1e300", "4.9e-324", "x"}},
+      {"--stickiness", {"1", "0.3", "1e-4", "0", "1.5", "nan", "1e-300", "-0"}},
+      {"--dimensions", {"2", "3", "1", "4", "-3", "x"}},
+      {"--seed-at", {"0,0,0", "6,0,0", "-6,0,0", "1e-7,0,0", "0,0,1", "1e12,0,0", "nan,0,0", "1,2", "a,b,c", "''"}},
+      {"--rng-seed", {"0", "1", "7", "18446744073709551615", "-1", "x"}},
+      {"--min-step", {"0.5", "1", "0.01", "0", "2", "1e-300", "nan"}},
+      {"--index", {"grid", "kdtree", "brute", "octree"}},
+      {"--threads", {"1", "2", "3", "0", "300", "-1"}},
+      {"--stl", {"box.off", "ball.stl", "missing.stl", "noise.stl", "out.csv"}},
+      {"--mesh", {"ball.stl", "box.off", "missing.stl"}},
+      {"--side", {"inside", "outside", "both", "sideways"}},
+      {"--constraint", {"reject", "clip", "bend"}},
+      {"--seeds", {"1", "2", "3", "0", "-1", "1000"}},
+      {"--scene-mesh", {}},
+      {"--no-scene-mesh", {}},
+      {"--spawn", {"sphere", "disk", "box", "inside", "radial", "cube"}},
+      {"--spawn-axis", {"x", "y", "z", "w"}},
+      {"--disk-radius", {"0.25", "1", "1000", "0", "1e300", "nan"}},
+      {"--box", {"-40,-40,-40,40,40,40", "-3,-3,-3,3,3,3", "1,1,1,0,0,0", "0,0,0,1", "-1e300,0,0,1,1,1"}},
+      {"--drift", {"0,0,0", "0,-0.3,0", "0.2,0,0", "0,0.9,0", "0,0,2", "nan,0,0", "0,0,0.5"}},
+      {"--output", {"out", "'with space'", "'we\"ird'", "'back\\slash'", "sub/out", "''", "dir/"}},
+      {"--binary", {}},
+      {"--base-radius", {"0.5", "0.001", "1000", "0", "-1", "1e300"}},
+      {"--tip-radius", {"0.25", "0.001", "1000", "0", "-1", "nan"}},
+      {"--up", {"x", "y", "z", "w"}},
+      {"--quiet", {}},
+      {"--checkpoint", {"run.ck", "nofolder/run.ck"}},
+      {"--checkpoint-every", {"0", "0.5", "60", "-1", "nan", "inf"}},
+      {"--resume", {"saved.ck", "missing.ck", "out.csv", "noise.stl"}},
+      {"--help", {}},
+      {"--version", {}},
+  };
+  return table;
+}
+
+//! The long option names `dla3d --help` lists.
+std::set<std::string> options_of_help(const ScratchDir& dir) {
+  const std::string command = "cd '" + dir.path().string() + "' && '" DLA3D_PATH "' --help > help.txt";
+  EXPECT_EQ(std::system(command.c_str()), 0);
+  const std::string help = read_file(dir / "help.txt");
+  std::filesystem::remove(dir / "help.txt");
+  std::set<std::string> names;
+  const std::regex option("(^|[ ,!])(--[a-z][a-z0-9-]*)");
+  for (auto it = std::sregex_iterator(help.begin(), help.end(), option); it != std::sregex_iterator(); ++it)
+    names.insert((*it)[2]);
+  return names;
+}
+
+//! Inputs the command lines name: two meshes, a file of noise, a checkpoint to resume.
+void make_inputs(const ScratchDir& dir) {
+  write_stl(make_sphere(Vec3::Zero(), 12.0, 10, 20), dir / "ball.stl");
+  std::filesystem::copy_file(TEST_DATA_DIR "/open_box.off", dir / "box.off");
+  std::string noise;
+  for (int i = 0; i < 500; ++i) noise += static_cast<char>((i * 7919 + 13) % 251);
+  std::ofstream(dir / "noise.stl", std::ios::binary) << noise;
+  std::ofstream(dir / "out.csv") << "id,x,y,z,parent,seed\n0,0,0,0,-1,0\n";
+  GrowthOptions o;
+  o.particles = 60;
+  Cluster part = grow(o);
+  part.complete = false;
+  write_checkpoint({{"-n", "120", "-q", "-o", "resumed"}, 0, part}, dir / "saved.ck");
+}
+
+bool balanced(const std::string& text, char open, char close) {
+  long depth = 0;
+  for (const char c : text) {
+    depth += (c == open) - (c == close);
+    if (depth < 0) return false;
+  }
+  return depth == 0;
+}
+
+//! The number after `"key": ` in a JSON text, after `after` if given, or -1.
+double json_value(const std::string& json, const std::string& key, const std::string& after = "") {
+  const std::size_t at = json.find("\"" + key + "\": ", after.empty() ? 0 : json.find(after));
+  return at == std::string::npos ? -1.0 : std::atof(json.c_str() + at + key.size() + 4);
+}
+
+//! Checks the files of a run that exited 0 under `prefix` in `dir`; returns what is wrong.
+std::string check_files(const ScratchDir& dir, const std::string& prefix) {
+  const std::string json = read_file(dir / (prefix + ".json"));
+  if (json.empty() || json.front() != '{' || json.substr(json.size() - 2) != "}\n" || !balanced(json, '{', '}') ||
+      !balanced(json, '[', ']'))
+    return prefix + ".json is not whole";
+  if (json.find("nan") != std::string::npos || json.find("inf,") != std::string::npos)
+    return prefix + ".json holds a number JSON cannot";
+  if (json.find("\"complete\": true") == std::string::npos) return "exit 0 but the JSON says incomplete";
+  const auto particles = static_cast<std::size_t>(json_value(json, "particles", "\"counts\""));
+  const double spacing = json_value(json, "spacing");
+
+  std::istringstream csv(read_file(dir / (prefix + ".csv")));
+  std::string line;
+  if (!std::getline(csv, line) || line != "id,x,y,z,parent,seed") return prefix + ".csv has no header";
+  std::vector<Vec3> positions;
+  while (std::getline(csv, line)) {
+    double id, x, y, z, parent, seed;
+    char c[5];
+    std::istringstream row(line);
+    if (!(row >> id >> c[0] >> x >> c[1] >> y >> c[2] >> z >> c[3] >> parent >> c[4] >> seed))
+      return prefix + ".csv row " + line + " is not 6 numbers";
+    if (id != static_cast<double>(positions.size())) return prefix + ".csv ids are not in order";
+    const Vec3 p(x, y, z);
+    if (!p.allFinite()) return prefix + ".csv has a position that is not finite";
+    if (parent >= 0) {
+      if (parent >= id) return prefix + ".csv has a parent after its child";
+      const double length = (p - positions[static_cast<std::size_t>(parent)]).norm();
+      if (!(length > 0.0 && length <= spacing * (1.0 + 1e-9)))
+        return prefix + ".csv has a branch of length " + std::to_string(length) + " for spacing " + std::to_string(spacing);
+    }
+    positions.push_back(p);
+  }
+  if (positions.size() != particles) return prefix + ".csv has another count than the JSON";
+
+  const std::string ply = read_file(dir / (prefix + ".ply"));
+  const std::size_t header_end = ply.find("end_header\n");
+  if (header_end == std::string::npos) return prefix + ".ply has no header";
+  const std::string header = ply.substr(0, header_end + 11);
+  if (header.find("element vertex " + std::to_string(particles) + "\n") == std::string::npos)
+    return prefix + ".ply counts another number of vertices";
+  const std::size_t edges = static_cast<std::size_t>(json_value(json, "attached", "\"counts\""));
+  const std::string body = ply.substr(header.size());
+  if (header.find("format binary_little_endian") != std::string::npos) {
+    if (body.size() != 20 * particles + 8 * edges) return prefix + ".ply's body is not its header's size";
+  } else if (static_cast<std::size_t>(std::count(body.begin(), body.end(), '\n')) != particles + edges) {
+    return prefix + ".ply's body has another number of lines than its header says";
+  }
+
+  const std::string pov = read_file(dir / (prefix + ".pov")), inc = read_file(dir / (prefix + ".inc"));
+  const std::string name = std::filesystem::path(prefix).filename().string();
+  if (pov.find("#include \"" + name + ".inc\"") == std::string::npos) return prefix + ".pov does not include its .inc";
+  if (!balanced(inc, '{', '}') || !balanced(pov, '{', '}')) return "the POV-Ray files' braces do not pair";
+  // POV-Ray's command line does not take every file name: the scene is copied to a plain one.
+  const std::filesystem::path folder = dir.path() / std::filesystem::path(prefix).parent_path();
+  std::filesystem::copy_file(folder / (name + ".pov"), folder / "render_scene.pov");
+  const std::string render = "cd '" + folder.string() + "' && '" + std::string(POVRAY_PATH) +
+                             "' +Irender_scene.pov +Orender.png +W32 +H24 -D -V > povray.log 2>&1";
+  if (std::string(POVRAY_PATH).find("NOTFOUND") == std::string::npos && std::system(render.c_str()) != 0)
+    return "POV-Ray cannot render " + prefix + ".pov: " + read_file(dir / "povray.log");
+  return "";
+}
+
+TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
+  ScratchDir root;
+  // The table knows every option of --help: a new option must join it.
+  for (const std::string& name : options_of_help(root))
+    EXPECT_TRUE(option_table().count(name)) << name << " is in dla3d --help but not in the property test's table";
+
+  const char* runs_env = std::getenv("DLA_PROPERTY_RUNS");
+  const char* seed_env = std::getenv("DLA_PROPERTY_SEED");
+  const int runs = runs_env ? std::atoi(runs_env) : 150;
+  std::mt19937_64 rng(seed_env ? std::strtoull(seed_env, nullptr, 10) : 14);
+  const auto pick = [&](std::size_t n) { return static_cast<std::size_t>(rng() % n); };
+  std::vector<std::string> flags;
+  for (const auto& [flag, values] : option_table()) flags.push_back(flag);
+
+  std::map<int, int> exits;
+  for (int run = 0; run < runs; ++run) {
+    // A few options, mostly valid values: an invalid one ends most runs at once.
+    std::string args;
+    bool particles_given = false, output_given = false;
+    const std::size_t count = pick(7);
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::string& flag = flags[pick(flags.size())];
+      const std::vector<std::string>& values = option_table().at(flag);
+      if (flag == "--help" || flag == "--version") {
+        if (pick(8) != 0) continue;  // rare: they end every run with a print
+      }
+      args += " " + flag;
+      if (!values.empty()) args += " " + values[pick(3) == 0 ? pick(values.size()) : pick(std::min<std::size_t>(2, values.size()))];
+      particles_given = particles_given || flag == "--particles";
+      output_given = output_given || flag == "--output";
+    }
+    // A resume takes no -n: leave it alone so that some resumes are valid.
+    if (!particles_given && args.find("--resume") == std::string::npos) args = " -n " + std::to_string(20 + pick(150)) + args;
+    const std::string command = args.substr(1);
+
+    ScratchDir dir;
+    make_inputs(dir);
+    std::filesystem::create_directory(dir.path() / "dir");
+    const std::set<std::string> inputs = {"ball.stl", "box.off", "noise.stl", "out.csv", "saved.ck", "dir"};
+    // The bound: far above what any of these takes (under the sanitizers too); `timeout`
+    // kills a hang with 137 and the assertion below names the command.
+    const testing::CliRun result = testing::dla3d(dir, command, "timeout -s KILL 120");
+    ++exits[result.exit_code];
+    SCOPED_TRACE("dla3d " + command + "\nstderr: " + result.err);
+    const bool one_error_line = result.err.rfind("dla3d: error: ", 0) == 0 &&
+                                std::count(result.err.begin(), result.err.end(), '\n') == 1;
+    std::set<std::string> written;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(dir.path())) {
+      const std::string name = std::filesystem::relative(entry.path(), dir.path()).string();
+      if (!inputs.count(name)) written.insert(name);
+    }
+    ASSERT_NE(result.exit_code, 137) << "no exit within the bound";
+    ASSERT_GE(result.exit_code, 0) << "ended by a signal";
+    switch (result.exit_code) {
+      case 0: {
+        if (command.find("--help") != std::string::npos || command.find("--version") != std::string::npos) break;
+        std::string prefix = command.find("--resume saved.ck") != std::string::npos ? "resumed" : "dla";
+        if (output_given) {
+          const std::size_t at = command.rfind("--output ");
+          std::string value = command.substr(at + 9, command.find(" -", at + 9) - at - 9);
+          if (value.front() == '\'') value = value.substr(1, value.size() - 2);
+          if (prefix != "resumed") prefix = value;
+        }
+        ASSERT_EQ(check_files(dir, prefix), "");
+        break;
+      }
+      case 2:
+        EXPECT_TRUE(one_error_line) << "bad input is not one line";
+        EXPECT_TRUE(written.empty()) << "bad input left " << (written.empty() ? "" : *written.begin());
+        break;
+      case 1:
+        EXPECT_TRUE(one_error_line) << "a failure is not one line";
+        for (const std::string& name : written) {
+          if (name.size() > 5 && name.compare(name.size() - 5, 5, ".json") == 0) {
+            EXPECT_NE(read_file(dir / name).find("\"complete\": false"), std::string::npos) << name;
+          }
+        }
+        break;
+      default: FAIL() << "exit " << result.exit_code;
+    }
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+  std::string summary;
+  for (const auto& [code, n] : exits) summary += " exit " + std::to_string(code) + ": " + std::to_string(n) + ";";
+  std::printf("%d command lines:%s\n", runs, summary.c_str());
+  EXPECT_GT(exits[0], runs / 10) << "too few command lines grew anything: the table draws too many faults";
+  EXPECT_GT(exits[2], runs / 10) << "too few faults drawn";
+}
+
+}  // namespace
+}  // namespace dla
