@@ -7,6 +7,7 @@
 
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -46,6 +47,24 @@ class OutputFile {
                                                 std::chars_format::general, digits)
                                 : std::to_chars(text, text + sizeof text, value);
     return *this << std::string_view(text, static_cast<std::size_t>(end.ptr - text));
+  }
+  //! `value` rounded to `decimals` (0-9) places, trailing zeros dropped: "-12.5", "3". Four
+  //! to five times faster than number(), for values below 9e18 / 10^decimals.
+  OutputFile& fixed(double value, int decimals) {
+    static constexpr long long powers[] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000, 1000000000};
+    long long units = std::llround(value * static_cast<double>(powers[decimals]));
+    if (units < 0) {
+      *this << '-';
+      units = -units;
+    }
+    integer(units / powers[decimals]);
+    long long fraction = units % powers[decimals];
+    if (fraction == 0) return *this;
+    int places = decimals;
+    while (fraction % 10 == 0) fraction /= 10, --places;
+    char text[16];
+    for (int i = places - 1; i >= 0; --i, fraction /= 10) text[i] = static_cast<char>('0' + fraction % 10);
+    return *this << '.' << std::string_view(text, static_cast<std::size_t>(places));
   }
   OutputFile& integer(long long value) {
     char text[24];

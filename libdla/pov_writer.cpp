@@ -36,32 +36,31 @@ std::string comment_text(const std::string& text) {
 //! How scene coordinates come from the structure's: (p - shift) * scale. POV-Ray's epsilons are
 //! absolute (about 1e-6) and it drops what lies beyond 1e7, so a structure with a spacing
 //! outside [1e-3, 10] is scaled to a spacing of 1 (a power of ten), and one whose centre lies
-//! more than 10^4 spacings from the origin is shifted to it. `digits` significant digits
-//! resolve a thousandth of a spacing everywhere.
+//! more than 10^4 spacings from the origin is shifted to it. Coordinates are written with
+//! `decimals` places: a thousandth of a spacing.
 struct SceneFrame {
   Vec3 shift = Vec3::Zero();
   double scale = 1.0;
-  int digits = 7;
+  int decimals = 3;
 
   Vec3 operator()(const Vec3& p) const { return (p - shift) * scale; }
   bool identity() const { return scale == 1.0 && shift == Vec3::Zero(); }
 };
 
-SceneFrame scene_frame(double spacing, const Vec3& center, double radius) {
+SceneFrame scene_frame(double spacing, const Vec3& center) {
   SceneFrame frame;
   if (spacing < 1e-3 || spacing > 10.0) frame.scale = std::pow(10.0, -std::round(std::log10(spacing)));
   if (center.cwiseAbs().maxCoeff() > 1e4 * spacing) frame.shift = center;
-  const double extent = (frame.shift == Vec3::Zero() ? center.cwiseAbs().maxCoeff() + radius : radius) / spacing;
-  frame.digits = std::clamp(static_cast<int>(std::ceil(std::log10(std::max(extent, 1.0)))) + 3, 7, 15);
+  frame.decimals = std::clamp(3 - static_cast<int>(std::floor(std::log10(spacing * frame.scale))), 0, 9);
   return frame;
 }
 
 void vector(detail::OutputFile& out, const Vec3& v, const SceneFrame& frame) {
   const Vec3 p = frame(v);
   out << '<';
-  out.number(p.x(), frame.digits) << ", ";
-  out.number(p.y(), frame.digits) << ", ";
-  out.number(p.z(), frame.digits) << '>';
+  out.fixed(p.x(), frame.decimals) << ", ";
+  out.fixed(p.y(), frame.decimals) << ", ";
+  out.fixed(p.z(), frame.decimals) << '>';
 }
 
 // Centre and radius of a sphere around every particle centre and mesh vertex (the box's
@@ -125,7 +124,7 @@ void write_geometry(const Cluster& cluster, const TriangleMesh* mesh, const Scen
       out << "    ";
       vector(out, cluster.particles[static_cast<std::size_t>(strand[i])].position, frame);
       out << ", DLA_R(";
-      out.number(1.0 - static_cast<double>(i) / last, 4) << ")\n";
+      out.fixed(1.0 - static_cast<double>(i) / last, 4) << ")\n";
     }
     out << "  }\n";
   });
@@ -154,7 +153,7 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
   validate_pov_prefix(prefix);
   const std::string include = prefix + ".inc";
   const auto [center, radius] = bounding_sphere(cluster, mesh);
-  const SceneFrame frame = scene_frame(cluster.spacing, center, radius);
+  const SceneFrame frame = scene_frame(cluster.spacing, center);
   write_geometry(cluster, mesh, frame, include);
 
   const double base = options.base_radius * cluster.spacing * frame.scale;

@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -323,6 +326,66 @@ void expect_ensemble_dimension(int dimensions, double expected, double tolerance
 
 TEST(Slow, EnsembleDimension3D) { expect_ensemble_dimension(3, 2.50, 0.03); }
 TEST(Slow, EnsembleDimension2D) { expect_ensemble_dimension(2, 1.71, 0.02); }
+
+// A stop request reaches walkers inside their walk: walkers that touch the structure ten
+// thousand times before they stick take seconds for 256 particles (the progress beat), and
+// the flag stops them within milliseconds, on one thread and on two.
+TEST(Growth, AStopFlagEndsGrowthInsideAWalk) {
+  for (const int threads : {1, 2}) {
+    GrowthOptions o;
+    o.particles = 100000;
+    o.stickiness = 1e-4;
+    o.threads = threads;
+    StopFlag stop{false};
+    std::thread stopper([&] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(300));
+      stop.store(true);
+    });
+    const auto start = std::chrono::steady_clock::now();
+    const Cluster part = grow(o, {}, &stop);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stopper.join();
+    EXPECT_FALSE(part.complete);
+    EXPECT_LT(seconds, 1.3) << threads << " threads";
+    EXPECT_LT(attached(part), o.particles);
+    // What grew is a prefix of the whole run: it resumes to the same structure.
+    o.particles = attached(part) + 20;
+    const Cluster whole = grow(o), resumed = resume(o, part);
+    ASSERT_EQ(whole.particles.size(), resumed.particles.size());
+    for (std::size_t i = 0; i < whole.particles.size(); ++i)
+      ASSERT_EQ(whole.particles[i].position, resumed.particles[i].position) << i;
+  }
+}
+
+// Growth that cannot go on throws PartialGrowth with what grew before: here the spawn box
+// fills up after a few dozen particles.
+TEST(Growth, AFailurePartWayKeepsWhatGrew) {
+  GrowthOptions o;
+  o.particles = 1000;
+  o.spawn = SpawnMode::box;
+  o.spawn_box = Box{Vec3(-2, -2, -2), Vec3(2, 2, 2)};
+  try {
+    grow(o);
+    FAIL() << "the box cannot hold 1000 particles";
+  } catch (const PartialGrowth& e) {
+    EXPECT_NE(std::string(e.what()).find("the structure fills it"), std::string::npos) << e.what();
+    const Cluster& part = e.partial();
+    EXPECT_FALSE(part.complete);
+    EXPECT_GT(attached(part), 20u);
+    for (std::size_t i = part.seed_count; i < part.particles.size(); ++i) {
+      const Particle& p = part.particles[i];
+      ASSERT_TRUE(p.parent >= 0 && static_cast<std::size_t>(p.parent) < i);
+      EXPECT_NEAR((p.position - part.particles[static_cast<std::size_t>(p.parent)].position).norm(), 1.0, 1e-9);
+    }
+  }
+  // A drift that carries every walker away from the disk they start on: an error, not a hang.
+  GrowthOptions away;
+  away.particles = 10;
+  away.spawn = SpawnMode::disk;
+  away.spawn_axis = Axis::y;
+  away.drift = Vec3(0, 0.9, 0);
+  EXPECT_THROW(grow(away), PartialGrowth);
+}
 
 TEST(Options, BadValuesAreRefusedWithAClearMessage) {
   const auto message = [](auto change) {

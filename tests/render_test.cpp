@@ -105,6 +105,30 @@ TEST(Render, PovRayShowsTheStructureInTheBust) {
   expect_framed_render(grow(o, constraint), dir, &constraint.mesh(), look);
 }
 
+// POV-Ray's epsilons are absolute and it drops what lies beyond 10^7: a tiny or a huge spacing,
+// or a structure far from the origin, is written scaled and shifted, and renders the same.
+TEST(Render, PovRayShowsStructuresAtUnusualScales) {
+  const struct {
+    double spacing;
+    Vec3 seed;
+    const char* declares;
+  } cases[] = {
+      {1e-6, Vec3::Zero(), "#declare DLA_Scale = 1e+06;"},
+      {1e6, Vec3::Zero(), "#declare DLA_Scale = 1e-06;"},
+      {1.0, Vec3(1e8, -3e7, 5e5), "#declare DLA_Shift = <999999"},  // the structure's centre
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE("spacing " + std::to_string(c.spacing));
+    ScratchDir dir;
+    GrowthOptions o;
+    o.particles = 1500;
+    o.spacing = c.spacing;
+    o.seeds = {c.seed * c.spacing};
+    expect_framed_render(grow(o), dir);
+    EXPECT_NE(read_file(dir / "scene.pov").find(c.declares), std::string::npos) << read_file(dir / "scene.pov");
+  }
+}
+
 TEST(Render, PovRayShowsTheStructurePlanar) {
   ScratchDir dir;
   GrowthOptions o;

@@ -10,6 +10,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
 #include <sstream>
 
 namespace dla {
@@ -76,6 +80,51 @@ TEST(Ply, HeaderCountsMatchTheBody) {
   std::size_t body = 0;
   while (std::getline(in, line)) ++body;
   EXPECT_EQ(body, vertices + edges);
+}
+
+// The binary PLY holds the ASCII one's values: the same header but the format, then each
+// vertex as three floats and two ints, each edge as two ints, little-endian.
+TEST(Ply, BinaryHoldsTheSameValues) {
+  ScratchDir dir;
+  const Cluster c = small_cluster();
+  write_ply(c, dir / "text.ply");
+  write_ply(c, dir / "binary.ply", PlyEncoding::binary);
+  const std::string text = read_file(dir / "text.ply"), binary = read_file(dir / "binary.ply");
+  const std::size_t text_body = text.find("end_header\n") + 11, binary_body = binary.find("end_header\n") + 11;
+  std::string header = text.substr(0, text_body);
+  header.replace(header.find("ascii"), 5, "binary_little_endian");
+  EXPECT_EQ(binary.substr(0, binary_body), header);
+  const std::size_t n = c.particles.size(), edges = n - c.seed_count;
+  ASSERT_EQ(binary.size() - binary_body, 20 * n + 8 * edges);
+  std::istringstream values(text.substr(text_body));
+  const char* at = binary.data() + binary_body;
+  for (std::size_t i = 0; i < n; ++i) {
+    float x, y, z;
+    std::int32_t parent, seed;
+    std::memcpy(&x, at, 4), std::memcpy(&y, at + 4, 4), std::memcpy(&z, at + 8, 4);
+    std::memcpy(&parent, at + 12, 4), std::memcpy(&seed, at + 16, 4);
+    at += 20;
+    double tx, ty, tz;
+    long tparent, tseed;
+    values >> tx >> ty >> tz >> tparent >> tseed;
+    // The binary holds the float nearest the position; the text, 9 digits of the double.
+    const Vec3& p = c.particles[i].position;
+    EXPECT_EQ(x, static_cast<float>(p.x()));
+    EXPECT_EQ(y, static_cast<float>(p.y()));
+    EXPECT_EQ(z, static_cast<float>(p.z()));
+    EXPECT_NEAR(tx, x, 1e-6 * std::max(1.0, std::abs(tx)));
+    EXPECT_EQ(parent, tparent);
+    EXPECT_EQ(seed, tseed);
+  }
+  for (std::size_t e = 0; e < edges; ++e) {
+    std::int32_t from, to;
+    std::memcpy(&from, at, 4), std::memcpy(&to, at + 4, 4);
+    at += 8;
+    long tfrom, tto;
+    values >> tfrom >> tto;
+    EXPECT_EQ(from, tfrom);
+    EXPECT_EQ(to, tto);
+  }
 }
 
 TEST(Pov, GeometryIsSphereSweepsWithPositiveRadii) {

@@ -28,18 +28,18 @@ inline std::vector<GyrationSample> gyration_history(const Cluster& cluster, std:
   if (total < 2 || n_min >= total || samples < 2) return history;
   Vec3 sum = Vec3::Zero();
   double sum2 = 0.0;
-  std::size_t next = 0;
   const double ratio = std::log(static_cast<double>(total) / n_min) / (samples - 1);
+  std::vector<long long> targets(samples);  // the n at which each sample is taken
+  for (std::size_t k = 0; k < samples; ++k) targets[k] = std::llround(n_min * std::exp(ratio * k));
+  std::size_t next = 0;
   for (std::size_t i = 0; i < total; ++i) {
     sum += cluster.particles[i].position;
     sum2 += cluster.particles[i].position.squaredNorm();
     const std::size_t n = i + 1;
-    const auto target = static_cast<std::size_t>(std::llround(n_min * std::exp(ratio * next)));
-    if (n >= target && next < samples) {
+    if (next < samples && static_cast<long long>(n) >= targets[next]) {
       const double m = static_cast<double>(n);
       history.push_back({n, std::sqrt(std::max(0.0, sum2 / m - (sum / m).squaredNorm()))});
-      while (next < samples && std::llround(n_min * std::exp(ratio * next)) <= static_cast<long long>(n))
-        ++next;
+      while (next < samples && targets[next] <= static_cast<long long>(n)) ++next;
     }
   }
   return history;
@@ -88,18 +88,20 @@ inline FractalFit fractal_dimension_by_mass_radius(const Cluster& cluster, doubl
   FractalFit fit;
   if (cluster.particles.empty()) return fit;
   const Vec3 origin = cluster.particles.front().position;
-  std::vector<double> distances;
-  for (const Particle& p : cluster.particles)
-    if (p.seed == 0) distances.push_back((p.position - origin).norm() / cluster.spacing);
-  std::sort(distances.begin(), distances.end());
   const double r_max = radius_of_gyration(cluster, 0) / cluster.spacing;
   constexpr int radii = 20;
   if (!(r_max > 2.0 * r_min)) return fit;
+  std::vector<double> r(radii);
+  for (int i = 0; i < radii; ++i) r[i] = r_min * std::pow(r_max / r_min, static_cast<double>(i) / (radii - 1));
+  // Particles counted by the first radius they lie within: no per-particle memory.
+  std::vector<std::size_t> within(radii + 1, 0);
+  for (const Particle& p : cluster.particles)
+    if (p.seed == 0) ++within[std::lower_bound(r.begin(), r.end(), (p.position - origin).norm() / cluster.spacing) - r.begin()];
   std::vector<double> log_r, log_n;
+  std::size_t n = 0;
   for (int i = 0; i < radii; ++i) {
-    const double r = r_min * std::pow(r_max / r_min, static_cast<double>(i) / (radii - 1));
-    const auto n = std::upper_bound(distances.begin(), distances.end(), r) - distances.begin();
-    log_r.push_back(std::log(r));
+    n += within[i];
+    log_r.push_back(std::log(r[i]));
     log_n.push_back(std::log(static_cast<double>(n)));
   }
   fit.samples = radii;
