@@ -162,6 +162,8 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
   out << "// dla3d " << version << " scene: ";
   out.integer(static_cast<long long>(cluster.particles.size()))
       << " particles. Render with: povray +W1280 +H960 +A " << comment_text(file_name(prefix)) << ".pov\n";
+  out << "#version 3.7;\n"
+         "global_settings { assumed_gamma 1.0 }\n\n";
   if (!frame.identity()) {
     // POV-Ray's fixed epsilons: the scene is in other units than the CSV and PLY.
     out << "// Scene units: POV-Ray works best near a unit of 1, so the coordinates here are the\n"
@@ -170,11 +172,9 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
     out.number(frame.scale) << ";\n#declare DLA_Shift = <";
     out.number(frame.shift.x()) << ", ";
     out.number(frame.shift.y()) << ", ";
-    out.number(frame.shift.z()) << ">;\n";
+    out.number(frame.shift.z()) << ">;\n\n";
   }
-  out << "#version 3.7;\n"
-         "global_settings { assumed_gamma 1.0 }\n\n"
-         "// The look: change these and render again, no need to grow again.\n"
+  out << "// The look: change these and render again, no need to grow again.\n"
          "#declare DLA_BaseRadius = ";
   out.number(base, 7) << ";  // radius at each strand's start\n#declare DLA_TipRadius = ";
   out.number(options.tip_radius * cluster.spacing * frame.scale, 7)

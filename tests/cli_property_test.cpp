@@ -43,7 +43,8 @@ using testing::read_file;
 const std::map<std::string, std::vector<std::string>>& option_table() {
   static const std::map<std::string, std::vector<std::string>> table = {
       {"--particles", {"0", "1", "40", "150", "-1", "abc", "1e3", "99999999999999999999", "''"}},
-      {"--spacing", {"1", "0.5", "1e-6", "1e6", "0", "-1", "inf", "nan", "1e-300", "1e300", "4.9e-324", "x"}},
+      {"--spacing", {"1", "0.5", "1e-6", "1e6", "1e-100", "1e100", "0", "-1", "inf", "nan", "1e-300", "1e300",
+                     "4.9e-324", "x"}},
       {"--stickiness", {"1", "0.3", "1e-4", "0", "1.5", "nan", "1e-300", "-0"}},
       {"--dimensions", {"2", "3", "1", "4", "-3", "x"}},
       {"--seed-at", {"0,0,0", "6,0,0", "-6,0,0", "1e-7,0,0", "0,0,1", "1e12,0,0", "nan,0,0", "1,2", "a,b,c", "''"}},
