@@ -57,7 +57,7 @@ class Writer {
 //! hash): memory stays that of the structure read, not of the file besides.
 class Reader {
  public:
-  Reader(const std::string& path) : in_(path, std::ios::binary), path_(path) {
+  explicit Reader(const std::string& path) : in_(path, std::ios::binary), path_(path) {
     if (!in_) throw IOError("cannot read '" + path + "': " + std::strerror(errno));
     in_.seekg(0, std::ios::end);
     const std::streamoff size = in_.tellg();

@@ -48,8 +48,8 @@ class OutputFile {
                                 : std::to_chars(text, text + sizeof text, value);
     return *this << std::string_view(text, static_cast<std::size_t>(end.ptr - text));
   }
-  //! `value` rounded to `decimals` (0-9) places, trailing zeros dropped: "-12.5", "3". Four
-  //! to five times faster than number(), for values below 9e18 / 10^decimals.
+  //! `value` rounded to `decimals` (0-9) places, trailing zeros dropped: "-12.5", "3"; for
+  //! |value| below 9e18 / 10^decimals. Integer arithmetic only: much cheaper than number().
   OutputFile& fixed(double value, int decimals) {
     static constexpr long long powers[] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000, 1000000000};
     long long units = std::llround(value * static_cast<double>(powers[decimals]));

@@ -18,9 +18,9 @@
 #include <exception>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <new>
 #include <string>
-#include <mutex>
 #include <thread>
 #include <utility>
 #include <vector>
@@ -197,6 +197,7 @@ class Aggregation {
 
   //! Every this many steps a walk looks at the stop flag: ~0.1-1 ms of walking.
   static constexpr std::uint64_t kStopCheckSteps = 4096;
+
   //! Calls `progress` after walker k's particle, every 256 particles and at the end; false
   //! when it asks to stop.
   bool report(std::size_t k, const ProgressFn& progress) {

@@ -6,7 +6,6 @@
 
 #include <Eigen/Core>
 
-#include <cmath>
 #include <cstdio>
 #include <cstdint>
 #include <optional>
@@ -146,12 +145,6 @@ inline std::string format_count(std::uint64_t value) {
   std::string digits = std::to_string(value);
   for (int i = static_cast<int>(digits.size()) - 3; i > 0; i -= 3) digits.insert(static_cast<std::size_t>(i), ",");
   return digits;
-}
-
-//! Throws InvalidInput "WHAT VALUE is not a positive number" unless value is finite and > 0.
-inline void require_positive(const std::string& what, double value) {
-  if (!(value > 0.0) || !std::isfinite(value))
-    throw InvalidInput(what + " " + format_number(value) + " is not a positive number");
 }
 
 //! Throws InvalidInput "WHAT VALUE is not in [LOW, HIGH]" unless low <= value <= high (NaN
