@@ -178,12 +178,9 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix) {
   // POV-Ray's command line does not take every file name: the scene is copied to a plain one.
   const std::filesystem::path folder = dir.path() / std::filesystem::path(prefix).parent_path();
   std::filesystem::copy_file(folder / (name + ".pov"), folder / "render_scene.pov");
-  // One render thread, and a second try: once in some hundred renders on a loaded machine
-  // POV-Ray 3.7 fails after parsing, while rendering; a scene it cannot parse fails twice.
   const std::string render = "cd '" + folder.string() + "' && '" + std::string(POVRAY_PATH) +
-                             "' +Irender_scene.pov +Orender.png +W32 +H24 +WT1 -D -V > povray.log 2>&1";
-  if (std::string(POVRAY_PATH).find("NOTFOUND") == std::string::npos && std::system(render.c_str()) != 0 &&
-      std::system(render.c_str()) != 0)
+                             "' +Irender_scene.pov +Orender.png +W32 +H24 -D -V > povray.log 2>&1";
+  if (std::string(POVRAY_PATH).find("NOTFOUND") == std::string::npos && std::system(render.c_str()) != 0)
     return "POV-Ray cannot render " + prefix + ".pov: " + read_file((folder / "povray.log").string());
   return "";
 }

@@ -2,6 +2,7 @@
 // Helpers shared by the tests: a scratch folder per test and whole-file reads.
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -10,13 +11,15 @@
 
 namespace dla::testing {
 
-//! A fresh, empty folder named after the running test, removed when it passes.
+//! A fresh, empty folder named after the running test and the process (ctest may run the same
+//! test in two processes at once: CliProperty and CliProperty.Long), removed when it passes.
 class ScratchDir {
  public:
   ScratchDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     path_ = std::filesystem::temp_directory_path() /
-            ("dla_test_" + std::string(info->test_suite_name()) + "_" + info->name());
+            ("dla_test_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" +
+             std::to_string(getpid()));
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }
