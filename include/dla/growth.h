@@ -209,6 +209,9 @@ class Aggregation {
     return true;
   }
 
+  //! The most reads a worker's vector keeps between walks: 6 MB.
+  static constexpr std::size_t kReadsKept = std::size_t{1} << 16;
+
   //! Walker k's result as it ran on a worker thread (a cache line of its own).
   struct alignas(64) Slot {
     std::atomic<bool> done{false};
@@ -279,6 +282,8 @@ class Aggregation {
         // The walk writes to this thread's own stats and reads, not to the shared slots.
         WalkStats stats;
         reads.clear();
+        // A rare walk of millions of steps leaves a vector of hundreds of MB: let it go.
+        if (reads.capacity() > kReadsKept) std::vector<Read>().swap(reads);
         try {
           slot.result = walk(k, *slot.sight, stats, &reads);
           slot.failed = false;
