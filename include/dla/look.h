@@ -1,0 +1,43 @@
+#pragma once
+//! \file look.h
+//! How a grown structure looks in every file: its attributes, the radius model's radii, the
+//! colour and the tube mesh's resolution, computed once after growth and shared by the
+//! writers. See docs/look.md.
+
+#include "dla/attributes.h"
+#include "dla/color_map.h"
+#include "dla/radius_model.h"
+#include "dla/tubes.h"
+
+namespace dla {
+
+struct LookOptions {
+  RadiusOptions radius;               //!< branch thickness
+  ColorBy color_by = ColorBy::none;   //!< vertex colours of the tube meshes, textures in POV-Ray
+  TubeOptions tubes;                  //!< the glTF and OBJ tube meshes
+};
+
+inline void validate(const LookOptions& options) {
+  validate(options.radius);
+  validate(options.tubes);
+}
+
+//! A structure's look: its options and what they give for each particle.
+struct Look {
+  LookOptions options;
+  Attributes attributes;
+  std::vector<float> radii;  //!< branch radius of each particle, in scene units
+};
+
+//! Computes the attributes and radii. Throws InvalidInput for bad options, or a model that
+//! needs a mesh (`boundary`) without `sources.surface`.
+inline Look make_look(const Cluster& cluster, const LookOptions& options, const AttributeOptions& sources = {}) {
+  validate(options);
+  Look look;
+  look.options = options;
+  look.attributes = compute_attributes(cluster, sources);
+  look.radii = branch_radii(cluster, look.attributes, options.radius);
+  return look;
+}
+
+}  // namespace dla

@@ -1,0 +1,439 @@
+// The look: attributes against definitions computed the slow way, distances against brute
+// force, the radius models' ranges and orderings, tube meshes that are closed, outward and
+// untwisted, instancing points that never overlap, and the files built from them.
+
+#include "dla/constraint.h"
+#include "dla/csv_reader.h"
+#include "dla/csv_writer.h"
+#include "dla/growth.h"
+#include "dla/instances.h"
+#include "dla/look.h"
+#include "dla/mesh_writers.h"
+#include "dla/ply_writer.h"
+#include "dla/shapes.h"
+#include "dla/surface_distance.h"
+#include "dla/svg_writer.h"
+#include "test_util.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <functional>
+#include <map>
+#include <random>
+#include <set>
+
+namespace dla {
+namespace {
+
+using testing::ScratchDir;
+using testing::read_file;
+
+Cluster grown(std::size_t particles, int dimensions = 3, std::vector<Vec3> seeds = {Vec3::Zero()}) {
+  GrowthOptions o;
+  o.particles = particles;
+  o.dimensions = dimensions;
+  o.seeds = std::move(seeds);
+  return grow(o);
+}
+
+//! A straight chain of `n` particles along x from the origin, a spacing apart.
+Cluster chain(std::size_t n) {
+  Cluster c;
+  c.seed_count = 1;
+  for (std::size_t i = 0; i < n; ++i)
+    c.particles.push_back({Vec3(static_cast<double>(i), 0, 0), static_cast<std::int32_t>(i) - 1, 0});
+  return c;
+}
+
+TEST(Attributes, MatchTheirDefinitions) {
+  const Cluster c = grown(3000, 3, {Vec3(-8, 0, 0), Vec3(8, 0, 0)});
+  const Attributes a = compute_attributes(c);
+  const std::size_t n = c.particles.size();
+  ASSERT_EQ(a.size(), n);
+  std::vector<std::vector<std::size_t>> children(n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (c.particles[i].parent >= 0) children[static_cast<std::size_t>(c.particles[i].parent)].push_back(i);
+  // Strahler's definition, recursively.
+  std::function<int(std::size_t)> strahler = [&](std::size_t i) {
+    if (children[i].empty()) return 1;
+    int highest = 0, times = 0;
+    for (std::size_t k : children[i]) {
+      const int o = strahler(k);
+      if (o > highest) highest = o, times = 1;
+      else if (o == highest) ++times;
+    }
+    return times >= 2 ? highest + 1 : highest;
+  };
+  std::vector<int> descendants(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    int depth = 0;
+    for (std::int32_t j = c.particles[i].parent; j >= 0; j = c.particles[static_cast<std::size_t>(j)].parent) {
+      ++depth;
+      ++descendants[static_cast<std::size_t>(j)];
+    }
+    ASSERT_EQ(a.depth[i], depth) << i;
+    ASSERT_EQ(a.children[i], children[i].size()) << i;
+    ASSERT_EQ(a.tip(i), children[i].empty());
+    ASSERT_EQ(a.branch_point(i), children[i].size() >= 2);
+    ASSERT_EQ(a.strahler[i], strahler(i)) << i;
+    const double seed = std::min((c.particles[i].position - c.particles[0].position).norm(),
+                                 (c.particles[i].position - c.particles[1].position).norm());
+    ASSERT_NEAR(a.seed_distance[i], seed, 1e-4 * (1 + seed));
+  }
+  for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(a.descendants[i], descendants[i]);
+  EXPECT_EQ(a.age(0), 0.0f);
+  EXPECT_EQ(a.age(2), 0.0f);
+  EXPECT_EQ(a.age(n - 1), 1.0f);
+  EXPECT_GT(a.age(n / 2), 0.4f);
+  EXPECT_LT(a.age(n / 2), 0.6f);
+  EXPECT_TRUE(a.boundary_distance.empty());
+  // The taper runs from 1 at each strand's start to 0 at its tip, one step a particle.
+  for (const Strand& strand : decompose_strands(c)) {
+    const auto tip = static_cast<std::size_t>(strand.back());
+    if (strand.size() > 1) {
+      EXPECT_EQ(a.taper[tip], 0.0f);
+    }
+    for (std::size_t k = 1; k + 1 < strand.size(); ++k)
+      EXPECT_GT(a.taper[static_cast<std::size_t>(strand[k])], a.taper[static_cast<std::size_t>(strand[k + 1])]);
+  }
+}
+
+TEST(Attributes, AMillionParticlesInWellUnderASecond) {
+  // Not a timing (bench/ times it): the arrays are linear, and a chain is the deepest tree.
+  const Cluster c = chain(100000);
+  const Attributes a = compute_attributes(c);
+  EXPECT_EQ(a.depth.back(), 99999);
+  EXPECT_EQ(a.descendants.front(), 99999);
+  EXPECT_EQ(a.strahler.front(), 1);
+}
+
+TEST(SurfaceDistance, ClosestPointsMatchBruteForce) {
+  const MeshConstraint ball(make_sphere(Vec3(1, 2, 3), 10.0, 12, 24), {}, 0.5);
+  const SurfaceDistance surface(ball.mesh());
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-20, 20);
+  for (int i = 0; i < 300; ++i) {
+    const Vec3 p(u(rng), u(rng), u(rng));
+    const double brute = ball.distance_to_surface(p);
+    ASSERT_NEAR(surface.distance(p), brute, 1e-9 * (1 + brute)) << p.transpose();
+    EXPECT_NEAR(ball.distance_to_surface(surface.closest_point(p)), 0.0, 1e-9);
+  }
+  EXPECT_THROW(SurfaceDistance(TriangleMesh{}), InvalidInput);
+}
+
+TEST(Attributes, BoundaryDistanceIsTheSurfacesOnAnyThreadCount) {
+  const MeshConstraint ball(make_sphere(Vec3::Zero(), 20.0, 12, 24), {}, 1.0);
+  GrowthOptions o;
+  o.particles = 6000;  // more than 4096: the distances are measured on two threads
+  o.spawn = SpawnMode::inside;
+  const Cluster c = grow(o, ball);
+  const SurfaceDistance surface(ball.mesh());
+  const Attributes one = compute_attributes(c, {&surface, nullptr, 1});
+  const Attributes two = compute_attributes(c, {&surface, nullptr, 2});
+  ASSERT_EQ(one.boundary_distance, two.boundary_distance);
+  for (std::size_t i = 0; i < c.particles.size(); i += 97)
+    ASSERT_NEAR(one.boundary_distance[i], ball.distance_to_surface(c.particles[i].position), 1e-5);
+}
+
+TEST(RadiusModels, StayInRangeAndOrderAsTheySay) {
+  const MeshConstraint ball(make_sphere(Vec3::Zero(), 14.0, 12, 24), {}, 1.0);
+  GrowthOptions o;
+  o.particles = 3000;
+  o.spawn = SpawnMode::inside;
+  const Cluster c = grow(o, ball);
+  const SurfaceDistance surface(ball.mesh());
+  const Attributes a = compute_attributes(c, {&surface});
+  for (const RadiusModel model : {RadiusModel::taper, RadiusModel::pipe, RadiusModel::boundary,
+                                  RadiusModel::seed_distance, RadiusModel::uniform}) {
+    SCOPED_TRACE(std::string(to_string(model)));
+    RadiusOptions r;
+    r.model = model;
+    r.tip_radius = 0.1;
+    r.base_radius = 0.6;
+    const std::vector<float> radii = branch_radii(c, a, r);
+    for (const float radius : radii) {
+      ASSERT_GE(radius, 0.1f - 1e-6f);
+      ASSERT_LE(radius, 0.6f + 1e-6f);
+    }
+    const auto [lo, hi] = std::minmax_element(radii.begin(), radii.end());
+    if (model == RadiusModel::uniform) EXPECT_EQ(*lo, *hi);
+    else EXPECT_GT(*hi - *lo, 0.25f) << "the model spans its range";
+    for (std::size_t i = 0; i < c.particles.size(); ++i) {
+      const auto parent = static_cast<std::size_t>(std::max(c.particles[i].parent, 0));
+      if (model == RadiusModel::pipe && c.particles[i].parent >= 0) {
+        ASSERT_GE(radii[parent], radii[i]);
+      }
+      if (model == RadiusModel::boundary && a.boundary_distance[i] > a.boundary_distance[parent]) {
+        ASSERT_GE(radii[i], radii[parent]);
+      }
+      if (model == RadiusModel::seed_distance && a.seed_distance[i] > a.seed_distance[parent]) {
+        ASSERT_LE(radii[i], radii[parent]);
+      }
+    }
+  }
+  RadiusOptions pipe;
+  pipe.model = RadiusModel::pipe;
+  pipe.tip_radius = 0.1;
+  pipe.base_radius = 100;
+  pipe.pipe_exponent = 3;
+  const std::vector<float> radii = branch_radii(c, a, pipe);
+  EXPECT_NEAR(radii[0], 0.1 * std::cbrt(a.descendants[0] + 1.0), 1e-5) << "r = tip (d + 1)^(1/e)";
+
+  RadiusOptions boundary;
+  boundary.model = RadiusModel::boundary;
+  EXPECT_THROW(branch_radii(c, compute_attributes(c), boundary), InvalidInput);
+  RadiusOptions bad;
+  bad.pipe_exponent = 0.5;
+  EXPECT_THROW(branch_radii(c, a, bad), InvalidInput);
+  EXPECT_EQ(parse_radius_model("seed-distance"), RadiusModel::seed_distance);
+  EXPECT_THROW(parse_radius_model("wavy"), InvalidInput);
+}
+
+//! Every tube is a closed surface: each edge is used once in each direction.
+void expect_closed_and_outward(const TubePiece& piece, const Vec3& inside) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+  double volume = 0.0;
+  for (const auto& t : piece.triangles) {
+    for (int k = 0; k < 3; ++k) ++edges[{t[static_cast<std::size_t>(k)], t[static_cast<std::size_t>((k + 1) % 3)]}];
+    const Vec3 a = piece.positions[t[0]].cast<double>() - inside, b = piece.positions[t[1]].cast<double>() - inside,
+               c = piece.positions[t[2]].cast<double>() - inside;
+    volume += a.dot(b.cross(c)) / 6.0;
+  }
+  for (const auto& [edge, count] : edges) {
+    ASSERT_EQ(count, 1) << "an edge used twice the same way";
+    ASSERT_EQ(edges.count({edge.second, edge.first}), 1u) << "an open edge";
+  }
+  EXPECT_GT(volume, 0.0) << "faces point inwards";
+  for (const Eigen::Vector3f& n : piece.normals) ASSERT_NEAR(n.norm(), 1.0f, 1e-5f);
+}
+
+TEST(Tubes, AreClosedOutwardAndAsWideAsTheirRadii) {
+  const Cluster c = grown(800);
+  const Look look = make_look(c, {});
+  std::size_t pieces = 0, vertices = 0;
+  for_each_tube(c, look.radii, look.options.tubes, [&](const TubePiece& piece) {
+    ++pieces;
+    vertices += piece.positions.size();
+    const std::size_t rings = (piece.positions.size() - 2) / 8 - 1;
+    ASSERT_EQ(piece.positions.size(), tube_vertices(rings, 8));
+    ASSERT_EQ(piece.triangles.size(), tube_triangles(rings, 8));
+    // The start's centre is the strand's first particle, inside the tube.
+    const Vec3 start = piece.positions.back().cast<double>();
+    expect_closed_and_outward(piece, start);
+    // Each ring's vertices lie at the radius from their particle (ring 0 may be finer).
+    for (std::size_t j = 1; j < rings; ++j) {
+      const auto owner = static_cast<std::size_t>(piece.particles[j * 8]);
+      for (std::size_t s = 0; s < 8; ++s) {
+        const double d = (piece.positions[j * 8 + s].cast<double>() - c.particles[owner].position).norm();
+        ASSERT_NEAR(d, look.radii[owner], 1e-4);
+      }
+    }
+    // A branch starts inside its parent: ring 0 is no wider than the parent's radius.
+    const auto first = static_cast<std::size_t>(piece.particles[0]);
+    const std::int32_t parent = c.particles[first].parent;
+    if (parent >= 0)
+      for (std::size_t s = 0; s < 8; ++s) {
+        const double d = (piece.positions[s].cast<double>() - c.particles[static_cast<std::size_t>(parent)].position).norm();
+        ASSERT_LE(d, look.radii[static_cast<std::size_t>(parent)] + 1e-4);
+      }
+  });
+  EXPECT_EQ(pieces, count_strands(c));
+}
+
+TEST(Tubes, PruneTwigsWithoutLeavingPiecesAfloat) {
+  const Cluster c = grown(1500);
+  const Attributes a = compute_attributes(c);
+  const Look look = make_look(c, {});
+  TubeOptions pruned;
+  pruned.min_branch = 6;
+  std::size_t all = 0, kept = 0;
+  std::set<std::int32_t> tubed;  // particles with a ring
+  for_each_tube(c, look.radii, {}, [&](const TubePiece&) { ++all; });
+  for_each_tube(c, look.radii, pruned, [&](const TubePiece& piece) {
+    ++kept;
+    const auto own = static_cast<std::size_t>(piece.particles[0]);
+    EXPECT_GE(a.descendants[own] + 1, 6) << "a twig kept";
+    // Its branch point belongs to a kept tube, or is a seed.
+    const std::int32_t from = c.particles[own].parent;
+    if (from >= 0) {
+      EXPECT_TRUE(tubed.count(from) || from < static_cast<std::int32_t>(c.seed_count)) << "afloat";
+    }
+    tubed.insert(piece.particles.begin(), piece.particles.end());
+  });
+  EXPECT_LT(kept, all / 2);
+  EXPECT_GT(kept, 0u);
+}
+
+TEST(Tubes, DoNotTwistAndSimplifyStraightRuns) {
+  const Cluster line = chain(20);
+  const std::vector<float> radii(20, 0.3f);
+  std::vector<Eigen::Vector3f> first;
+  for_each_tube(line, radii, {}, [&](const TubePiece& piece) {
+    ASSERT_EQ(piece.positions.size(), tube_vertices(20, 8));
+    // Along a straight strand every ring is the first one moved along x: no twist.
+    for (std::size_t j = 1; j < 20; ++j)
+      for (std::size_t s = 0; s < 8; ++s) {
+        const Eigen::Vector3f moved = piece.positions[s] + Eigen::Vector3f(static_cast<float>(j), 0, 0);
+        ASSERT_LT((piece.positions[j * 8 + s] - moved).norm(), 1e-4f);
+      }
+  });
+  TubeOptions coarse;
+  coarse.tolerance = 0.1;
+  coarse.sides = 6;
+  for_each_tube(line, radii, coarse, [&](const TubePiece& piece) { EXPECT_EQ(piece.positions.size(), tube_vertices(2, 6)); });
+  TubeOptions bad;
+  bad.min_branch = 0;
+  EXPECT_THROW(for_each_tube(line, radii, bad, [](const TubePiece&) {}), InvalidInput);
+  bad.min_branch = 1;
+  bad.sides = 2;
+  EXPECT_THROW(for_each_tube(line, radii, bad, [](const TubePiece&) {}), InvalidInput);
+}
+
+TEST(Instances, NeverOverlapAndPointAwayFromTheirParents) {
+  const Cluster c = grown(2000);
+  const Attributes a = compute_attributes(c);
+  const std::vector<Instance> tips = instancing_points(c, a, {});
+  std::size_t expected = 0;
+  for (std::size_t i = 0; i < c.particles.size(); ++i) expected += a.tip(i);
+  ASSERT_EQ(tips.size(), expected);
+  for (std::size_t i = 0; i < tips.size(); ++i) {
+    ASSERT_TRUE(a.tip(static_cast<std::size_t>(tips[i].particle)));
+    ASSERT_NEAR(tips[i].direction.norm(), 1.0, 1e-9);
+    const Particle& p = c.particles[static_cast<std::size_t>(tips[i].particle)];
+    EXPECT_GT(tips[i].direction.dot(p.position - c.particles[static_cast<std::size_t>(p.parent)].position), 0.0);
+    double nearest = std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j < tips.size(); ++j) {
+      if (j == i) continue;
+      const double d = (tips[i].position - tips[j].position).norm();
+      nearest = std::min(nearest, d);
+      ASSERT_LE(tips[i].scale + tips[j].scale, d * (1 + 1e-12)) << "copies overlap";
+    }
+    ASSERT_NEAR(tips[i].scale, 0.5 * nearest, 1e-12);
+  }
+  InstanceOptions all;
+  all.set = InstanceSet::all;
+  EXPECT_EQ(instancing_points(c, a, all).size(), c.particles.size());
+  InstanceOptions near;
+  near.within = 2.0;
+  EXPECT_THROW(instancing_points(c, a, near), InvalidInput) << "no mesh to be near";
+}
+
+TEST(Instances, NearTheBoundaryStayInsideIt) {
+  const MeshConstraint ball(make_sphere(Vec3::Zero(), 10.0, 12, 24), {}, 1.0);
+  GrowthOptions o;
+  o.particles = 3000;
+  o.spawn = SpawnMode::inside;
+  const Cluster c = grow(o, ball);
+  const SurfaceDistance surface(ball.mesh());
+  const Attributes a = compute_attributes(c, {&surface});
+  InstanceOptions near;
+  near.within = 1.5;
+  const std::vector<Instance> leaves = instancing_points(c, a, near);
+  ASSERT_FALSE(leaves.empty());
+  for (const Instance& leaf : leaves) {
+    const double d = ball.distance_to_surface(leaf.position);
+    EXPECT_LE(d, 1.5 + 1e-5);
+    EXPECT_LE(leaf.scale, d + 1e-5) << "a copy crosses the mesh";
+  }
+}
+
+TEST(LookFiles, PlyAndCsvCarryTheAttributes) {
+  ScratchDir dir;
+  const Cluster c = grown(500);
+  LookOptions options;
+  options.radius.model = RadiusModel::pipe;
+  const Look look = make_look(c, options);
+  write_ply(c, look, dir / "a.ply", PlyEncoding::binary);
+  const std::string ply = read_file(dir / "a.ply");
+  const std::size_t body = ply.find("end_header\n") + 11;
+  EXPECT_NE(ply.find("property float radius\nproperty float age\nproperty int depth\nproperty int descendants\n"
+                     "property uchar order\nproperty uchar tip\nproperty int seed\nproperty int parent\n"),
+            std::string::npos);
+  ASSERT_EQ(ply.size() - body, 38 * c.particles.size() + 8 * (c.particles.size() - 1));
+  // The last particle's record, read back.
+  const char* record = ply.data() + body + 38 * (c.particles.size() - 1);
+  float radius;
+  std::int32_t depth, parent;
+  std::memcpy(&radius, record + 12, 4);
+  std::memcpy(&depth, record + 20, 4);
+  std::memcpy(&parent, record + 34, 4);
+  EXPECT_EQ(radius, look.radii.back());
+  EXPECT_EQ(depth, look.attributes.depth.back());
+  EXPECT_EQ(parent, c.particles.back().parent);
+
+  write_csv(c, look, dir / "a.csv");
+  const std::string csv = read_file(dir / "a.csv");
+  EXPECT_EQ(csv.rfind("id,x,y,z,parent,seed,radius,age,depth,descendants,order,tip\n", 0), 0u);
+  const Cluster back = read_csv(dir / "a.csv");  // what `dla3d analyze` reads
+  ASSERT_EQ(back.particles.size(), c.particles.size());
+  EXPECT_EQ(back.particles.back().position, c.particles.back().position);
+}
+
+TEST(LookFiles, GlbAndObjHoldEveryTube) {
+  ScratchDir dir;
+  const Cluster c = grown(400);
+  LookOptions options;
+  options.color_by = ColorBy::depth;
+  const Look look = make_look(c, options);
+  std::size_t vertices = 0, triangles = 0;
+  for_each_tube(c, look.radii, options.tubes, [&](const TubePiece& piece) {
+    vertices += piece.positions.size();
+    triangles += piece.triangles.size();
+  });
+  write_glb(c, look, dir / "a.glb");
+  const std::string glb = read_file(dir / "a.glb");
+  std::uint32_t head[5];
+  std::memcpy(head, glb.data(), 20);
+  EXPECT_EQ(head[0], 0x46546C67u);
+  EXPECT_EQ(head[1], 2u);
+  EXPECT_EQ(head[2], glb.size());
+  EXPECT_EQ(head[4], 0x4E4F534Au) << "JSON chunk first";
+  const std::string json = glb.substr(20, head[3]);
+  EXPECT_NE(json.find("\"count\":" + std::to_string(vertices) + ",\"type\":\"VEC3\",\"min\""), std::string::npos);
+  EXPECT_NE(json.find("\"count\":" + std::to_string(3 * triangles) + ",\"type\":\"SCALAR\"}]"), std::string::npos);
+  EXPECT_NE(json.find("\"COLOR_0\":2,\"_AGE\":3"), std::string::npos);
+  EXPECT_EQ(glb.size(), 20 + head[3] + 8 + vertices * 52 + triangles * 12) << "52-byte vertices with colour";
+
+  write_obj(c, look, dir / "a.obj");
+  const std::string obj = read_file(dir / "a.obj");
+  std::size_t v = 0, vn = 0, f = 0;
+  std::istringstream lines(obj);
+  for (std::string line; std::getline(lines, line);) {
+    v += line.rfind("v ", 0) == 0;
+    vn += line.rfind("vn ", 0) == 0;
+    f += line.rfind("f ", 0) == 0;
+  }
+  EXPECT_EQ(v, vertices);
+  EXPECT_EQ(vn, vertices);
+  EXPECT_EQ(f, triangles);
+
+  // No branch at all: still a valid file, with an empty scene.
+  Cluster lone;
+  lone.seed_count = 1;
+  lone.particles.push_back({Vec3::Zero(), -1, 0});
+  write_glb(lone, make_look(lone, {}), dir / "lone.glb");
+  EXPECT_NE(read_file(dir / "lone.glb").find("\"scenes\":[{}]"), std::string::npos);
+}
+
+TEST(LookFiles, SvgDrawsEveryBranchOf2DGrowth) {
+  ScratchDir dir;
+  const Cluster flat = grown(600, 2);
+  LookOptions options;
+  options.radius.model = RadiusModel::pipe;
+  options.color_by = ColorBy::age;
+  const Look look = make_look(flat, options);
+  write_svg(flat, look, dir / "a.svg");
+  const std::string svg = read_file(dir / "a.svg");
+  std::size_t lines = 0;
+  for (std::size_t at = svg.find("<line "); at != std::string::npos; at = svg.find("<line ", at + 1)) ++lines;
+  EXPECT_EQ(lines, 600u);
+  EXPECT_NE(svg.find("stroke=\"#"), std::string::npos);
+  EXPECT_EQ(svg.substr(svg.size() - 7), "</svg>\n");
+  const Cluster solid = grown(50);
+  EXPECT_THROW(write_svg(solid, make_look(solid, {}), dir / "b.svg"), InvalidInput);
+}
+
+}  // namespace
+}  // namespace dla
