@@ -63,7 +63,7 @@ void pov(benchmark::State& state) {
 }
 void json(benchmark::State& state) {
   write_file(state, [](const dla::Cluster& c, const std::string& p) {
-    dla::write_run_report(c, {}, {}, {}, p + ".json");
+    dla::write_run_report(c, {}, {}, {}, {}, p + ".json");
   });
 }
 void checkpoint(benchmark::State& state) {

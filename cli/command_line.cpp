@@ -30,6 +30,25 @@ std::vector<double> parse_numbers(const std::string& flag, const std::string& te
   return values;
 }
 
+//! "pov,csv,glb" as the files to write.
+Formats parse_formats(const std::string& text) {
+  Formats formats;
+  formats.pov = formats.csv = formats.ply = formats.json = false;
+  std::stringstream in(text);
+  std::string word;
+  bool any = false;
+  while (std::getline(in, word, ',')) {
+    bool* format = word == "pov" ? &formats.pov : word == "csv" ? &formats.csv : word == "ply" ? &formats.ply
+                 : word == "json" ? &formats.json : word == "glb" ? &formats.glb : word == "obj" ? &formats.obj
+                 : word == "tips" ? &formats.tips : word == "svg" ? &formats.svg : nullptr;
+    if (!format)
+      throw InvalidInput("--formats '" + text + "': '" + word + "' is not one of pov, csv, ply, json, glb, obj, tips, svg");
+    *format = any = true;
+  }
+  if (!any) throw InvalidInput("--formats is empty: name at least one of pov, csv, ply, json, glb, obj, tips, svg");
+  return formats;
+}
+
 Vec3 parse_vec3(const std::string& flag, const std::string& text) {
   const std::vector<double> v = parse_numbers(flag, text, 3);
   return {v[0], v[1], v[2]};
@@ -65,14 +84,20 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   std::string side = std::string(to_string(g.constraint.side));
   std::string constraint_mode = std::string(to_string(g.constraint.mode));
   std::string up = std::string(to_string(g.pov.up));
+  std::string radius_model = std::string(to_string(g.look.radius.model));
+  std::string color_by = std::string(to_string(g.look.color_by));
+  std::string instance_set = std::string(to_string(g.instances.set));
+  std::string pov_style = std::string(to_string(g.pov.style));
+  std::string formats = "pov,csv,ply,json";
 
   const char* growth = "Growth";
-  app.add_option("-n,--particles", particles, "particles to attach, seeds not counted")
-      ->capture_default_str()->group(growth);
+  CLI::Option* particles_option =
+      app.add_option("-n,--particles", particles, "particles to attach, seeds not counted; with a mesh, "
+                                                  "default 40000")->capture_default_str()->group(growth);
   CLI::Option* spacing = app.add_option(
       "--spacing", options.spacing,
       "distance between a particle and its parent; also the contact distance, in [1e-100, 1e100]; "
-      "with a mesh, default: its longest side / 200")->capture_default_str()->group(growth);
+      "with a mesh, default: its longest side / 100")->capture_default_str()->group(growth);
   app.add_option("--stickiness", options.stickiness, "probability of sticking at a contact, in [1e-4, 1]")
       ->capture_default_str()->group(growth);
   app.add_option("--dimensions", options.dimensions, "3, or 2 for growth in the plane z = 0")
@@ -119,14 +144,44 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
 
   const char* outputs = "Output";
   app.add_option("-o,--output", g.output, "prefix of the files written")->capture_default_str()->group(outputs);
-  app.add_flag("--binary", g.binary_ply, "write the PLY as binary (little-endian): a third of the size, "
+  app.add_flag("--binary", g.binary_ply, "write the PLYs as binary (little-endian): half the size, "
                                          "ten times faster")->group(outputs);
-  app.add_option("--base-radius", g.pov.base_radius, "POV-Ray: branch radius at a strand's start, in spacings, "
-                                                     "[0.001, 1000]")
-      ->capture_default_str()->group(outputs);
-  app.add_option("--tip-radius", g.pov.tip_radius, "POV-Ray: branch radius at a strand's tip, in spacings, "
-                                                   "[0.001, 1000]")
-      ->capture_default_str()->group(outputs);
+  app.add_option("--formats", formats, "files to write, a comma list of pov, csv, ply, json, glb, obj, tips "
+                                      "(PREFIX_tips.ply) and svg (2D)")->capture_default_str()->group(outputs);
+
+  const char* looks = "Look";
+  CLI::Option* radius_option =
+      app.add_option("--radius", radius_model, "branch thickness: taper, pipe, boundary (needs a mesh), "
+                                               "seed-distance or uniform; with a mesh, default pipe")
+          ->capture_default_str()->group(looks);
+  CLI::Option* base_radius_option =
+      app.add_option("--base-radius", g.look.radius.base_radius, "the thickest branch's radius, in spacings, "
+                                                                 "[0.001, 1000]; with a mesh, default 3")
+          ->capture_default_str()->group(looks);
+  CLI::Option* tip_radius_option =
+      app.add_option("--tip-radius", g.look.radius.tip_radius, "the finest branch's radius, in spacings, "
+                                                               "[0.001, 1000]; with a mesh, default 0.05")
+          ->capture_default_str()->group(looks);
+  app.add_option("--pipe-exponent", g.look.radius.pipe_exponent, "pipe: e in r = tip * (descendants + 1)^(1/e), "
+                                                                  "[1, 10]; 2 keeps the area, 3 is Murray's law")
+      ->capture_default_str()->group(looks);
+  app.add_option("--color-by", color_by, "colour the glb, obj, svg and POV-Ray scene by none, age, depth, "
+                                         "seed or distance (to the mesh, or to the seeds)")
+      ->capture_default_str()->group(looks);
+  app.add_option("--look", pov_style, "POV-Ray: branches (sphere sweeps) or blob (metaballs)")
+      ->capture_default_str()->group(looks);
+  app.add_option("--tube-sides", g.look.tubes.sides, "glb, obj: vertices around a tube, 3-64")
+      ->capture_default_str()->group(looks);
+  app.add_option("--tube-tolerance", g.look.tubes.tolerance, "glb, obj: leave out strand points the tube "
+                                                             "passes within this of, in spacings, [0, 10]")
+      ->capture_default_str()->group(looks);
+  app.add_option("--tube-min-branch", g.look.tubes.min_branch, "glb, obj: leave out branches of fewer particles "
+                                                                "(counting all that grow from them), 1-1000")
+      ->capture_default_str()->group(looks);
+  app.add_option("--instances", instance_set, "tips: which particles are instancing points, tips or all")
+      ->capture_default_str()->group(looks);
+  app.add_option("--tips-within", g.instances.within, "tips: only points within this of the mesh's "
+                                                      "surface, in spacings, >= 0")->group(looks);
   CLI::Option* up_option =
       app.add_option("--up", up, "POV-Ray: the axis that is up in the picture, x, y or z; with a mesh, "
                                  "default: its longest side's")->capture_default_str()->group(outputs);
@@ -199,6 +254,32 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   options.spawn_axis = parse_axis(spawn_axis);
   options.index = parse_index_kind(index);
   g.pov.up = parse_axis(up);
+  g.pov.style = parse_pov_style(pov_style);
+  g.look.radius.model = parse_radius_model(radius_model);
+  g.look.color_by = parse_color_by(color_by);
+  g.instances.set = parse_instance_set(instance_set);
+  g.formats = parse_formats(formats);
+  g.particles_given = particles_option->count() > 0;
+  g.radius_given = radius_option->count() > 0;
+  g.base_radius_given = base_radius_option->count() > 0;
+  g.tip_radius_given = tip_radius_option->count() > 0;
+  if (!g.mesh_path.empty()) {
+    // Inside a mesh, a root system: enough particles to fill a bust at the default spacing,
+    // thick trunks and fine tips (docs/look.md shows the main job's picture).
+    if (!g.particles_given) options.particles = kMeshParticles;
+    if (!g.radius_given) g.look.radius.model = RadiusModel::pipe;
+    if (!g.base_radius_given) g.look.radius.base_radius = kMeshBaseRadius;
+    if (!g.tip_radius_given) g.look.radius.tip_radius = kMeshTipRadius;
+  }
+  validate(g.look);
+  validate(g.instances);
+  if (g.formats.svg && options.dimensions != 2)
+    throw InvalidInput("--formats svg draws 2D growth: add --dimensions 2, or leave svg out");
+  if (g.mesh_path.empty()) {
+    if (g.look.radius.model == RadiusModel::boundary)
+      throw InvalidInput("--radius boundary measures to a constraint mesh: give one with --stl");
+    if (app.count("--tips-within")) throw InvalidInput("--tips-within measures to a constraint mesh: give one with --stl");
+  }
   if (!box.empty()) {
     const std::vector<double> b = parse_numbers("--box", box, 6);
     options.spawn_box = Box{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}};
@@ -207,7 +288,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   if (!drift.empty()) options.drift = parse_vec3("--drift", drift);
   if (g.output.empty()) throw InvalidInput("--output is empty");
   if (g.output.back() == '/') throw InvalidInput("--output '" + g.output + "' names a folder, not a file prefix");
-  validate_pov_prefix(g.output);
+  if (g.formats.pov) validate_pov_prefix(g.output);
   g.constraint.side = parse_side(side);
   g.constraint.mode = parse_constraint_mode(constraint_mode);
   g.spacing_given = spacing->count() > 0;
@@ -217,7 +298,6 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   if (g.mesh_path.empty() && seeds_option->count())
     throw InvalidInput("--seeds places seeds in a mesh given with --stl; without one, use --seed-at");
   if (seeds_option->count() && g.seed_count == 0) throw InvalidInput("--seeds 0: there must be a seed");
-  validate(g.pov);
   if (g.mesh_path.empty()) {
     validate(options);
     if (options.spawn == SpawnMode::inside || options.spawn == SpawnMode::radial)

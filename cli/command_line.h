@@ -3,6 +3,8 @@
 // and the CLI fuzzer (tests/fuzz/cli_fuzz.cpp) drives it with arbitrary words.
 
 #include "dla/constraint.h"
+#include "dla/instances.h"
+#include "dla/look.h"
 #include "dla/options.h"
 #include "dla/pov_writer.h"
 
@@ -12,10 +14,23 @@
 
 namespace dla::cli {
 
+//! Defaults with a mesh (--stl) that differ from those without one.
+inline constexpr std::size_t kMeshParticles = 40000;
+inline constexpr double kMeshBaseRadius = 3.0, kMeshTipRadius = 0.05;
+
+//! The files a run writes (`--formats`), each as PREFIX.EXT (tips: PREFIX_tips.ply).
+struct Formats {
+  bool pov = true, csv = true, ply = true, json = true;
+  bool glb = false, obj = false, tips = false, svg = false;
+};
+
 //! `dla3d [options]`: grow a structure and write its files.
 struct GrowCommand {
   GrowthOptions options;
   PovOptions pov;
+  LookOptions look;
+  InstanceOptions instances;
+  Formats formats;
   std::string output = "dla";          //!< prefix of the files written
   bool quiet = false;
   bool binary_ply = false;             //!< PLY as binary_little_endian rather than ASCII
@@ -27,6 +42,7 @@ struct GrowCommand {
   double checkpoint_every = 60.0;      //!< seconds
   // Options whose default comes from the mesh when they are not given.
   bool spacing_given = false, up_given = false, spawn_given = false, seeds_given = false;
+  bool particles_given = false, radius_given = false, base_radius_given = false, tip_radius_given = false;
 };
 
 //! What the command line asks for.

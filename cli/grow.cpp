@@ -6,9 +6,12 @@
 #include "dla/constraint.h"
 #include "dla/csv_writer.h"
 #include "dla/mesh.h"
+#include "dla/mesh_writers.h"
 #include "dla/ply_writer.h"
 #include "dla/pov_writer.h"
 #include "dla/run_report.h"
+#include "dla/surface_distance.h"
+#include "dla/svg_writer.h"
 
 #include <malloc.h>
 #include <unistd.h>
@@ -93,9 +96,9 @@ void check_memory(std::size_t particles) {
                        detail::format_number(memory / 1e9) + " GB");
 }
 
-//! A spacing of about a two-hundredth of the mesh box's longest side, rounded to two digits.
+//! A spacing of about a hundredth of the mesh box's longest side, rounded to two digits.
 double default_spacing(const Box& box) {
-  const double raw = (box.max - box.min).maxCoeff() / 200.0;
+  const double raw = (box.max - box.min).maxCoeff() / 100.0;
   const double unit = std::pow(10.0, std::floor(std::log10(raw)) - 1.0);
   return std::round(raw / unit) * unit;
 }
@@ -127,6 +130,24 @@ std::string command_line(const std::vector<std::string>& args) {
   return line;
 }
 
+//! The files the run writes, in --formats order, for the summary line.
+std::vector<std::string> file_names(const GrowCommand& command) {
+  const Formats& f = command.formats;
+  const std::string& o = command.output;
+  std::vector<std::string> names;
+  if (f.pov) names.insert(names.end(), {o + ".pov", o + ".inc"});
+  if (f.csv) names.push_back(o + ".csv");
+  if (f.ply) names.push_back(o + ".ply");
+  if (f.glb) names.push_back(o + ".glb");
+  if (f.obj) names.push_back(o + ".obj");
+  if (f.tips) names.push_back(o + "_tips.ply");
+  if (f.svg) names.push_back(o + ".svg");
+  if (f.json) names.push_back(o + ".json");
+  return names;
+}
+
+std::string first_file(const GrowCommand& command) { return file_names(command).front(); }
+
 const char* signal_name(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal"; }
 
 }  // namespace
@@ -139,7 +160,7 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
   std::unique_ptr<MeshConstraint> constraint;
   std::uint64_t input_hash = 0;
   {
-    check_writable(output + ".json");  // before a mesh's set-up and a long run
+    check_writable(first_file(command));  // before a mesh's set-up and a long run
     if (!command.checkpoint_path.empty()) check_writable(command.checkpoint_path);
     if (!command.mesh_path.empty()) {
       const TriangleMesh mesh = read_mesh(command.mesh_path, &input_hash);
@@ -216,16 +237,34 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
   const Clock::time_point write_start = Clock::now();
   // The index is gone: its memory goes back to the system before the writers take theirs.
   malloc_trim(0);
+  const Formats& formats = command.formats;
+  const PlyEncoding encoding = command.binary_ply ? PlyEncoding::binary : PlyEncoding::ascii;
+  const Look look = [&] {
+    // The distance to the mesh feeds the boundary model and the scene's switch to it.
+    const std::unique_ptr<SurfaceDistance> surface =
+        constraint ? std::make_unique<SurfaceDistance>(constraint->mesh()) : nullptr;
+    return make_look(cluster, command.look, {surface.get(), nullptr, options.threads});
+  }();
   // The files are independent: written at once, a thread each, the same bytes as one by one.
-  std::future<void> csv = std::async(std::launch::async, [&] { write_csv(cluster, output + ".csv"); });
-  std::future<void> ply = std::async(std::launch::async, [&] {
-    write_ply(cluster, output + ".ply", command.binary_ply ? PlyEncoding::binary : PlyEncoding::ascii);
+  std::vector<std::future<void>> writers;
+  const auto write = [&](bool wanted, auto&& writer) {
+    if (wanted) writers.push_back(std::async(std::launch::async, writer));
+  };
+  write(formats.csv, [&] { write_csv(cluster, look, output + ".csv"); });
+  write(formats.ply, [&] { write_ply(cluster, look, output + ".ply", encoding); });
+  write(formats.glb, [&] { write_glb(cluster, look, output + ".glb"); });
+  write(formats.obj, [&] { write_obj(cluster, look, output + ".obj"); });
+  write(formats.tips, [&] {
+    write_instances_ply(look.attributes, instancing_points(cluster, look.attributes, command.instances),
+                        output + "_tips.ply", encoding);
   });
-  write_pov(cluster, output, pov, constraint && command.scene_mesh ? &constraint->mesh() : nullptr);
-  csv.get();
-  ply.get();
+  write(formats.svg, [&] { write_svg(cluster, look, output + ".svg"); });
+  if (formats.pov)
+    write_pov(cluster, output, pov, constraint && command.scene_mesh ? &constraint->mesh() : nullptr, &look);
+  for (std::future<void>& writer : writers) writer.get();
   record.write_seconds = std::chrono::duration<double>(Clock::now() - write_start).count();
-  write_run_report(cluster, options, pov, record, output + ".json", constraint.get(), command.mesh_path);
+  if (formats.json)
+    write_run_report(cluster, options, command.look, pov, record, output + ".json", constraint.get(), command.mesh_path);
   if (!cluster.complete) save(cluster);  // after the files: they matter more
 
   const std::string resume_hint =
@@ -238,14 +277,16 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
   }
   if (!command.quiet) {
     const double count = static_cast<double>(attached(cluster));
+    std::string written;
+    for (const std::string& name : file_names(command)) written += (written.empty() ? "" : " ") + name;
+    const std::string render = formats.pov ? "; render: povray +W1280 +H960 +A " + output + ".pov" : "";
     std::fprintf(stderr,
                  "dla3d: grew %s particles in %.2f s (%s particles/s); bounding radius %.1f, "
                  "radius of gyration %.1f\n"
-                 "dla3d: wrote %s.pov %s.inc %s.csv %s.ply %s.json; render: povray +W1280 +H960 +A %s.pov\n",
+                 "dla3d: wrote %s%s\n",
                  grown.c_str(), record.grow_seconds,
                  with_commas(record.grow_seconds > 0 ? count / record.grow_seconds : 0.0).c_str(),
-                 bounding_radius(cluster), radius_of_gyration(cluster), output.c_str(), output.c_str(),
-                 output.c_str(), output.c_str(), output.c_str(), output.c_str());
+                 bounding_radius(cluster), radius_of_gyration(cluster), written.c_str(), render.c_str());
   }
   if (!cluster.complete) {
     std::fprintf(stderr, "dla3d: stopped by %s after %s of %s particles; the files hold them%s\n",

@@ -13,20 +13,23 @@ namespace dla {
 
 namespace {
 
-//! The six numbers of a row, or false if it is not six comma-separated numbers.
-bool parse_row(std::string_view line, std::array<double, 6>& values) {
+//! The first six numbers of a row of `columns` comma-separated fields (the columns after the
+//! sixth, a look's attributes, are not read), or false if the row is not that.
+bool parse_row(std::string_view line, std::array<double, 6>& values, std::size_t columns) {
   std::size_t field = 0;
   for (;;) {
     const std::size_t comma = line.find(',');
     const std::string_view item = line.substr(0, comma);
-    if (field == values.size() || item.empty()) return false;
-    const auto [end, error] = std::from_chars(item.data(), item.data() + item.size(), values[field]);
-    if (error != std::errc() || end != item.data() + item.size()) return false;
+    if (field == columns || item.empty()) return false;
+    if (field < values.size()) {
+      const auto [end, error] = std::from_chars(item.data(), item.data() + item.size(), values[field]);
+      if (error != std::errc() || end != item.data() + item.size()) return false;
+    }
     ++field;
     if (comma == std::string_view::npos) break;
     line.remove_prefix(comma + 1);
   }
-  return field == values.size();
+  return field == columns;
 }
 
 }  // namespace
@@ -39,8 +42,10 @@ Cluster parse_csv(std::string_view text, const std::string& name) {
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     return line;
   };
-  if (next_line().rfind("id,x,y,z,parent,seed", 0) != 0)
+  const std::string_view header = next_line();
+  if (header != "id,x,y,z,parent,seed" && header.rfind("id,x,y,z,parent,seed,", 0) != 0)
     throw InvalidInput(name + ": is not a dla3d CSV (no 'id,x,y,z,parent,seed' header)");
+  const auto columns = static_cast<std::size_t>(std::count(header.begin(), header.end(), ',')) + 1;
   Cluster cluster;
   cluster.dimensions = 2;
   std::vector<double> lengths;
@@ -48,7 +53,9 @@ Cluster parse_csv(std::string_view text, const std::string& name) {
     const std::string_view line = next_line();
     if (line.empty()) continue;
     std::array<double, 6> v{};
-    if (!parse_row(line, v)) throw InvalidInput(name + ": line " + std::to_string(row) + " is not 6 numbers");
+    if (!parse_row(line, v, columns))
+      throw InvalidInput(name + ": line " + std::to_string(row) + " is not " + std::to_string(columns) +
+                         " fields, the first 6 numbers");
     const auto index = static_cast<double>(cluster.particles.size());
     const Vec3 position(v[1], v[2], v[3]);
     // Compared as doubles before any conversion: a parent of 1e300 is refused, not cast.

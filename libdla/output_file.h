@@ -66,6 +66,14 @@ class OutputFile {
     for (int i = places - 1; i >= 0; --i, fraction /= 10) text[i] = static_cast<char>('0' + fraction % 10);
     return *this << '.' << std::string_view(text, static_cast<std::size_t>(places));
   }
+  //! `value`'s bytes, little-endian (the only byte order dla3d builds for), for binary formats.
+  template <class T>
+  OutputFile& raw(T value) {
+    static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "binary files are written little-endian");
+    char bytes[sizeof value];
+    std::memcpy(bytes, &value, sizeof value);
+    return *this << std::string_view(bytes, sizeof value);
+  }
   OutputFile& integer(long long value) {
     char text[24];
     const auto end = std::to_chars(text, text + sizeof text, value);

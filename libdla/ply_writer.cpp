@@ -3,60 +3,94 @@
 #include "dla/version.h"
 #include "output_file.h"
 
-#include <cstring>
+#include <algorithm>
 
 namespace dla {
 
 namespace {
 
-//! Appends `value`'s bytes, little-endian (the only byte order dla3d builds for).
-template <class T>
-void put(detail::OutputFile& out, T value) {
-  static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "binary PLY is written little-endian");
-  char bytes[sizeof value];
-  std::memcpy(bytes, &value, sizeof value);
-  out << std::string_view(bytes, sizeof value);
+void header(detail::OutputFile& out, PlyEncoding encoding) {
+  out << "ply\nformat " << (encoding == PlyEncoding::binary ? "binary_little_endian" : "ascii")
+      << " 1.0\ncomment dla3d " << version << '\n';
 }
 
 }  // namespace
 
-void write_ply(const Cluster& cluster, const std::string& path, PlyEncoding encoding) {
+void write_ply(const Cluster& cluster, const Look& look, const std::string& path, PlyEncoding encoding) {
   const auto& ps = cluster.particles;
+  const Attributes& a = look.attributes;
   const bool binary = encoding == PlyEncoding::binary;
   detail::OutputFile out(path);
-  out << "ply\nformat " << (binary ? "binary_little_endian" : "ascii") << " 1.0\ncomment dla3d " << version << '\n';
-  out << "element vertex ";
+  header(out, encoding);
+  out << "comment radius in scene units, by the " << to_string(look.options.radius.model)
+      << " model; order is the Strahler order; tip is 1 for a particle with no child\n"
+         "element vertex ";
   out.integer(static_cast<long long>(ps.size()));
-  out << "\nproperty float x\nproperty float y\nproperty float z\n"
-         "property int parent\nproperty int seed\n";
+  out << "\nproperty float x\nproperty float y\nproperty float z\nproperty float radius\nproperty float age\n"
+         "property int depth\nproperty int descendants\nproperty uchar order\nproperty uchar tip\n"
+         "property int seed\nproperty int parent\n";
   out << "element edge ";
   out.integer(static_cast<long long>(ps.size() - cluster.seed_count));
   out << "\nproperty int vertex1\nproperty int vertex2\nend_header\n";
-  if (binary) {
-    for (const Particle& p : ps) {
-      for (int a = 0; a < 3; ++a) put(out, static_cast<float>(p.position[a]));
-      put(out, p.parent);
-      put(out, p.seed);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const Particle& p = ps[i];
+    const std::uint8_t order = a.strahler[i];
+    const std::uint8_t tip = a.tip(i) ? 1 : 0;
+    if (binary) {
+      for (int axis = 0; axis < 3; ++axis) out.raw(static_cast<float>(p.position[axis]));
+      out.raw(static_cast<float>(look.radii[i])).raw(a.age(i)).raw(a.depth[i]).raw(a.descendants[i]);
+      out.raw(order).raw(tip).raw(p.seed).raw(p.parent);
+      continue;
     }
-    for (std::size_t i = 0; i < ps.size(); ++i) {
-      if (ps[i].parent < 0) continue;
-      put(out, ps[i].parent);
-      put(out, static_cast<std::int32_t>(i));
-    }
-    out.commit();
-    return;
-  }
-  for (const Particle& p : ps) {
-    out.number(p.position.x(), 9) << ' ';
-    out.number(p.position.y(), 9) << ' ';
-    out.number(p.position.z(), 9) << ' ';
-    out.integer(p.parent) << ' ';
-    out.integer(p.seed) << '\n';
+    for (int axis = 0; axis < 3; ++axis) out.number(p.position[axis], 9) << ' ';
+    out.number(look.radii[i], 7) << ' ';
+    out.number(a.age(i), 7) << ' ';
+    out.integer(a.depth[i]) << ' ';
+    out.integer(a.descendants[i]) << ' ';
+    out.integer(order) << ' ';
+    out.integer(tip) << ' ';
+    out.integer(p.seed) << ' ';
+    out.integer(p.parent) << '\n';
   }
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (ps[i].parent < 0) continue;
+    if (binary) {
+      out.raw(ps[i].parent).raw(static_cast<std::int32_t>(i));
+      continue;
+    }
     out.integer(ps[i].parent) << ' ';
     out.integer(static_cast<long long>(i)) << '\n';
+  }
+  out.commit();
+}
+
+void write_ply(const Cluster& cluster, const std::string& path, PlyEncoding encoding) {
+  write_ply(cluster, make_look(cluster, {}), path, encoding);
+}
+
+void write_instances_ply(const Attributes& attributes, const std::vector<Instance>& instances, const std::string& path, PlyEncoding encoding) {
+  const bool binary = encoding == PlyEncoding::binary;
+  detail::OutputFile out(path);
+  header(out, encoding);
+  out << "comment instancing points: N is the direction from the parent, pscale the largest scale at which\n"
+         "comment unit-radius copies do not overlap, id the particle's index in the structure\n"
+         "element vertex ";
+  out.integer(static_cast<long long>(instances.size()));
+  out << "\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\nproperty float ny\n"
+         "property float nz\nproperty float pscale\nproperty float age\nproperty int id\nend_header\n";
+  for (const Instance& instance : instances) {
+    const float age = attributes.age(static_cast<std::size_t>(instance.particle));
+    if (binary) {
+      for (int axis = 0; axis < 3; ++axis) out.raw(static_cast<float>(instance.position[axis]));
+      for (int axis = 0; axis < 3; ++axis) out.raw(static_cast<float>(instance.direction[axis]));
+      out.raw(static_cast<float>(instance.scale)).raw(age).raw(instance.particle);
+      continue;
+    }
+    for (int axis = 0; axis < 3; ++axis) out.number(instance.position[axis], 9) << ' ';
+    for (int axis = 0; axis < 3; ++axis) out.fixed(instance.direction[axis], 6) << ' ';
+    out.number(instance.scale, 7) << ' ';
+    out.number(age, 7) << ' ';
+    out.integer(instance.particle) << '\n';
   }
   out.commit();
 }

@@ -1,5 +1,6 @@
 #include "dla/pov_writer.h"
 
+#include "dla/instances.h"
 #include "dla/strands.h"
 #include "dla/version.h"
 #include "output_file.h"
@@ -82,12 +83,38 @@ std::pair<Vec3, double> bounding_sphere(const Cluster& cluster, const TriangleMe
   return {center, std::sqrt(r2)};
 }
 
+//! Vertex normals, each the area-weighted mean of its triangles': the glass is smooth, not
+//! faceted. A vertex whose triangles cancel out gets its first triangle's normal.
+std::vector<Vec3> vertex_normals(const TriangleMesh& mesh) {
+  std::vector<Vec3> normals(mesh.vertices.size(), Vec3::Zero()), fallback(mesh.vertices.size(), Vec3::Zero());
+  for (const auto& t : mesh.triangles) {
+    const Vec3 n = (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]);
+    for (const std::uint32_t v : t) {
+      normals[v] += n;
+      if (fallback[v].squaredNorm() == 0.0) fallback[v] = n;
+    }
+  }
+  for (std::size_t v = 0; v < normals.size(); ++v) {
+    if (normals[v].squaredNorm() == 0.0) normals[v] = fallback[v];
+    normals[v] = normals[v].squaredNorm() > 0.0 ? normals[v].normalized() : Vec3::UnitZ();
+  }
+  return normals;
+}
+
 void write_mesh(detail::OutputFile& out, const TriangleMesh& mesh, const SceneFrame& frame) {
   out << "#declare DLA_Mesh = mesh2 {\n  vertex_vectors { ";
   out.integer(static_cast<long long>(mesh.vertices.size()));
   for (const Vec3& v : mesh.vertices) {
     out << ",\n    ";
     vector(out, v, frame);
+  }
+  out << " }\n  normal_vectors { ";
+  out.integer(static_cast<long long>(mesh.vertices.size()));
+  for (const Vec3& n : vertex_normals(mesh)) {
+    out << ",\n    <";
+    out.fixed(n.x(), 5) << ", ";
+    out.fixed(n.y(), 5) << ", ";
+    out.fixed(n.z(), 5) << '>';
   }
   out << " }\n  face_indices { ";
   out.integer(static_cast<long long>(mesh.triangles.size()));
@@ -100,44 +127,130 @@ void write_mesh(detail::OutputFile& out, const TriangleMesh& mesh, const SceneFr
   out << " }\n}\n";
 }
 
-void write_geometry(const Cluster& cluster, const TriangleMesh* mesh, const SceneFrame& frame,
-                    const std::string& path) {
+//! Writes the arguments of DLA_R for particle i: its place along its strand, its subtree's
+//! size, and its distances to the mesh and to the seeds as fractions of the largest.
+class RadiusArguments {
+ public:
+  RadiusArguments(const Look& look)
+      : look_(look), boundary_reach_(largest(look.attributes.boundary_distance)),
+        seed_reach_(largest(look.attributes.seed_distance)) {}
+
+  void operator()(detail::OutputFile& out, std::size_t i) const {
+    const Attributes& a = look_.attributes;
+    out << "DLA_R(";
+    out.fixed(a.taper[i], 4) << ", ";
+    out.integer(a.descendants[i] + 1) << ", ";
+    out.fixed(boundary_reach_ > 0 ? a.boundary_distance[i] / boundary_reach_ : 0.0, 3) << ", ";
+    out.fixed(seed_reach_ > 0 ? a.seed_distance[i] / seed_reach_ : 0.0, 3) << ')';
+  }
+
+ private:
+  const Look& look_;
+  double boundary_reach_, seed_reach_;
+};
+
+void write_geometry(const Cluster& cluster, const TriangleMesh* mesh, const SceneFrame& frame, const Look& look,
+                    const PovOptions& options, const std::string& path) {
+  const auto& ps = cluster.particles;
+  const RadiusArguments radius(look);
+  const bool colored = look.options.color_by != ColorBy::none;
+  const ColorScale color(cluster, look.attributes, look.options.color_by);
+  const auto paint = [&](detail::OutputFile& out, std::size_t i) {
+    if (!colored) return;
+    out << " texture { DLA_Paint(";
+    out.fixed(color(i), 4) << ") }";
+  };
   detail::OutputFile out(path);
   out << "// dla3d " << version << " geometry: ";
-  out.integer(static_cast<long long>(cluster.particles.size())) << " particles in ";
+  out.integer(static_cast<long long>(ps.size())) << " particles in ";
   out.integer(static_cast<long long>(count_strands(cluster)))
-      << " strands.\n// Declares DLA_Structure" << (mesh ? " and DLA_Mesh" : "")
-      << "; uses DLA_R and DLA_BaseRadius from the .pov.\n";
+      << " strands.\n// Declares DLA_Structure, DLA_Tips" << (mesh ? " and DLA_Mesh" : "")
+      << "; uses DLA_R" << (options.style == PovStyle::blob ? ", DLA_BlobRadius" : "")
+      << (colored ? ", DLA_Paint" : "") << " and DLA_Tip from the .pov.\n"
+      << "// DLA_R(F, P, B, S): F the place along the strand (1 at its start, 0 at its tip), P the particles\n"
+         "// in the subtree, B and S the distances to the mesh and to the seeds (1: the largest).\n";
   if (mesh) write_mesh(out, *mesh, frame);
-  out << "#declare DLA_Structure = union {\n";
-  for (std::size_t s = 0; s < cluster.seed_count; ++s) {
-    out << "  sphere { ";
-    vector(out, cluster.particles[s].position, frame);
-    out << ", DLA_BaseRadius }\n";
-  }
-  for_each_strand(cluster, [&](const Strand& strand) {
-    if (strand.size() < 2) return;  // a lone seed: its sphere is above
-    out << "  sphere_sweep { linear_spline, ";
-    out.integer(static_cast<long long>(strand.size())) << ",\n";
-    const double last = static_cast<double>(strand.size() - 1);
-    for (std::size_t i = 0; i < strand.size(); ++i) {
-      out << "    ";
-      vector(out, cluster.particles[static_cast<std::size_t>(strand[i])].position, frame);
-      out << ", DLA_R(";
-      out.fixed(1.0 - static_cast<double>(i) / last, 4) << ")\n";
+  if (options.style == PovStyle::blob) {
+    out << "#declare DLA_Structure = blob {\n  threshold DLA_BlobThreshold\n";
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      out << "  sphere { ";
+      vector(out, ps[i].position, frame);
+      out << ", DLA_BlobRadius(";
+      radius(out, i);
+      out << "), 1";
+      paint(out, i);
+      out << " }\n";
     }
-    out << "  }\n";
-  });
-  out << "}\n";
+    out << "}\n";
+  } else {
+    out << "#declare DLA_Structure = union {\n";
+    for (std::size_t s = 0; s < cluster.seed_count; ++s) {
+      out << "  sphere { ";
+      vector(out, ps[s].position, frame);
+      out << ", ";
+      radius(out, s);
+      paint(out, s);
+      out << " }\n";
+    }
+    std::vector<bool> seed_started(cluster.seed_count, false);
+    for_each_strand(cluster, [&](const Strand& strand) {
+      if (strand.size() < 2) return;  // a lone seed: its sphere is above
+      const auto first = static_cast<std::size_t>(strand[0]), next = static_cast<std::size_t>(strand[1]);
+      const bool own_start = first < cluster.seed_count && !seed_started[first];
+      if (own_start) seed_started[first] = true;
+      out << "  sphere_sweep { linear_spline, ";
+      out.integer(static_cast<long long>(strand.size())) << ",\n    ";
+      vector(out, ps[first].position, frame);
+      // A strand leaving a branch point starts inside its parent's branch (as the tubes do).
+      if (own_start) {
+        out << ", ";
+        radius(out, first);
+      } else {
+        out << ", min(";
+        radius(out, first);
+        out << ", ";
+        radius(out, next);
+        out << ')';
+      }
+      out << '\n';
+      for (std::size_t k = 1; k < strand.size(); ++k) {
+        out << "    ";
+        vector(out, ps[static_cast<std::size_t>(strand[k])].position, frame);
+        out << ", ";
+        radius(out, static_cast<std::size_t>(strand[k]));
+        out << '\n';
+      }
+      if (colored) {
+        out << "   ";
+        paint(out, own_start ? first : next);
+        out << '\n';
+      }
+      out << "  }\n";
+    });
+    out << "}\n";
+  }
+  // Every tip, with the largest scale at which copies do not overlap (instances.h).
+  const std::vector<Instance> tips = instancing_points(cluster, look.attributes, {});
+  out << "#declare DLA_TipCount = ";
+  out.integer(static_cast<long long>(tips.size())) << ";\n";
+  if (!tips.empty()) {
+    // POV-Ray warns about a union of one object.
+    out << "#declare DLA_Tips = " << (tips.size() > 1 ? "union" : "object") << " {\n";
+    for (const Instance& tip : tips) {
+      out << "  DLA_Tip(";
+      vector(out, tip.position, frame);
+      out << ", <";
+      out.fixed(tip.direction.x(), 5) << ", ";
+      out.fixed(tip.direction.y(), 5) << ", ";
+      out.fixed(tip.direction.z(), 5) << ">, ";
+      out.number(tip.scale * frame.scale, 6) << ")\n";
+    }
+    out << "}\n";
+  }
   out.commit();
 }
 
 }  // namespace
-
-void validate(const PovOptions& options) {
-  detail::require_in("base radius", options.base_radius, kMinBranchRadius, kMaxBranchRadius);
-  detail::require_in("tip radius", options.tip_radius, kMinBranchRadius, kMaxBranchRadius);
-}
 
 void validate_pov_prefix(const std::string& prefix) {
   const std::string name = file_name(prefix);
@@ -148,15 +261,18 @@ void validate_pov_prefix(const std::string& prefix) {
 }
 
 void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptions& options,
-               const TriangleMesh* mesh) {
-  validate(options);
+               const TriangleMesh* mesh, const Look* given_look) {
   validate_pov_prefix(prefix);
+  const Look look = given_look ? Look{} : make_look(cluster, {});
+  const Look& used = given_look ? *given_look : look;
+  const RadiusOptions& radius = used.options.radius;
   const std::string include = prefix + ".inc";
-  const auto [center, radius] = bounding_sphere(cluster, mesh);
+  const auto [center, extent] = bounding_sphere(cluster, mesh);
   const SceneFrame frame = scene_frame(cluster.spacing, center);
-  write_geometry(cluster, mesh, frame, include);
+  write_geometry(cluster, mesh, frame, used, options, include);
 
-  const double base = options.base_radius * cluster.spacing * frame.scale;
+  const double unit = cluster.spacing * frame.scale;  // a spacing in scene units
+  const bool colored = used.options.color_by != ColorBy::none;
   detail::OutputFile out(prefix + ".pov");
   if (!options.comment.empty()) out << "// " << comment_text(options.comment) << '\n';
   out << "// dla3d " << version << " scene: ";
@@ -175,22 +291,68 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
     out.number(frame.shift.z()) << ">;\n\n";
   }
   out << "// The look: change these and render again, no need to grow again.\n"
+         "#declare DLA_RadiusModel = \"" << to_string(radius.model)
+      << "\";  // taper, pipe, boundary, seed-distance or uniform (docs/look.md)\n"
          "#declare DLA_BaseRadius = ";
-  out.number(base, 7) << ";  // radius at each strand's start\n#declare DLA_TipRadius = ";
-  out.number(options.tip_radius * cluster.spacing * frame.scale, 7)
-      << ";  // radius at each strand's tip\n"
+  out.number(radius.base_radius * unit, 7) << ";  // the thickest branch\n#declare DLA_TipRadius = ";
+  out.number(radius.tip_radius * unit, 7) << ";  // the finest branch\n#declare DLA_PipeExponent = ";
+  out.number(radius.pipe_exponent, 7) << ";  // pipe: 2 keeps the area, about 3 is Murray's law\n"
+         "#declare DLA_Finish = finish { ambient 0.06 diffuse 0.8 specular 0.4 roughness 0.015 }\n"
          "#declare DLA_Texture = texture {\n"
          "  pigment { color rgb <0.90, 0.80, 0.62> }\n"
-         "  finish { ambient 0.06 diffuse 0.8 specular 0.4 roughness 0.015 }\n"
+         "  finish { DLA_Finish }\n"
          "}\n"
-         "#declare DLA_Background = rgb <0.04, 0.05, 0.07>;\n";
+         "#declare DLA_Background = rgb <0.04, 0.05, 0.07>;\n"
+         "#declare DLA_ShowTips = off;  // on: show DLA_Tip at every tip (a small sphere, or your leaf)\n"
+         "#declare DLA_TipTexture = DLA_Texture;\n";
+  if (options.style == PovStyle::blob)
+    out << "#declare DLA_BlobThreshold = 0.5;  // metaballs: lower merges more\n"
+           "#declare DLA_BlobRadius = function(R) { 2 * R + ";
+  if (options.style == PovStyle::blob) out.number(0.5 * unit, 7) << " }  // a sphere's reach from its branch radius\n";
   if (mesh)
     out << "#declare DLA_ShowMesh = on;  // the constraint mesh, as glass\n"
            "#declare DLA_MeshTexture = texture {\n"
            "  pigment { color rgbt <0.80, 0.90, 1.0, 0.92> }\n"
            "  finish { ambient 0.04 diffuse 0.12 specular 0.6 roughness 0.004 reflection 0.03 }\n"
            "}\n";
-  out << "#declare DLA_R = function(F) { DLA_TipRadius + (DLA_BaseRadius - DLA_TipRadius) * F }\n\n"
+  if (colored) {
+    out << "// Colour by " << to_string(used.options.color_by) << ": the value in [0, 1] through this map (viridis).\n"
+           "#declare DLA_Colors = array[" << std::to_string(kColorStops.size()) << "] {\n";
+    for (std::size_t k = 0; k < kColorStops.size(); ++k) {
+      out << "  <";
+      out.fixed(kColorStops[k][0], 4) << ", ";
+      out.fixed(kColorStops[k][1], 4) << ", ";
+      out.fixed(kColorStops[k][2], 4) << '>' << (k + 1 < kColorStops.size() ? ",\n" : "\n");
+    }
+    out << "}\n"
+           "#macro DLA_Paint(V)\n"
+           "  #local X = min(max(V, 0), 1) * (dimension_size(DLA_Colors, 1) - 1);\n"
+           "  #local K = min(floor(X), dimension_size(DLA_Colors, 1) - 2);\n"
+           "  pigment { color rgb DLA_Colors[K] + (DLA_Colors[K + 1] - DLA_Colors[K]) * (X - K) }\n"
+           "  finish { DLA_Finish }\n"
+           "#end\n";
+  }
+  out << "\n// Radius of a branch point: F its place along its strand (1 at the start), P the particles\n"
+         "// in its subtree, B and S its distances to the mesh and to the seeds (1: the largest).\n"
+         "#if (strcmp(DLA_RadiusModel, \"taper\") = 0)\n"
+         "  #declare DLA_R = function(F, P, B, S) { DLA_TipRadius + (DLA_BaseRadius - DLA_TipRadius) * F }\n"
+         "#elseif (strcmp(DLA_RadiusModel, \"pipe\") = 0)\n"
+         "  #declare DLA_R = function(F, P, B, S) { min(DLA_TipRadius * pow(P, 1 / DLA_PipeExponent), "
+         "max(DLA_BaseRadius, DLA_TipRadius)) }\n"
+         "#elseif (strcmp(DLA_RadiusModel, \"boundary\") = 0)\n"
+         "  #declare DLA_R = function(F, P, B, S) { DLA_TipRadius + (DLA_BaseRadius - DLA_TipRadius) * B }\n"
+         "#elseif (strcmp(DLA_RadiusModel, \"seed-distance\") = 0)\n"
+         "  #declare DLA_R = function(F, P, B, S) { DLA_TipRadius + (DLA_BaseRadius - DLA_TipRadius) * (1 - S) }\n"
+         "#elseif (strcmp(DLA_RadiusModel, \"uniform\") = 0)\n"
+         "  #declare DLA_R = function(F, P, B, S) { DLA_BaseRadius }\n"
+         "#else\n"
+         "  #error \"DLA_RadiusModel is not taper, pipe, boundary, seed-distance or uniform\"\n"
+         "#end\n"
+         "// Called at every tip: Position, Direction (unit, from the parent) and Scale (the largest radius\n"
+         "// at which copies do not overlap). Replace it with a leaf or a flower scaled by Scale.\n"
+         "#macro DLA_Tip(Position, Direction, Scale)\n"
+         "  sphere { Position, min(Scale, 1.5 * DLA_TipRadius) }\n"
+         "#end\n\n"
          "// Framing: a sphere around the structure (and mesh), seen from DLA_View.\n"
          "#declare DLA_Center = ";
   vector(out, center, frame);
@@ -200,7 +362,9 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
                      : options.up == Axis::z ? "<0.35, 1, 0.45>"
                      : options.up == Axis::x ? "<0.45, 0.35, -1>"
                                              : "<0.35, 0.45, -1>";
-  out.number(radius * frame.scale + base, 7) << ";\n#declare DLA_View = " << view
+  const double thickest = std::max(radius.base_radius, radius.tip_radius) * unit;
+  const double reach = options.style == PovStyle::blob ? 2.0 * thickest + 0.5 * unit : thickest;
+  out.number(extent * frame.scale + reach, 7) << ";\n#declare DLA_View = " << view
                                << ";  // from the centre towards the camera\n#declare DLA_Sky = "
                                << (options.up == Axis::z ? "z" : options.up == Axis::x ? "x" : "y")
                                << ";  // up in the picture\n"
@@ -220,7 +384,8 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
          "light_source { DLA_Center + 3 * DLA_Distance * <-0.6, 1.0, -0.8> color rgb 1.0 }\n"
          "light_source { DLA_Center + 3 * DLA_Distance * <0.8, 0.3, -0.4> color rgb 0.3 shadowless }\n\n"
          "#include \""
-      << file_name(include) << "\"\nobject { DLA_Structure texture { DLA_Texture } }\n";
+      << file_name(include) << "\"\nobject { DLA_Structure texture { DLA_Texture } }\n"
+      << "#if (DLA_ShowTips & (DLA_TipCount > 0)) object { DLA_Tips texture { DLA_TipTexture } } #end\n";
   if (mesh) out << "#if (DLA_ShowMesh) object { DLA_Mesh texture { DLA_MeshTexture } no_shadow } #end\n";
   out.commit();
 }

@@ -18,8 +18,8 @@ void vector(detail::OutputFile& out, const Vec3& v) {
 
 }  // namespace
 
-void write_run_report(const Cluster& cluster, const GrowthOptions& o, const PovOptions& pov,
-                      const RunRecord& record, const std::string& path, const MeshConstraint* constraint,
+void write_run_report(const Cluster& cluster, const GrowthOptions& o, const LookOptions& look,
+                      const PovOptions& pov, const RunRecord& record, const std::string& path, const MeshConstraint* constraint,
                       const std::string& mesh_file) {
   const std::size_t attached = cluster.particles.size() - cluster.seed_count;
   detail::OutputFile out(path);
@@ -52,10 +52,14 @@ void write_run_report(const Cluster& cluster, const GrowthOptions& o, const PovO
   out << ",\n    \"drift\": ";
   vector(out, o.drift);
   out << ",\n    \"min_step\": ";
-  out.number(o.min_step) << ",\n    \"index\": \"" << to_string(o.index)
-                         << "\",\n    \"base_radius\": ";
-  out.number(pov.base_radius) << ",\n    \"tip_radius\": ";
-  out.number(pov.tip_radius) << "\n  },\n";
+  out.number(o.min_step) << ",\n    \"index\": \"" << to_string(o.index) << "\"\n  },\n";
+  out << "  \"look\": {\n    \"radius\": \"" << to_string(look.radius.model) << "\",\n    \"base_radius\": ";
+  out.number(look.radius.base_radius) << ",\n    \"tip_radius\": ";
+  out.number(look.radius.tip_radius) << ",\n    \"pipe_exponent\": ";
+  out.number(look.radius.pipe_exponent) << ",\n    \"color_by\": \"" << to_string(look.color_by)
+                                        << "\",\n    \"tube_sides\": ";
+  out.integer(look.tubes.sides) << ",\n    \"tube_tolerance\": ";
+  out.number(look.tubes.tolerance) << ",\n    \"pov_look\": \"" << to_string(pov.style) << "\"\n  },\n";
   if (constraint) {
     const RepairReport& r = constraint->repair_report();
     out << "  \"constraint\": {\n    \"mesh\": ";

@@ -13,6 +13,7 @@
 // dla3d must join the table below: the test fails on an option of --help it does not know.
 
 #include "cli_util.h"
+#include "clients.h"
 #include "test_util.h"
 
 #include "dla/checkpoint.h"
@@ -23,6 +24,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -67,8 +69,18 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--drift", {"0,0,0", "0,-0.3,0", "0.2,0,0", "0,0.9,0", "0,0,2", "nan,0,0", "0,0,0.5"}},
       {"--output", {"out", "'with space'", "'we\"ird'", "'back\\slash'", "sub/out", "''", "dir/"}},
       {"--binary", {}},
+      {"--formats", {"pov,csv,ply,json", "glb,obj,tips,json", "csv,svg,json", "json", "''", "pov,png", "glb,,obj"}},
+      {"--radius", {"taper", "pipe", "boundary", "seed-distance", "uniform", "wavy"}},
       {"--base-radius", {"0.5", "0.001", "1000", "0", "-1", "1e300"}},
       {"--tip-radius", {"0.25", "0.001", "1000", "0", "-1", "nan"}},
+      {"--pipe-exponent", {"2", "3", "1", "10", "0.5", "nan"}},
+      {"--color-by", {"age", "depth", "seed", "distance", "none", "hue"}},
+      {"--look", {"branches", "blob", "cloud"}},
+      {"--tube-sides", {"8", "3", "64", "2", "65", "-1"}},
+      {"--tube-tolerance", {"0", "0.5", "10", "-1", "11", "nan"}},
+      {"--tube-min-branch", {"1", "16", "1000", "0", "1001", "x"}},
+      {"--instances", {"tips", "all", "some"}},
+      {"--tips-within", {"2", "0", "1e300", "-1", "nan"}},
       {"--up", {"x", "y", "z", "w"}},
       {"--quiet", {}},
       {"--checkpoint", {"run.ck", "nofolder/run.ck"}},
@@ -123,9 +135,27 @@ double json_value(const std::string& json, const std::string& key, const std::st
   return at == std::string::npos ? -1.0 : std::atof(json.c_str() + at + key.size() + 4);
 }
 
-//! Checks the files of a run that exited 0 under `prefix` in `dir`; returns what is wrong.
-std::string check_files(const ScratchDir& dir, const std::string& prefix) {
+//! The value of the last `flag` in a command line of the table's words, or `otherwise`.
+std::string last_value(const std::string& command, const std::string& flag, const std::string& otherwise) {
+  const std::size_t at = command.rfind(flag + " ");
+  if (at == std::string::npos) return otherwise;
+  const std::size_t from = at + flag.size() + 1;
+  return command.substr(from, command.find(' ', from) - from);
+}
+
+//! The header of a PLY file, and the size of its body.
+std::pair<std::string, std::size_t> ply_parts(const std::string& ply) {
+  const std::size_t header_end = ply.find("end_header\n");
+  if (header_end == std::string::npos) return {"", 0};
+  return {ply.substr(0, header_end + 11), ply.size() - header_end - 11};
+}
+
+//! Checks the files of a run that exited 0 under `prefix` in `dir`, writing `formats` (a
+//! --formats value); returns what is wrong.
+std::string check_files(const ScratchDir& dir, const std::string& prefix, const std::string& formats) {
+  const auto wants = [&](const char* format) { return ("," + formats + ",").find(std::string(",") + format + ",") != std::string::npos; };
   const std::string json = read_file(dir / (prefix + ".json"));
+  if (!wants("json")) return json.empty() ? "" : prefix + ".json was not asked for";
   if (json.empty() || json.front() != '{' || json.substr(json.size() - 2) != "}\n" || !balanced(json, '{', '}') ||
       !balanced(json, '[', ']'))
     return prefix + ".json is not whole";
@@ -133,45 +163,89 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix) {
     return prefix + ".json holds a number JSON cannot";
   if (json.find("\"complete\": true") == std::string::npos) return "exit 0 but the JSON says incomplete";
   const auto particles = static_cast<std::size_t>(json_value(json, "particles", "\"counts\""));
+  const auto edges = static_cast<std::size_t>(json_value(json, "attached", "\"counts\""));
   const double spacing = json_value(json, "spacing");
 
-  std::istringstream csv(read_file(dir / (prefix + ".csv")));
-  std::string line;
-  if (!std::getline(csv, line) || line != "id,x,y,z,parent,seed") return prefix + ".csv has no header";
-  std::vector<Vec3> positions;
-  while (std::getline(csv, line)) {
-    double id, x, y, z, parent, seed;
-    char c[5];
-    std::istringstream row(line);
-    if (!(row >> id >> c[0] >> x >> c[1] >> y >> c[2] >> z >> c[3] >> parent >> c[4] >> seed))
-      return prefix + ".csv row " + line + " is not 6 numbers";
-    if (id != static_cast<double>(positions.size())) return prefix + ".csv ids are not in order";
-    const Vec3 p(x, y, z);
-    if (!p.allFinite()) return prefix + ".csv has a position that is not finite";
-    if (parent >= 0) {
-      if (parent >= id) return prefix + ".csv has a parent after its child";
-      const double length = (p - positions[static_cast<std::size_t>(parent)]).norm();
-      if (!(length > 0.0 && length <= spacing * (1.0 + 1e-9)))
-        return prefix + ".csv has a branch of length " + std::to_string(length) + " for spacing " + std::to_string(spacing);
+  if (wants("csv")) {
+    std::istringstream csv(read_file(dir / (prefix + ".csv")));
+    std::string line;
+    if (!std::getline(csv, line) || line != "id,x,y,z,parent,seed,radius,age,depth,descendants,order,tip")
+      return prefix + ".csv has no header";
+    std::vector<Vec3> positions;
+    while (std::getline(csv, line)) {
+      double id, x, y, z, parent, seed, radius;
+      char c[6];
+      std::istringstream row(line);
+      if (!(row >> id >> c[0] >> x >> c[1] >> y >> c[2] >> z >> c[3] >> parent >> c[4] >> seed >> c[5] >> radius))
+        return prefix + ".csv row " + line + " does not begin with 7 numbers";
+      if (id != static_cast<double>(positions.size())) return prefix + ".csv ids are not in order";
+      if (!(radius > 0.0)) return prefix + ".csv has a radius that is not positive";
+      const Vec3 p(x, y, z);
+      if (!p.allFinite()) return prefix + ".csv has a position that is not finite";
+      if (parent >= 0) {
+        if (parent >= id) return prefix + ".csv has a parent after its child";
+        const double length = (p - positions[static_cast<std::size_t>(parent)]).norm();
+        if (!(length > 0.0 && length <= spacing * (1.0 + 1e-9)))
+          return prefix + ".csv has a branch of length " + std::to_string(length) + " for spacing " + std::to_string(spacing);
+      }
+      positions.push_back(p);
     }
-    positions.push_back(p);
-  }
-  if (positions.size() != particles) return prefix + ".csv has another count than the JSON";
-
-  const std::string ply = read_file(dir / (prefix + ".ply"));
-  const std::size_t header_end = ply.find("end_header\n");
-  if (header_end == std::string::npos) return prefix + ".ply has no header";
-  const std::string header = ply.substr(0, header_end + 11);
-  if (header.find("element vertex " + std::to_string(particles) + "\n") == std::string::npos)
-    return prefix + ".ply counts another number of vertices";
-  const std::size_t edges = static_cast<std::size_t>(json_value(json, "attached", "\"counts\""));
-  const std::string body = ply.substr(header.size());
-  if (header.find("format binary_little_endian") != std::string::npos) {
-    if (body.size() != 20 * particles + 8 * edges) return prefix + ".ply's body is not its header's size";
-  } else if (static_cast<std::size_t>(std::count(body.begin(), body.end(), '\n')) != particles + edges) {
-    return prefix + ".ply's body has another number of lines than its header says";
+    if (positions.size() != particles) return prefix + ".csv has another count than the JSON";
   }
 
+  if (wants("ply")) {
+    const auto [header, body] = ply_parts(read_file(dir / (prefix + ".ply")));
+    if (header.empty()) return prefix + ".ply has no header";
+    if (header.find("element vertex " + std::to_string(particles) + "\n") == std::string::npos)
+      return prefix + ".ply counts another number of vertices";
+    const std::string ply = read_file(dir / (prefix + ".ply"));
+    if (header.find("format binary_little_endian") != std::string::npos) {
+      if (body != 38 * particles + 8 * edges) return prefix + ".ply's body is not its header's size";
+    } else if (static_cast<std::size_t>(std::count(ply.begin() + static_cast<std::ptrdiff_t>(header.size()), ply.end(), '\n')) !=
+               particles + edges) {
+      return prefix + ".ply's body has another number of lines than its header says";
+    }
+  }
+
+  if (wants("tips")) {
+    const std::string tips = read_file(dir / (prefix + "_tips.ply"));
+    const auto [header, body] = ply_parts(tips);
+    const std::size_t at = header.find("element vertex ");
+    if (at == std::string::npos) return prefix + "_tips.ply has no header";
+    const auto points = static_cast<std::size_t>(std::atoll(header.c_str() + at + 15));
+    if (points == 0 || points > particles) return prefix + "_tips.ply has " + std::to_string(points) + " points";
+    const bool binary = header.find("format binary_little_endian") != std::string::npos;
+    if (binary ? body != 36 * points
+               : static_cast<std::size_t>(std::count(tips.begin() + static_cast<std::ptrdiff_t>(header.size()), tips.end(), '\n')) != points)
+      return prefix + "_tips.ply's body is not its header's size";
+  }
+
+  if (wants("glb")) {
+    const std::string glb = read_file(dir / (prefix + ".glb"));
+    std::uint32_t head[3] = {0, 0, 0};
+    if (glb.size() >= 12) std::memcpy(head, glb.data(), 12);
+    if (head[0] != 0x46546C67 || head[1] != 2 || head[2] != glb.size()) return prefix + ".glb's header is not glTF 2's";
+    if (!testing::gltf_validator().empty()) {
+      const std::string report = testing::validate_glb(dir / (prefix + ".glb"));
+      if (!report.empty()) return prefix + ".glb fails the glTF-Validator: " + report;
+    }
+  }
+
+  if (wants("obj")) {
+    const std::string obj = read_file(dir / (prefix + ".obj"));
+    if (obj.rfind("# dla3d ", 0) != 0 || obj.back() != '\n') return prefix + ".obj is not whole";
+  }
+
+  if (wants("svg")) {
+    const std::string svg = read_file(dir / (prefix + ".svg"));
+    std::size_t lines = 0;
+    for (std::size_t at = svg.find("<line "); at != std::string::npos; at = svg.find("<line ", at + 1)) ++lines;
+    if (svg.rfind("<?xml", 0) != 0 || svg.size() < 8 || svg.compare(svg.size() - 7, 7, "</svg>\n") != 0)
+      return prefix + ".svg is not whole";
+    if (lines != edges) return prefix + ".svg draws " + std::to_string(lines) + " branches";
+  }
+
+  if (!wants("pov")) return "";
   const std::string pov = read_file(dir / (prefix + ".pov")), inc = read_file(dir / (prefix + ".inc"));
   const std::string name = std::filesystem::path(prefix).filename().string();
   if (pov.find("#include \"" + name + ".inc\"") == std::string::npos) return prefix + ".pov does not include its .inc";
@@ -249,7 +323,7 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
           if (value.front() == '\'') value = value.substr(1, value.size() - 2);
           if (prefix != "resumed") prefix = value;
         }
-        ASSERT_EQ(check_files(dir, prefix), "");
+        ASSERT_EQ(check_files(dir, prefix, last_value(command, "--formats", "pov,csv,ply,json")), "");
         break;
       }
       case 2:

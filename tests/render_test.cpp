@@ -3,6 +3,8 @@
 
 #include "dla/growth.h"
 #include "dla/pov_writer.h"
+#include "dla/shapes.h"
+#include "dla/surface_distance.h"
 #include "mesh_util.h"
 #include "test_util.h"
 
@@ -12,6 +14,9 @@
 #include <cctype>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
 
 namespace dla {
 namespace {
@@ -53,18 +58,33 @@ Image read_ppm(const std::string& path) {
   return image;
 }
 
-// Renders PREFIX.pov at 160x120 and checks what it shows.
-void expect_framed_render(const Cluster& cluster, const ScratchDir& dir, const TriangleMesh* mesh = nullptr,
-                          const PovOptions& options = {}) {
+// Writes the scene, applies `edit` to the .pov (a user's change to a switch), renders it at
+// 160x120 and checks what it shows; returns the number of pixels of structure.
+int expect_framed_render(const Cluster& cluster, const ScratchDir& dir, const TriangleMesh* mesh = nullptr,
+                         const PovOptions& options = {}, const Look* look = nullptr,
+                         const std::function<void(std::string&)>& edit = {}) {
   const std::string povray = POVRAY_PATH;
-  ASSERT_FALSE(povray.empty() || povray.find("NOTFOUND") != std::string::npos)
-      << "POV-Ray is not installed: the README's setup command installs the povray package";
-  write_pov(cluster, dir / "scene", options, mesh);
+  if (povray.empty() || povray.find("NOTFOUND") != std::string::npos) {
+    ADD_FAILURE() << "POV-Ray is not installed: the README's setup command installs the povray package";
+    return 0;
+  }
+  write_pov(cluster, dir / "scene", options, mesh, look);
+  if (edit) {
+    std::string pov = read_file(dir / "scene.pov");
+    edit(pov);
+    std::ofstream(dir / "scene.pov") << pov;
+  }
   const std::string command = "cd '" + dir.path().string() + "' && '" + povray +
                               "' +Iscene.pov +Oscene.ppm +FP +W160 +H120 -D -V +A0.3 > povray.log 2>&1";
-  ASSERT_EQ(std::system(command.c_str()), 0) << read_file(dir / "povray.log");
+  if (std::system(command.c_str()) != 0) {
+    ADD_FAILURE() << read_file(dir / "povray.log");
+    return 0;
+  }
   const Image image = read_ppm(dir / "scene.ppm");
-  ASSERT_EQ(image.width, 160) << "no image: " << read_file(dir / "povray.log");
+  if (image.width != 160) {
+    ADD_FAILURE() << "no image: " << read_file(dir / "povray.log");
+    return 0;
+  }
 
   const std::array<int, 3> background = image.at(0, 0);
   int lit = 0, x0 = image.width, x1 = -1, y0 = image.height, y1 = -1;
@@ -82,6 +102,69 @@ void expect_framed_render(const Cluster& cluster, const ScratchDir& dir, const T
   EXPECT_GT(y0, 0) << "cut at the top";
   EXPECT_LT(y1, image.height - 1) << "cut at the bottom";
   EXPECT_GT(std::max(x1 - x0, y1 - y0), image.height / 2) << "too small to see";
+  return lit;
+}
+
+//! Sets `#declare NAME = VALUE;` in a scene.
+std::function<void(std::string&)> set(const std::string& name, const std::string& value) {
+  return [=](std::string& pov) {
+    const std::size_t at = pov.find("#declare " + name + " = ");
+    ASSERT_NE(at, std::string::npos) << name;
+    const std::size_t end = pov.find(';', at);
+    pov.replace(at, end - at, "#declare " + name + " = " + value);
+  };
+}
+
+// Every radius model is a switch in the .pov: each renders, in frame, and the uniform model
+// (the base radius everywhere) covers more than the taper.
+TEST(Render, EveryRadiusModelIsASwitchInTheScene) {
+  const MeshConstraint ball(make_sphere(Vec3::Zero(), 16.0, 12, 24), {}, 1.0);
+  GrowthOptions o;
+  o.particles = 2000;
+  o.spawn = SpawnMode::inside;
+  const Cluster c = grow(o, ball);
+  const SurfaceDistance surface(ball.mesh());
+  LookOptions options;
+  options.color_by = ColorBy::depth;
+  const Look look = make_look(c, options, {&surface});
+  std::map<std::string, int> lit;
+  for (const char* model : {"taper", "pipe", "boundary", "seed-distance", "uniform"}) {
+    SCOPED_TRACE(model);
+    ScratchDir dir;
+    lit[model] = expect_framed_render(c, dir, nullptr, {}, &look, set("DLA_RadiusModel", std::string("\"") + model + "\""));
+  }
+  EXPECT_GT(lit["uniform"], lit["taper"]);
+  EXPECT_GT(lit["uniform"], lit["pipe"]);
+}
+
+// The blob look (metaballs) renders in frame, and so does DLA_Tip at every tip, a leaf of a
+// user's own here: the tips cover more of the picture than the branches alone.
+TEST(Render, BlobLookAndTipsRender) {
+  GrowthOptions o;
+  o.particles = 1200;
+  const Cluster c = grow(o);
+  PovOptions blob;
+  blob.style = PovStyle::blob;
+  {
+    ScratchDir dir;
+    expect_framed_render(c, dir, nullptr, blob);
+    EXPECT_NE(read_file(dir / "scene.inc").find("blob {"), std::string::npos);
+  }
+  int plain = 0, leaves = 0;
+  {
+    ScratchDir dir;
+    plain = expect_framed_render(c, dir);
+  }
+  {
+    ScratchDir dir;
+    leaves = expect_framed_render(c, dir, nullptr, {}, nullptr, [](std::string& pov) {
+      set("DLA_ShowTips", "on")(pov);
+      const std::size_t at = pov.find("  sphere { Position, min(Scale, 1.5 * DLA_TipRadius) }");
+      ASSERT_NE(at, std::string::npos);
+      pov.replace(at, 54, "  disc { Position, Direction, 1.5 * Scale }");
+    });
+  }
+  EXPECT_GT(leaves, plain + plain / 10);
 }
 
 TEST(Render, PovRayShowsTheStructure3D) {

@@ -33,7 +33,7 @@ void write_all(const Cluster& c, const std::string& prefix) {
   write_csv(c, prefix + ".csv");
   write_ply(c, prefix + ".ply");
   write_pov(c, prefix);
-  write_run_report(c, GrowthOptions{}, PovOptions{}, RunRecord{}, prefix + ".json");
+  write_run_report(c, GrowthOptions{}, LookOptions{}, PovOptions{}, RunRecord{}, prefix + ".json");
 }
 
 TEST(Csv, ReadsBackExactly) {
@@ -95,24 +95,34 @@ TEST(Ply, BinaryHoldsTheSameValues) {
   header.replace(header.find("ascii"), 5, "binary_little_endian");
   EXPECT_EQ(binary.substr(0, binary_body), header);
   const std::size_t n = c.particles.size(), edges = n - c.seed_count;
-  ASSERT_EQ(binary.size() - binary_body, 20 * n + 8 * edges);
+  ASSERT_EQ(binary.size() - binary_body, 38 * n + 8 * edges);
   std::istringstream values(text.substr(text_body));
   const char* at = binary.data() + binary_body;
   for (std::size_t i = 0; i < n; ++i) {
-    float x, y, z;
-    std::int32_t parent, seed;
+    float x, y, z, radius, age;
+    std::int32_t depth, descendants, seed, parent;
+    std::uint8_t order, tip;
     std::memcpy(&x, at, 4), std::memcpy(&y, at + 4, 4), std::memcpy(&z, at + 8, 4);
-    std::memcpy(&parent, at + 12, 4), std::memcpy(&seed, at + 16, 4);
-    at += 20;
-    double tx, ty, tz;
-    long tparent, tseed;
-    values >> tx >> ty >> tz >> tparent >> tseed;
+    std::memcpy(&radius, at + 12, 4), std::memcpy(&age, at + 16, 4);
+    std::memcpy(&depth, at + 20, 4), std::memcpy(&descendants, at + 24, 4);
+    order = static_cast<std::uint8_t>(at[28]), tip = static_cast<std::uint8_t>(at[29]);
+    std::memcpy(&seed, at + 30, 4), std::memcpy(&parent, at + 34, 4);
+    at += 38;
+    double tx, ty, tz, tradius, tage;
+    long tdepth, tdescendants, torder, ttip, tseed, tparent;
+    values >> tx >> ty >> tz >> tradius >> tage >> tdepth >> tdescendants >> torder >> ttip >> tseed >> tparent;
     // The binary holds the float nearest the position; the text, 9 digits of the double.
     const Vec3& p = c.particles[i].position;
     EXPECT_EQ(x, static_cast<float>(p.x()));
     EXPECT_EQ(y, static_cast<float>(p.y()));
     EXPECT_EQ(z, static_cast<float>(p.z()));
     EXPECT_NEAR(tx, x, 1e-6 * std::max(1.0, std::abs(tx)));
+    EXPECT_NEAR(tradius, radius, 1e-6);
+    EXPECT_NEAR(tage, age, 1e-6);
+    EXPECT_EQ(depth, tdepth);
+    EXPECT_EQ(descendants, tdescendants);
+    EXPECT_EQ(order, torder);
+    EXPECT_EQ(tip, ttip);
     EXPECT_EQ(parent, tparent);
     EXPECT_EQ(seed, tseed);
   }
@@ -137,9 +147,9 @@ TEST(Pov, GeometryIsSphereSweepsWithPositiveRadii) {
   EXPECT_NE(inc.find("sphere_sweep { linear_spline, "), std::string::npos);
   EXPECT_EQ(inc.find("b_spline"), std::string::npos);
   EXPECT_EQ(inc.find("DLA_R(-"), std::string::npos) << "no negative radius";
-  PovOptions bad;
-  bad.tip_radius = -0.1;
-  EXPECT_THROW(write_pov(c, dir / "bad", bad), InvalidInput);
+  LookOptions bad;
+  bad.radius.tip_radius = -0.1;
+  EXPECT_THROW(make_look(c, bad), InvalidInput);
 }
 
 TEST(Writers, SameSeedSameBytes) {
@@ -174,7 +184,7 @@ TEST(RunReport, RecordsOptionsSeedAndCounts) {
   o.rng_seed = 99;
   o.stickiness = 0.5;
   const Cluster c = grow(o);
-  write_run_report(c, o, PovOptions{}, RunRecord{1.0, 0.5, "", ""}, dir / "r.json");
+  write_run_report(c, o, LookOptions{}, PovOptions{}, RunRecord{1.0, 0.5, "", ""}, dir / "r.json");
   const std::string json = read_file(dir / "r.json");
   for (const char* expected : {"\"rng_seed\": 99", "\"stickiness\": 0.5", "\"attached\": 500",
                                "\"complete\": true", "\"grow_seconds\": 1", "\"particles_per_second\": 500",

@@ -1,16 +1,21 @@
 // libFuzzer target for dla3d's command line: the input is split into words at newlines, parsed
 // exactly as dla3d parses them (cli/command_line.cpp), and a growth command without a mesh is
 // grown, with at most 16 particles on at most two threads, for at most a second (a stop flag,
-// as Ctrl-C would). Any words must either be refused with InvalidInput, or parse into options
-// that grow a valid tree: never crash, hang, overflow or read out of bounds.
+// as Ctrl-C would), and given the look it asks for. Any words must either be refused with
+// InvalidInput, or parse into options that grow a valid tree with positive radii, tubes and
+// instancing points: never crash, hang, overflow or read out of bounds.
 // Build with -DDLA_FUZZ=ON (clang); see docs/testing.md.
 
 #include "../../cli/command_line.h"
 
 #include "dla/growth.h"
+#include "dla/instances.h"
+#include "dla/look.h"
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <condition_variable>
 #include <cstdint>
 #include <cstdlib>
@@ -71,6 +76,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       const dla::Particle& p = cluster.particles[i];
       if (p.parent < 0 || static_cast<std::size_t>(p.parent) >= i || !p.position.allFinite()) std::abort();
     }
+    // The look the options ask for: attributes, radii, tubes and instancing points.
+    const dla::Look look = dla::make_look(cluster, line.grow.look);
+    for (const float radius : look.radii)
+      if (!(radius > 0.0f) || !std::isfinite(radius)) std::abort();
+    std::size_t triangles = 0;
+    dla::for_each_tube(cluster, look.radii, line.grow.look.tubes,
+                       [&](const dla::TubePiece& piece) { triangles += piece.triangles.size(); });
+    if (line.grow.instances.within == std::numeric_limits<double>::infinity())
+      for (const dla::Instance& instance : dla::instancing_points(cluster, look.attributes, line.grow.instances))
+        if (!(instance.scale > 0.0)) std::abort();
   } catch (const dla::InvalidInput&) {
   } catch (const dla::GrowthError&) {  // a run that cannot go on, said so
   }

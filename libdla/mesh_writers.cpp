@@ -1,0 +1,186 @@
+#include "dla/mesh_writers.h"
+
+#include "dla/json.h"
+#include "dla/version.h"
+#include "output_file.h"
+
+#include <array>
+#include <cstring>
+#include <limits>
+
+namespace dla {
+
+namespace {
+
+//! What a glTF needs before its binary chunk: counts and the positions' exact bounds.
+struct TubeTotals {
+  std::size_t vertices = 0;
+  std::size_t triangles = 0;
+  Eigen::Vector3f min = Eigen::Vector3f::Constant(std::numeric_limits<float>::infinity());
+  Eigen::Vector3f max = -min;
+};
+
+TubeTotals tube_totals(const Cluster& cluster, const Look& look) {
+  TubeTotals totals;
+  for_each_tube(cluster, look.radii, look.options.tubes, [&](const TubePiece& piece) {
+    totals.vertices += piece.positions.size();
+    totals.triangles += piece.triangles.size();
+    for (const Eigen::Vector3f& p : piece.positions) {
+      totals.min = totals.min.cwiseMin(p);
+      totals.max = totals.max.cwiseMax(p);
+    }
+  });
+  return totals;
+}
+
+std::array<std::uint8_t, 4> vertex_color(const ColorScale& scale, std::size_t particle) {
+  const std::array<double, 3> rgb = color_at(scale(particle));
+  return {static_cast<std::uint8_t>(rgb[0] * 255.0 + 0.5), static_cast<std::uint8_t>(rgb[1] * 255.0 + 0.5),
+          static_cast<std::uint8_t>(rgb[2] * 255.0 + 0.5), 255};
+}
+
+//! The per-vertex attributes, in the order of the glTF's `_` accessors.
+constexpr const char* kAttributeNames[] = {"_AGE", "_DEPTH", "_DESCENDANTS", "_ORDER", "_SEED", "_RADIUS"};
+
+std::array<float, 6> vertex_attributes(const Cluster& cluster, const Look& look, std::size_t i) {
+  const Attributes& a = look.attributes;
+  return {a.age(i), static_cast<float>(a.depth[i]), static_cast<float>(a.descendants[i]),
+          static_cast<float>(a.strahler[i]), static_cast<float>(cluster.particles[i].seed),
+          static_cast<float>(look.radii[i])};
+}
+
+std::string vec3(const Eigen::Vector3f& v) {
+  return "[" + json::number(v.x()) + "," + json::number(v.y()) + "," + json::number(v.z()) + "]";
+}
+
+}  // namespace
+
+void write_glb(const Cluster& cluster, const Look& look, const std::string& path) {
+  const TubeTotals totals = tube_totals(cluster, look);
+  const bool colored = look.options.color_by != ColorBy::none;
+  // One interleaved vertex: position, normal, [colour], the attributes.
+  const std::size_t stride = 12 + 12 + (colored ? 4 : 0) + 4 * std::size(kAttributeNames);
+  const std::size_t vertex_bytes = totals.vertices * stride;
+  const std::size_t index_bytes = totals.triangles * 3 * 4;
+  const bool empty = totals.triangles == 0;
+
+  std::string gltf = "{\"asset\":{\"version\":\"2.0\",\"generator\":" + json::string(std::string("dla3d ") + version) +
+                     "},\"scene\":0,";
+  if (empty) {
+    gltf += "\"scenes\":[{}]}";
+  } else {
+    const std::string count = std::to_string(totals.vertices);
+    std::string accessors = "{\"bufferView\":0,\"byteOffset\":0,\"componentType\":5126,\"count\":" + count +
+                            ",\"type\":\"VEC3\",\"min\":" + vec3(totals.min) + ",\"max\":" + vec3(totals.max) + "}";
+    accessors += ",{\"bufferView\":0,\"byteOffset\":12,\"componentType\":5126,\"count\":" + count + ",\"type\":\"VEC3\"}";
+    std::string attributes = "\"POSITION\":0,\"NORMAL\":1";
+    std::size_t offset = 24, accessor = 2;
+    if (colored) {
+      accessors += ",{\"bufferView\":0,\"byteOffset\":24,\"componentType\":5121,\"normalized\":true,\"count\":" +
+                   count + ",\"type\":\"VEC4\"}";
+      attributes += ",\"COLOR_0\":2";
+      offset += 4;
+      ++accessor;
+    }
+    for (const char* name : kAttributeNames) {
+      accessors += ",{\"bufferView\":0,\"byteOffset\":" + std::to_string(offset) +
+                   ",\"componentType\":5126,\"count\":" + count + ",\"type\":\"SCALAR\"}";
+      attributes += ",\"" + std::string(name) + "\":" + std::to_string(accessor++);
+      offset += 4;
+    }
+    accessors += ",{\"bufferView\":1,\"byteOffset\":0,\"componentType\":5125,\"count\":" +
+                 std::to_string(totals.triangles * 3) + ",\"type\":\"SCALAR\"}";
+    gltf += "\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0,\"name\":\"dla\"}],"
+            "\"meshes\":[{\"name\":\"dla\",\"primitives\":[{\"attributes\":{" + attributes +
+            "},\"indices\":" + std::to_string(accessor) +
+            ",\"material\":0,\"mode\":4}]}],"
+            "\"materials\":[{\"name\":\"dla\",\"pbrMetallicRoughness\":{\"baseColorFactor\":" +
+            std::string(colored ? "[1,1,1,1]" : "[0.79,0.6,0.36,1]") +
+            ",\"metallicFactor\":0,\"roughnessFactor\":0.55}}],"
+            "\"buffers\":[{\"byteLength\":" + std::to_string(vertex_bytes + index_bytes) + "}],"
+            "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":" + std::to_string(vertex_bytes) +
+            ",\"byteStride\":" + std::to_string(stride) + ",\"target\":34962},"
+            "{\"buffer\":0,\"byteOffset\":" + std::to_string(vertex_bytes) + ",\"byteLength\":" +
+            std::to_string(index_bytes) + ",\"target\":34963}],"
+            "\"accessors\":[" + accessors + "]}";
+  }
+  gltf.resize((gltf.size() + 3) / 4 * 4, ' ');  // chunks are 4-byte aligned: JSON pads with spaces
+
+  detail::OutputFile out(path);
+  const std::size_t length = 12 + 8 + gltf.size() + (empty ? 0 : 8 + vertex_bytes + index_bytes);
+  out.raw(std::uint32_t{0x46546C67}).raw(std::uint32_t{2}).raw(static_cast<std::uint32_t>(length));
+  out.raw(static_cast<std::uint32_t>(gltf.size())).raw(std::uint32_t{0x4E4F534A}) << gltf;
+  if (empty) {
+    out.commit();
+    return;
+  }
+  out.raw(static_cast<std::uint32_t>(vertex_bytes + index_bytes)).raw(std::uint32_t{0x004E4942});
+  const ColorScale scale(cluster, look.attributes, look.options.color_by);
+  std::string bytes;
+  for_each_tube(cluster, look.radii, look.options.tubes, [&](const TubePiece& piece) {
+    bytes.resize(piece.positions.size() * stride);
+    char* at = bytes.data();
+    const auto put = [&at](const void* data, std::size_t size) {
+      std::memcpy(at, data, size);
+      at += size;
+    };
+    for (std::size_t v = 0; v < piece.positions.size(); ++v) {
+      const auto particle = static_cast<std::size_t>(piece.particles[v]);
+      put(piece.positions[v].data(), 12);
+      put(piece.normals[v].data(), 12);
+      if (colored) put(vertex_color(scale, particle).data(), 4);
+      put(vertex_attributes(cluster, look, particle).data(), 4 * std::size(kAttributeNames));
+    }
+    out << std::string_view(bytes);
+  });
+  std::uint32_t base = 0;
+  for_each_tube(cluster, look.radii, look.options.tubes, [&](const TubePiece& piece) {
+    bytes.resize(piece.triangles.size() * 12);
+    char* at = bytes.data();
+    for (const auto& t : piece.triangles)
+      for (const std::uint32_t v : t) {
+        const std::uint32_t index = base + v;
+        std::memcpy(at, &index, 4);
+        at += 4;
+      }
+    out << std::string_view(bytes);
+    base += static_cast<std::uint32_t>(piece.positions.size());
+  });
+  out.commit();
+}
+
+void write_obj(const Cluster& cluster, const Look& look, const std::string& path) {
+  const bool colored = look.options.color_by != ColorBy::none;
+  const ColorScale scale(cluster, look.attributes, look.options.color_by);
+  detail::OutputFile out(path);
+  out << "# dla3d " << version << " tube mesh: ";
+  out.integer(static_cast<long long>(cluster.particles.size()))
+      << " particles, radius model " << to_string(look.options.radius.model) << (colored ? ", colour by " : "")
+      << (colored ? to_string(look.options.color_by) : "") << "\no dla\n";
+  std::size_t base = 1;  // OBJ counts from 1
+  for_each_tube(cluster, look.radii, look.options.tubes, [&](const TubePiece& piece) {
+    for (std::size_t v = 0; v < piece.positions.size(); ++v) {
+      out << "v ";
+      for (int a = 0; a < 3; ++a) out.number(piece.positions[v][a], 7) << (a < 2 ? " " : "");
+      if (colored) {
+        const std::array<double, 3> rgb = color_at(scale(static_cast<std::size_t>(piece.particles[v])));
+        for (int c = 0; c < 3; ++c) out << ' ', out.fixed(rgb[c], 4);
+      }
+      out << "\nvn ";
+      for (int a = 0; a < 3; ++a) out.fixed(piece.normals[v][a], 5) << (a < 2 ? " " : "\n");
+    }
+    for (const auto& t : piece.triangles) {
+      out << 'f';
+      for (const std::uint32_t v : t) {
+        out << ' ';
+        out.integer(static_cast<long long>(base + v)) << "//";
+        out.integer(static_cast<long long>(base + v));
+      }
+      out << '\n';
+    }
+    base += piece.positions.size();
+  });
+  out.commit();
+}
+
+}  // namespace dla
