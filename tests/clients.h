@@ -1,0 +1,52 @@
+#pragma once
+// The real clients the tests hand dla3d's files to: Blender (headless) and the Khronos
+// glTF-Validator (node, from tests/clients/package.json). Both are optional: a test that needs
+// one skips, by name, when it is missing (the README's client step installs them; CI does).
+
+#include "test_util.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <string>
+
+namespace dla::testing {
+
+//! The path of program `name` on PATH, or "" if there is none.
+inline std::string find_program(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  std::istringstream folders(path ? path : "");
+  for (std::string folder; std::getline(folders, folder, ':');) {
+    const std::filesystem::path candidate = std::filesystem::path(folder) / name;
+    if (!folder.empty() && access(candidate.c_str(), X_OK) == 0) return candidate.string();
+  }
+  return "";
+}
+
+//! The validator's script, or "" if node or the npm package is missing.
+inline std::string gltf_validator() {
+  const std::string script = TEST_CLIENTS_DIR "/validate_gltf.mjs";
+  if (find_program("node").empty() || !std::filesystem::exists(TEST_CLIENTS_DIR "/node_modules/gltf-validator")) return "";
+  return script;
+}
+
+//! Runs the validator on a .glb: "" if it finds no error, else its report.
+inline std::string validate_glb(const std::string& glb) {
+  const std::string log = glb + ".validator.txt";
+  const std::string command = "node '" + gltf_validator() + "' '" + glb + "' > '" + log + "' 2>&1";
+  const int status = std::system(command.c_str());
+  const std::string report = read_file(log);
+  std::filesystem::remove(log);
+  return status == 0 ? "" : report.empty() ? "the validator did not run" : report;
+}
+
+#define DLA_NEED_GLTF_VALIDATOR()                                                                 \
+  if (::dla::testing::gltf_validator().empty())                                                  \
+  GTEST_SKIP() << "the glTF-Validator is missing: install node and run npm ci --prefix tests/clients " \
+                  "(the README's client step)"
+
+#define DLA_NEED_BLENDER()                                                                        \
+  if (::dla::testing::find_program("blender").empty())                                           \
+  GTEST_SKIP() << "Blender is missing: install Debian's blender and python3-numpy (the README's client step)"
+
+}  // namespace dla::testing

@@ -1,0 +1,159 @@
+// dla3d's files in the programs artists open them with: Debian's Blender imports the .glb, the
+// .obj and the .ply with the counts and bounds written, and the Khronos glTF-Validator finds no
+// error in the .glb. Each test skips, by name, when its client is missing (tests/clients.h).
+
+#include "clients.h"
+#include "dla/growth.h"
+#include "dla/mesh_writers.h"
+#include "dla/ply_writer.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <limits>
+
+namespace dla {
+namespace {
+
+using testing::ScratchDir;
+using testing::read_file;
+
+struct Imported {
+  long objects = -1, vertices = -1, edges = -1, faces = -1;
+  std::array<double, 3> min{}, max{};
+  std::string attributes;
+};
+
+//! The number after `"key": ` in Blender's JSON line.
+double field(const std::string& line, const std::string& key, std::size_t skip = 0) {
+  std::size_t at = line.find("\"" + key + "\": ");
+  if (at == std::string::npos) return std::numeric_limits<double>::quiet_NaN();
+  at += key.size() + 4;
+  if (line[at] == '[') {
+    ++at;
+    for (std::size_t k = 0; k < skip; ++k) at = line.find(',', at) + 1;
+  }
+  return std::atof(line.c_str() + at);
+}
+
+//! Imports `file` (in `dir`) into Blender and reads back what it made.
+Imported blender_import(const ScratchDir& dir, const std::string& file) {
+  const std::string command = "cd '" + dir.path().string() + "' && blender -b --factory-startup --python-exit-code 1 "
+                              "--python '" TEST_CLIENTS_DIR "/blender_import.py' -- '" + file + "' > blender.txt 2>&1";
+  const int status = std::system(command.c_str());
+  const std::string log = read_file(dir / "blender.txt");
+  EXPECT_EQ(status, 0) << log;
+  const std::size_t at = log.find("DLA3D ");
+  Imported imported;
+  if (at == std::string::npos) {
+    ADD_FAILURE() << "Blender printed no result:\n" << log;
+    return imported;
+  }
+  const std::string line = log.substr(at, log.find('\n', at) - at);
+  imported.objects = static_cast<long>(field(line, "objects"));
+  imported.vertices = static_cast<long>(field(line, "vertices"));
+  imported.edges = static_cast<long>(field(line, "edges"));
+  imported.faces = static_cast<long>(field(line, "faces"));
+  for (std::size_t a = 0; a < 3; ++a) {
+    imported.min[a] = field(line, "min", a);
+    imported.max[a] = field(line, "max", a);
+  }
+  imported.attributes = line.substr(line.find("\"attributes\""));
+  return imported;
+}
+
+struct Tubes {
+  std::size_t vertices = 0, triangles = 0;
+  Eigen::Vector3f min = Eigen::Vector3f::Constant(std::numeric_limits<float>::infinity()), max = -min;
+};
+
+Tubes tubes_of(const Cluster& c, const Look& look) {
+  Tubes t;
+  for_each_tube(c, look.radii, look.options.tubes, [&](const TubePiece& piece) {
+    t.vertices += piece.positions.size();
+    t.triangles += piece.triangles.size();
+    for (const Eigen::Vector3f& p : piece.positions) {
+      t.min = t.min.cwiseMin(p);
+      t.max = t.max.cwiseMax(p);
+    }
+  });
+  return t;
+}
+
+Cluster sample() {
+  GrowthOptions o;
+  o.particles = 1500;
+  o.rng_seed = 3;
+  o.seeds = {Vec3(-6, 0, 0), Vec3(6, 0, 0)};
+  return grow(o);
+}
+
+TEST(Blender, ImportsTheTubeMeshesAndThePly) {
+  DLA_NEED_BLENDER();
+  ScratchDir dir;
+  const Cluster c = sample();
+  LookOptions options;
+  options.radius.model = RadiusModel::pipe;
+  options.color_by = ColorBy::age;
+  const Look look = make_look(c, options);
+  write_glb(c, look, dir / "tree.glb");
+  write_obj(c, look, dir / "tree.obj");
+  write_ply(c, look, dir / "tree.ply");
+  const Tubes t = tubes_of(c, look);
+  // glTF and OBJ are y-up and Blender z-up: its importers turn (x, y, z) into (x, -z, y).
+  const std::array<double, 3> min = {t.min.x(), -t.max.z(), t.min.y()}, max = {t.max.x(), -t.min.z(), t.max.y()};
+  for (const char* file : {"tree.glb", "tree.obj"}) {
+    SCOPED_TRACE(file);
+    const Imported mesh = blender_import(dir, file);
+    EXPECT_EQ(mesh.objects, 1);
+    EXPECT_EQ(mesh.vertices, static_cast<long>(t.vertices));
+    EXPECT_EQ(mesh.faces, static_cast<long>(t.triangles));
+    EXPECT_EQ(mesh.edges, static_cast<long>(t.triangles * 3 / 2)) << "closed tubes share every edge";
+    for (std::size_t a = 0; a < 3; ++a) {
+      EXPECT_NEAR(mesh.min[a], min[a], 1e-4);
+      EXPECT_NEAR(mesh.max[a], max[a], 1e-4);
+    }
+  }
+  const Imported glb = blender_import(dir, "tree.glb");
+  EXPECT_NE(glb.attributes.find("Col"), std::string::npos) << "the vertex colours: " << glb.attributes;
+
+  const Imported ply = blender_import(dir, "tree.ply");
+  EXPECT_EQ(ply.vertices, static_cast<long>(c.particles.size()));
+  EXPECT_EQ(ply.edges, static_cast<long>(c.particles.size() - c.seed_count));
+  EXPECT_EQ(ply.faces, 0);
+  Vec3 lo = Vec3::Constant(1e300), hi = -lo;
+  for (const Particle& p : c.particles) {
+    lo = lo.cwiseMin(p.position);
+    hi = hi.cwiseMax(p.position);
+  }
+  for (std::size_t a = 0; a < 3; ++a) {
+    EXPECT_NEAR(ply.min[a], lo[static_cast<int>(a)], 1e-4);
+    EXPECT_NEAR(ply.max[a], hi[static_cast<int>(a)], 1e-4);
+  }
+}
+
+TEST(GltfValidator, FindsNoErrorInTheGlb) {
+  DLA_NEED_GLTF_VALIDATOR();
+  ScratchDir dir;
+  const Cluster c = sample();
+  for (const ColorBy color : {ColorBy::none, ColorBy::seed}) {
+    for (const int sides : {3, 12}) {
+      LookOptions options;
+      options.color_by = color;
+      options.tubes.sides = sides;
+      options.tubes.tolerance = sides == 3 ? 0.3 : 0.0;
+      const std::string glb = dir / ("tree_" + std::to_string(sides) + std::string(to_string(color)) + ".glb");
+      write_glb(c, make_look(c, options), glb);
+      EXPECT_EQ(testing::validate_glb(glb), "") << glb;
+    }
+  }
+  Cluster lone;
+  lone.seed_count = 1;
+  lone.particles.push_back({Vec3::Zero(), -1, 0});
+  write_glb(lone, make_look(lone, {}), dir / "empty.glb");
+  EXPECT_EQ(testing::validate_glb(dir / "empty.glb"), "") << "a structure with no branch";
+}
+
+}  // namespace
+}  // namespace dla
