@@ -255,8 +255,7 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
   write(formats.glb, [&] { write_glb(cluster, look, output + ".glb"); });
   write(formats.obj, [&] { write_obj(cluster, look, output + ".obj"); });
   write(formats.tips, [&] {
-    write_instances_ply(look.attributes, instancing_points(cluster, look.attributes, command.instances),
-                        output + "_tips.ply", encoding);
+    write_instances_ply(cluster, look.attributes, command.instances, output + "_tips.ply", encoding);
   });
   write(formats.svg, [&] { write_svg(cluster, look, output + ".svg"); });
   if (formats.pov)

@@ -7,10 +7,17 @@
 #include <array>
 #include <cstring>
 #include <limits>
+#include <utility>
 
 namespace dla {
 
 namespace {
+
+//! The look's tubes, with the subtree sizes the attributes already hold.
+template <class Visit>
+void each_tube(const Cluster& cluster, const Look& look, Visit&& visit) {
+  for_each_tube(cluster, look.radii, look.options.tubes, std::forward<Visit>(visit), &look.attributes.descendants);
+}
 
 //! What a glTF needs before its binary chunk: counts and the positions' exact bounds.
 struct TubeTotals {
@@ -22,7 +29,7 @@ struct TubeTotals {
 
 TubeTotals tube_totals(const Cluster& cluster, const Look& look) {
   TubeTotals totals;
-  for_each_tube(cluster, look.radii, look.options.tubes, [&](const TubePiece& piece) {
+  each_tube(cluster, look, [&](const TubePiece& piece) {
     totals.vertices += piece.positions.size();
     totals.triangles += piece.triangles.size();
     for (const Eigen::Vector3f& p : piece.positions) {
@@ -117,7 +124,7 @@ void write_glb(const Cluster& cluster, const Look& look, const std::string& path
   out.raw(static_cast<std::uint32_t>(vertex_bytes + index_bytes)).raw(std::uint32_t{0x004E4942});
   const ColorScale scale(cluster, look.attributes, look.options.color_by);
   std::string bytes;
-  for_each_tube(cluster, look.radii, look.options.tubes, [&](const TubePiece& piece) {
+  each_tube(cluster, look, [&](const TubePiece& piece) {
     bytes.resize(piece.positions.size() * stride);
     char* at = bytes.data();
     const auto put = [&at](const void* data, std::size_t size) {
@@ -134,7 +141,7 @@ void write_glb(const Cluster& cluster, const Look& look, const std::string& path
     out << std::string_view(bytes);
   });
   std::uint32_t base = 0;
-  for_each_tube(cluster, look.radii, look.options.tubes, [&](const TubePiece& piece) {
+  each_tube(cluster, look, [&](const TubePiece& piece) {
     bytes.resize(piece.triangles.size() * 12);
     char* at = bytes.data();
     for (const auto& t : piece.triangles)
@@ -158,7 +165,7 @@ void write_obj(const Cluster& cluster, const Look& look, const std::string& path
       << " particles, radius model " << to_string(look.options.radius.model) << (colored ? ", colour by " : "")
       << (colored ? to_string(look.options.color_by) : "") << "\no dla\n";
   std::size_t base = 1;  // OBJ counts from 1
-  for_each_tube(cluster, look.radii, look.options.tubes, [&](const TubePiece& piece) {
+  each_tube(cluster, look, [&](const TubePiece& piece) {
     for (std::size_t v = 0; v < piece.positions.size(); ++v) {
       out << "v ";
       for (int a = 0; a < 3; ++a) out.number(piece.positions[v][a], 7) << (a < 2 ? " " : "");

@@ -68,30 +68,32 @@ void write_ply(const Cluster& cluster, const std::string& path, PlyEncoding enco
   write_ply(cluster, make_look(cluster, {}), path, encoding);
 }
 
-void write_instances_ply(const Attributes& attributes, const std::vector<Instance>& instances, const std::string& path, PlyEncoding encoding) {
+void write_instances_ply(const Cluster& cluster, const Attributes& attributes, const InstanceOptions& options,
+                         const std::string& path, PlyEncoding encoding) {
+  const std::vector<std::int32_t> ids = instance_particles(cluster, attributes, options);
   const bool binary = encoding == PlyEncoding::binary;
   detail::OutputFile out(path);
   header(out, encoding);
   out << "comment instancing points: N is the direction from the parent, pscale the largest scale at which\n"
          "comment unit-radius copies do not overlap, id the particle's index in the structure\n"
          "element vertex ";
-  out.integer(static_cast<long long>(instances.size()));
+  out.integer(static_cast<long long>(ids.size()));
   out << "\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\nproperty float ny\n"
          "property float nz\nproperty float pscale\nproperty float age\nproperty int id\nend_header\n";
-  for (const Instance& instance : instances) {
+  for_each_instance(cluster, attributes, ids, [&](const Instance& instance) {
     const float age = attributes.age(static_cast<std::size_t>(instance.particle));
     if (binary) {
       for (int axis = 0; axis < 3; ++axis) out.raw(static_cast<float>(instance.position[axis]));
       for (int axis = 0; axis < 3; ++axis) out.raw(static_cast<float>(instance.direction[axis]));
       out.raw(static_cast<float>(instance.scale)).raw(age).raw(instance.particle);
-      continue;
+      return;
     }
     for (int axis = 0; axis < 3; ++axis) out.number(instance.position[axis], 9) << ' ';
     for (int axis = 0; axis < 3; ++axis) out.fixed(instance.direction[axis], 6) << ' ';
     out.number(instance.scale, 7) << ' ';
     out.number(age, 7) << ' ';
     out.integer(instance.particle) << '\n';
-  }
+  });
   out.commit();
 }
 

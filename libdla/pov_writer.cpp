@@ -193,7 +193,7 @@ void write_geometry(const Cluster& cluster, const TriangleMesh* mesh, const Scen
       out << " }\n";
     }
     std::vector<bool> seed_started(cluster.seed_count, false);
-    for_each_strand(cluster, [&](const Strand& strand) {
+    for_each_strand(cluster, &look.attributes.descendants, [&](const Strand& strand) {
       if (strand.size() < 2) return;  // a lone seed: its sphere is above
       const auto first = static_cast<std::size_t>(strand[0]), next = static_cast<std::size_t>(strand[1]);
       const bool own_start = first < cluster.seed_count && !seed_started[first];
@@ -230,13 +230,13 @@ void write_geometry(const Cluster& cluster, const TriangleMesh* mesh, const Scen
     out << "}\n";
   }
   // Every tip, with the largest scale at which copies do not overlap (instances.h).
-  const std::vector<Instance> tips = instancing_points(cluster, look.attributes, {});
+  const std::vector<std::int32_t> tips = instance_particles(cluster, look.attributes, {});
   out << "#declare DLA_TipCount = ";
   out.integer(static_cast<long long>(tips.size())) << ";\n";
   if (!tips.empty()) {
     // POV-Ray warns about a union of one object.
     out << "#declare DLA_Tips = " << (tips.size() > 1 ? "union" : "object") << " {\n";
-    for (const Instance& tip : tips) {
+    for_each_instance(cluster, look.attributes, tips, [&](const Instance& tip) {
       out << "  DLA_Tip(";
       vector(out, tip.position, frame);
       out << ", <";
@@ -244,7 +244,7 @@ void write_geometry(const Cluster& cluster, const TriangleMesh* mesh, const Scen
       out.fixed(tip.direction.y(), 5) << ", ";
       out.fixed(tip.direction.z(), 5) << ">, ";
       out.number(tip.scale * frame.scale, 6) << ")\n";
-    }
+    });
     out << "}\n";
   }
   out.commit();

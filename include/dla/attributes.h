@@ -86,7 +86,7 @@ inline Attributes compute_attributes(const Cluster& cluster, const AttributeOpti
       if (times[parent] < 2) ++times[parent];
     }
   }
-  for_each_strand(cluster, [&](const Strand& strand) {
+  for_each_strand(cluster, &a.descendants, [&](const Strand& strand) {
     const double end = static_cast<double>(strand.size() - 1);
     // A strand's start belongs to the strand it continues, unless it is a seed.
     for (std::size_t k = ps[static_cast<std::size_t>(strand[0])].parent < 0 ? 0 : 1; k < strand.size(); ++k)
@@ -96,7 +96,7 @@ inline Attributes compute_attributes(const Cluster& cluster, const AttributeOpti
   std::vector<Vec3> seeds;
   if (!options.points)
     for (std::size_t s = 0; s < cluster.seed_count; ++s) seeds.push_back(ps[s].position);
-  const NearestPoints nearest(options.points ? *options.points : seeds);
+  const NearestPoints<> nearest(options.points ? *options.points : seeds);
   for (std::size_t i = 0; i < n; ++i) a.seed_distance[i] = static_cast<float>(nearest.distance(ps[i].position));
 
   if (options.surface) {

@@ -21,17 +21,22 @@
 
 namespace dla {
 
+//! Nearest-point queries over `Points`: anything with size() and operator[](i) giving a Vec3,
+//! such as a std::vector<Vec3> or a ParticleSubset. Keeps a reference to the points, which
+//! must outlive it and not change.
+template <class Points = std::vector<Vec3>>
 class NearestPoints {
  public:
-  //! Keeps a reference to `points`, which must outlive this and not change.
-  explicit NearestPoints(const std::vector<Vec3>& points)
+  explicit NearestPoints(const Points& points)
       : adaptor_{&points}, tree_(3, adaptor_, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {
-    if (!points.empty()) tree_.buildIndex();
+    if (points.size() > 0) tree_.buildIndex();
   }
+  NearestPoints(const NearestPoints&) = delete;  // the tree points at adaptor_
+  NearestPoints& operator=(const NearestPoints&) = delete;
 
   //! Distance from p to the nearest point of the set; infinity for an empty set.
   double distance(const Vec3& p) const {
-    if (adaptor_.points->empty()) return std::numeric_limits<double>::infinity();
+    if (adaptor_.points->size() == 0) return std::numeric_limits<double>::infinity();
     std::uint32_t index = 0;
     double d2 = 0.0;
     tree_.knnSearch(p.data(), 1, &index, &d2);
@@ -43,14 +48,15 @@ class NearestPoints {
   double distance_to_other(std::size_t i) const {
     std::uint32_t index[2] = {0, 0};
     double d2[2] = {0.0, 0.0};
-    const std::size_t found = tree_.knnSearch((*adaptor_.points)[i].data(), 2, index, d2);
+    const Vec3 p = (*adaptor_.points)[i];
+    const std::size_t found = tree_.knnSearch(p.data(), 2, index, d2);
     if (found < 2) return std::numeric_limits<double>::infinity();
     return std::sqrt(index[0] == i ? d2[1] : d2[0]);
   }
 
  private:
   struct Adaptor {
-    const std::vector<Vec3>* points;
+    const Points* points;
     std::size_t kdtree_get_point_count() const { return points->size(); }
     double kdtree_get_pt(std::size_t i, std::size_t axis) const { return (*points)[i][static_cast<int>(axis)]; }
     template <class Bbox>

@@ -26,9 +26,11 @@ void write_ply(const Cluster& cluster, const Look& look, const std::string& path
 //! The same with the default look (the taper radius model).
 void write_ply(const Cluster& cluster, const std::string& path, PlyEncoding encoding = PlyEncoding::ascii);
 
-//! Instancing points as a PLY of vertices `x y z nx ny nz pscale age id`: N is the direction,
-//! pscale the scale, id the particle's index; Houdini and Blender read these names as they
-//! are. Throws IOError.
-void write_instances_ply(const Attributes& attributes, const std::vector<Instance>& instances, const std::string& path, PlyEncoding encoding = PlyEncoding::ascii);
+//! Instancing points (instances.h) as a PLY of vertices `x y z nx ny nz pscale age id`: N is
+//! the direction, pscale the scale, id the particle's index; Houdini and Blender read these
+//! names as they are. Streamed: about 10 bytes a point beside the structure. Throws
+//! InvalidInput for bad options and IOError.
+void write_instances_ply(const Cluster& cluster, const Attributes& attributes, const InstanceOptions& options,
+                         const std::string& path, PlyEncoding encoding = PlyEncoding::ascii);
 
 }  // namespace dla

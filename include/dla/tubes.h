@@ -95,9 +95,10 @@ inline void kept_points(const Cluster& cluster, const std::vector<float>& radii,
 
 //! Calls visit(const TubePiece&) for the tube of each strand of two or more particles, in
 //! strand order; `radii` are the branch radii (radius_model.h) in scene units. A seed with no
-//! child has no tube.
+//! child has no tube. `descendants` (attributes.h), if given, saves recounting the subtrees.
 template <class Visit>
-void for_each_tube(const Cluster& cluster, const std::vector<float>& radii, const TubeOptions& options, Visit&& visit) {
+void for_each_tube(const Cluster& cluster, const std::vector<float>& radii, const TubeOptions& options, Visit&& visit,
+                   const std::vector<std::int32_t>* descendants = nullptr) {
   validate(options);
   const int sides = options.sides;
   const double tolerance = options.tolerance * cluster.spacing;
@@ -113,13 +114,14 @@ void for_each_tube(const Cluster& cluster, const std::vector<float>& radii, cons
   std::vector<double> ring_radii;
   std::vector<std::int32_t> owners;
   std::vector<bool> seed_started(cluster.seed_count, false);
-  std::vector<std::int32_t> subtree;  // particles in each subtree, only to prune twigs
-  if (options.min_branch > 1) {
-    subtree.assign(cluster.particles.size(), 1);
+  std::vector<std::int32_t> counted;  // descendants, only to prune twigs when not given
+  if (options.min_branch > 1 && !descendants) {
+    counted.assign(cluster.particles.size(), 0);
     for (std::size_t i = cluster.particles.size(); i-- > 0;)
-      if (cluster.particles[i].parent >= 0) subtree[static_cast<std::size_t>(cluster.particles[i].parent)] += subtree[i];
+      if (cluster.particles[i].parent >= 0) counted[static_cast<std::size_t>(cluster.particles[i].parent)] += counted[i] + 1;
+    descendants = &counted;
   }
-  for_each_strand(cluster, [&](const Strand& strand) {
+  for_each_strand(cluster, descendants, [&](const Strand& strand) {
     if (strand.size() < 2) return;
     detail::kept_points(cluster, radii, strand, tolerance, kept);
     const std::size_t rings = kept.size();
@@ -140,7 +142,9 @@ void for_each_tube(const Cluster& cluster, const std::vector<float>& radii, cons
     if (own_start) seed_started[first] = true;
     // A branch's particles: its first own particle's subtree; a pruned branch's branches are
     // smaller still, so nothing is left floating.
-    if (!subtree.empty() && subtree[static_cast<std::size_t>(strand[own_start ? 0 : 1])] < options.min_branch) return;
+    if (options.min_branch > 1 &&
+        (*descendants)[static_cast<std::size_t>(strand[own_start ? 0 : 1])] + 1 < options.min_branch)
+      return;
     if (!own_start) {
       ring_radii[0] = std::min(ring_radii[0], ring_radii[1]);
       owners[0] = owners[1];
