@@ -38,6 +38,19 @@ Cluster grown(std::size_t particles, int dimensions = 3, std::vector<Vec3> seeds
   return grow(o);
 }
 
+//! Growth from the centre of a ball of `radius` (a sphere mesh), walkers starting inside it.
+struct GrownInBall {
+  MeshConstraint ball;
+  Cluster cluster;
+  GrownInBall(double radius, std::size_t particles)
+      : ball(make_sphere(Vec3::Zero(), radius, 12, 24), {}, 1.0), cluster([&] {
+          GrowthOptions o;
+          o.particles = particles;
+          o.spawn = SpawnMode::inside;
+          return grow(o, ball);
+        }()) {}
+};
+
 //! A straight chain of `n` particles along x from the origin, a spacing apart.
 Cluster chain(std::size_t n) {
   Cluster c;
@@ -124,11 +137,9 @@ TEST(SurfaceDistance, ClosestPointsMatchBruteForce) {
 }
 
 TEST(Attributes, BoundaryDistanceIsTheSurfacesOnAnyThreadCount) {
-  const MeshConstraint ball(make_sphere(Vec3::Zero(), 20.0, 12, 24), {}, 1.0);
-  GrowthOptions o;
-  o.particles = 6000;  // more than 4096: the distances are measured on two threads
-  o.spawn = SpawnMode::inside;
-  const Cluster c = grow(o, ball);
+  const GrownInBall grown(20.0, 6000);  // more than 4096: the distances are measured on two threads
+  const MeshConstraint& ball = grown.ball;
+  const Cluster& c = grown.cluster;
   const SurfaceDistance surface(ball.mesh());
   const Attributes one = compute_attributes(c, {&surface, nullptr, 1});
   const Attributes two = compute_attributes(c, {&surface, nullptr, 2});
@@ -138,12 +149,9 @@ TEST(Attributes, BoundaryDistanceIsTheSurfacesOnAnyThreadCount) {
 }
 
 TEST(RadiusModels, StayInRangeAndOrderAsTheySay) {
-  const MeshConstraint ball(make_sphere(Vec3::Zero(), 14.0, 12, 24), {}, 1.0);
-  GrowthOptions o;
-  o.particles = 3000;
-  o.spawn = SpawnMode::inside;
-  const Cluster c = grow(o, ball);
-  const SurfaceDistance surface(ball.mesh());
+  const GrownInBall grown(14.0, 3000);
+  const Cluster& c = grown.cluster;
+  const SurfaceDistance surface(grown.ball.mesh());
   const Attributes a = compute_attributes(c, {&surface});
   for (const RadiusModel model : {RadiusModel::taper, RadiusModel::pipe, RadiusModel::boundary,
                                   RadiusModel::seed_distance, RadiusModel::uniform}) {
@@ -321,11 +329,9 @@ TEST(Instances, NeverOverlapAndPointAwayFromTheirParents) {
 }
 
 TEST(Instances, NearTheBoundaryStayInsideIt) {
-  const MeshConstraint ball(make_sphere(Vec3::Zero(), 10.0, 12, 24), {}, 1.0);
-  GrowthOptions o;
-  o.particles = 3000;
-  o.spawn = SpawnMode::inside;
-  const Cluster c = grow(o, ball);
+  const GrownInBall grown(10.0, 3000);
+  const MeshConstraint& ball = grown.ball;
+  const Cluster& c = grown.cluster;
   const SurfaceDistance surface(ball.mesh());
   const Attributes a = compute_attributes(c, {&surface});
   InstanceOptions near;
