@@ -213,7 +213,8 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
     const std::size_t at = header.find("element vertex ");
     if (at == std::string::npos) return prefix + "_tips.ply has no header";
     const auto points = static_cast<std::size_t>(std::atoll(header.c_str() + at + 15));
-    if (points == 0 || points > particles) return prefix + "_tips.ply has " + std::to_string(points) + " points";
+    // None is valid: no tip within --tips-within 0 of the mesh.
+    if (points > particles) return prefix + "_tips.ply has " + std::to_string(points) + " points";
     const bool binary = header.find("format binary_little_endian") != std::string::npos;
     if (binary ? body != 36 * points
                : static_cast<std::size_t>(std::count(tips.begin() + static_cast<std::ptrdiff_t>(header.size()), tips.end(), '\n')) != points)
