@@ -22,7 +22,7 @@ void write(const Cluster& cluster, const Look* look, const std::string& path) {
     if (look) {
       const Attributes& a = look->attributes;
       out << ',';
-      out.number(look->radii[i], 7) << ',';
+      out.number(look->radius(cluster, i), 7) << ',';
       out.number(a.age(i), 7) << ',';
       out.integer(a.depth[i]) << ',';
       out.integer(a.descendants[i]) << ',';

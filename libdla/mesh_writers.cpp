@@ -53,7 +53,7 @@ std::array<float, 6> vertex_attributes(const Cluster& cluster, const Look& look,
   const Attributes& a = look.attributes;
   return {a.age(i), static_cast<float>(a.depth[i]), static_cast<float>(a.descendants[i]),
           static_cast<float>(a.strahler[i]), static_cast<float>(cluster.particles[i].seed),
-          static_cast<float>(look.radii[i])};
+          static_cast<float>(look.radius(cluster, i))};
 }
 
 std::string vec3(const Eigen::Vector3f& v) {

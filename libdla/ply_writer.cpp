@@ -38,12 +38,12 @@ void write_ply(const Cluster& cluster, const Look& look, const std::string& path
     const std::uint8_t tip = a.tip(i) ? 1 : 0;
     if (binary) {
       for (int axis = 0; axis < 3; ++axis) out.raw(static_cast<float>(p.position[axis]));
-      out.raw(static_cast<float>(look.radii[i])).raw(a.age(i)).raw(a.depth[i]).raw(a.descendants[i]);
+      out.raw(static_cast<float>(look.radius(cluster, i))).raw(a.age(i)).raw(a.depth[i]).raw(a.descendants[i]);
       out.raw(order).raw(tip).raw(p.seed).raw(p.parent);
       continue;
     }
     for (int axis = 0; axis < 3; ++axis) out.number(p.position[axis], 9) << ' ';
-    out.number(look.radii[i], 7) << ' ';
+    out.number(look.radius(cluster, i), 7) << ' ';
     out.number(a.age(i), 7) << ' ';
     out.integer(a.depth[i]) << ' ';
     out.integer(a.descendants[i]) << ' ';

@@ -34,7 +34,7 @@ void write_svg(const Cluster& cluster, const Look& look, const std::string& path
   for (std::size_t i = 0; i < ps.size(); ++i) {
     lo = lo.cwiseMin(ps[i].position.head<2>());
     hi = hi.cwiseMax(ps[i].position.head<2>());
-    widest = std::max(widest, static_cast<double>(look.radii[i]));
+    widest = std::max(widest, look.radius(cluster, i));
   }
   const double margin = widest + 0.02 * (hi - lo).maxCoeff();
   lo -= Eigen::Vector2d::Constant(margin);
@@ -70,7 +70,7 @@ void write_svg(const Cluster& cluster, const Look& look, const std::string& path
     out.fixed(-a.y(), decimals) << "\" x2=\"";
     out.fixed(b.x(), decimals) << "\" y2=\"";
     out.fixed(-b.y(), decimals) << "\" stroke-width=\"";
-    out.fixed(2.0 * look.radii[i], decimals) << '"';
+    out.fixed(2.0 * look.radius(cluster, i), decimals) << '"';
     if (colored) out << " stroke=\"" << srgb_hex(color_at(scale(i))) << '"';
     out << "/>\n";
   }

@@ -160,7 +160,7 @@ TEST(RadiusModels, StayInRangeAndOrderAsTheySay) {
     r.model = model;
     r.tip_radius = 0.1;
     r.base_radius = 0.6;
-    const std::vector<float> radii = branch_radii(c, a, r);
+    const std::vector<float> radii = branch_radii(a, r);
     for (const float radius : radii) {
       ASSERT_GE(radius, 0.1f - 1e-6f);
       ASSERT_LE(radius, 0.6f + 1e-6f);
@@ -186,15 +186,15 @@ TEST(RadiusModels, StayInRangeAndOrderAsTheySay) {
   pipe.tip_radius = 0.1;
   pipe.base_radius = 100;
   pipe.pipe_exponent = 3;
-  const std::vector<float> radii = branch_radii(c, a, pipe);
+  const std::vector<float> radii = branch_radii(a, pipe);
   EXPECT_NEAR(radii[0], 0.1 * std::cbrt(a.descendants[0] + 1.0), 1e-5) << "r = tip (d + 1)^(1/e)";
 
   RadiusOptions boundary;
   boundary.model = RadiusModel::boundary;
-  EXPECT_THROW(branch_radii(c, compute_attributes(c), boundary), InvalidInput);
+  EXPECT_THROW(branch_radii(compute_attributes(c), boundary), InvalidInput);
   RadiusOptions bad;
   bad.pipe_exponent = 0.5;
-  EXPECT_THROW(branch_radii(c, a, bad), InvalidInput);
+  EXPECT_THROW(branch_radii(a, bad), InvalidInput);
   EXPECT_EQ(parse_radius_model("seed-distance"), RadiusModel::seed_distance);
   EXPECT_THROW(parse_radius_model("wavy"), InvalidInput);
 }

@@ -26,7 +26,10 @@ inline void validate(const LookOptions& options) {
 struct Look {
   LookOptions options;
   Attributes attributes;
-  std::vector<float> radii;  //!< branch radius of each particle, in scene units
+  std::vector<float> radii;  //!< branch radius of each particle, in spacings
+
+  //! Particle i's branch radius in scene units.
+  double radius(const Cluster& cluster, std::size_t i) const { return radii[i] * cluster.spacing; }
 };
 
 //! Computes the attributes and radii. Throws InvalidInput for bad options, or a model that
@@ -36,7 +39,7 @@ inline Look make_look(const Cluster& cluster, const LookOptions& options, const 
   Look look;
   look.options = options;
   look.attributes = compute_attributes(cluster, sources);
-  look.radii = branch_radii(cluster, look.attributes, options.radius);
+  look.radii = branch_radii(look.attributes, options.radius);
   return look;
 }
 

@@ -81,9 +81,10 @@ inline double largest(const std::vector<float>& values) {
   return values.empty() ? 0.0 : static_cast<double>(*std::max_element(values.begin(), values.end()));
 }
 
-//! The radius of every particle's branch, in scene units (spacings × the cluster's spacing).
+//! The radius of every particle's branch, in spacings (a float holds them at any spacing:
+//! multiply by the cluster's spacing for scene units).
 //! Throws InvalidInput for bad options, and for `boundary` without a mesh distance.
-inline std::vector<float> branch_radii(const Cluster& cluster, const Attributes& attributes,
+inline std::vector<float> branch_radii(const Attributes& attributes,
                                         const RadiusOptions& options) {
   validate(options);
   if (options.model == RadiusModel::boundary && attributes.boundary_distance.empty())
@@ -93,7 +94,7 @@ inline std::vector<float> branch_radii(const Cluster& cluster, const Attributes&
   std::vector<float> radii(attributes.size());
   for (std::size_t i = 0; i < radii.size(); ++i) {
     const double f = radius_fraction(options, attributes, i, boundary_reach, seed_reach);
-    radii[i] = static_cast<float>((options.tip_radius + (options.base_radius - options.tip_radius) * f) * cluster.spacing);
+    radii[i] = static_cast<float>(options.tip_radius + (options.base_radius - options.tip_radius) * f);
   }
   return radii;
 }

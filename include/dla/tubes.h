@@ -69,7 +69,7 @@ inline void kept_points(const Cluster& cluster, const std::vector<float>& radii,
   }
   constexpr std::size_t kWindow = 64;  // the most points one segment may stand for
   const auto at = [&](std::size_t k) -> const Vec3& { return cluster.particles[static_cast<std::size_t>(strand[k])].position; };
-  const auto radius = [&](std::size_t k) { return radii[static_cast<std::size_t>(strand[k])]; };
+  const auto radius = [&](std::size_t k) { return radii[static_cast<std::size_t>(strand[k])] * cluster.spacing; };
   std::size_t anchor = 0;
   while (anchor < last) {
     std::size_t reach = anchor + 1;
@@ -94,7 +94,7 @@ inline void kept_points(const Cluster& cluster, const std::vector<float>& radii,
 }  // namespace detail
 
 //! Calls visit(const TubePiece&) for the tube of each strand of two or more particles, in
-//! strand order; `radii` are the branch radii (radius_model.h) in scene units. A seed with no
+//! strand order; `radii` are the branch radii (radius_model.h) in spacings. A seed with no
 //! child has no tube. `descendants` (attributes.h), if given, saves recounting the subtrees.
 template <class Visit>
 void for_each_tube(const Cluster& cluster, const std::vector<float>& radii, const TubeOptions& options, Visit&& visit,
@@ -131,7 +131,7 @@ void for_each_tube(const Cluster& cluster, const std::vector<float>& radii, cons
     for (std::size_t j = 0; j < rings; ++j) {
       const auto id = static_cast<std::size_t>(strand[kept[j]]);
       points[j] = cluster.particles[id].position;
-      ring_radii[j] = radii[id];
+      ring_radii[j] = radii[id] * cluster.spacing;
       owners[j] = strand[kept[j]];
     }
     // A strand leaving a branch point starts there, no thicker than its parent's tube nor its
