@@ -5,13 +5,7 @@
 
 #include "dla/options.h"
 
-// nanoflann 1.4 leaves a bounding box uninitialised on a path it never takes; GCC warns.
-#pragma GCC diagnostic push
-#if defined(__GNUC__) && !defined(__clang__)  // a GCC-only warning
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#endif
-#include <nanoflann.hpp>
-#pragma GCC diagnostic pop
+#include "dla/detail/nanoflann.h"
 
 #include <cmath>
 #include <cstddef>
