@@ -26,7 +26,7 @@ void write(const Cluster& cluster, const Look* look, const std::string& path) {
       out.number(a.age(i), 7) << ',';
       out.integer(a.depth[i]) << ',';
       out.integer(a.descendants[i]) << ',';
-      out.integer(a.strahler[i]) << ',';
+      out.integer(a.strahler(i)) << ',';
       out.integer(a.tip(i) ? 1 : 0);
     }
     out << '\n';

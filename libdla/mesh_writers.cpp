@@ -13,11 +13,22 @@ namespace dla {
 
 namespace {
 
-//! The look's tubes, with the subtree sizes the attributes already hold.
-template <class Visit>
-void each_tube(const Cluster& cluster, const Look& look, Visit&& visit) {
-  for_each_tube(cluster, look.radii, look.options.tubes, std::forward<Visit>(visit), &look.attributes.descendants);
-}
+//! The look's tubes, walked once a pass, with the radii computed once.
+class LookTubes {
+ public:
+  LookTubes(const Cluster& cluster, const Look& look) : cluster_(cluster), look_(look), radii_(look.radii(cluster)) {}
+
+  template <class Visit>
+  void operator()(Visit&& visit) const {
+    for_each_tube(cluster_, look_.attributes, radii_, look_.options.tubes, std::forward<Visit>(visit));
+  }
+  float radius(std::size_t i) const { return radii_[i]; }
+
+ private:
+  const Cluster& cluster_;
+  const Look& look_;
+  std::vector<float> radii_;
+};
 
 //! What a glTF needs before its binary chunk: counts and the positions' exact bounds.
 struct TubeTotals {
@@ -27,9 +38,9 @@ struct TubeTotals {
   Eigen::Vector3f max = -min;
 };
 
-TubeTotals tube_totals(const Cluster& cluster, const Look& look) {
+TubeTotals tube_totals(const LookTubes& each_tube) {
   TubeTotals totals;
-  each_tube(cluster, look, [&](const TubePiece& piece) {
+  each_tube([&](const TubePiece& piece) {
     totals.vertices += piece.positions.size();
     totals.triangles += piece.triangles.size();
     for (const Eigen::Vector3f& p : piece.positions) {
@@ -49,11 +60,12 @@ std::array<std::uint8_t, 4> vertex_color(const ColorScale& scale, std::size_t pa
 //! The per-vertex attributes, in the order of the glTF's `_` accessors.
 constexpr const char* kAttributeNames[] = {"_AGE", "_DEPTH", "_DESCENDANTS", "_ORDER", "_SEED", "_RADIUS"};
 
-std::array<float, 6> vertex_attributes(const Cluster& cluster, const Look& look, std::size_t i) {
+std::array<float, 6> vertex_attributes(const Cluster& cluster, const Look& look, const LookTubes& tubes,
+                                      std::size_t i) {
   const Attributes& a = look.attributes;
   return {a.age(i), static_cast<float>(a.depth[i]), static_cast<float>(a.descendants[i]),
-          static_cast<float>(a.strahler[i]), static_cast<float>(cluster.particles[i].seed),
-          static_cast<float>(look.radius(cluster, i))};
+          static_cast<float>(a.strahler(i)), static_cast<float>(cluster.particles[i].seed),
+          static_cast<float>(static_cast<double>(tubes.radius(i)) * cluster.spacing)};
 }
 
 std::string vec3(const Eigen::Vector3f& v) {
@@ -63,7 +75,8 @@ std::string vec3(const Eigen::Vector3f& v) {
 }  // namespace
 
 void write_glb(const Cluster& cluster, const Look& look, const std::string& path) {
-  const TubeTotals totals = tube_totals(cluster, look);
+  const LookTubes each_tube(cluster, look);
+  const TubeTotals totals = tube_totals(each_tube);
   const bool colored = look.options.color_by != ColorBy::none;
   // One interleaved vertex: position, normal, [colour], the attributes.
   const std::size_t stride = 12 + 12 + (colored ? 4 : 0) + 4 * std::size(kAttributeNames);
@@ -124,7 +137,7 @@ void write_glb(const Cluster& cluster, const Look& look, const std::string& path
   out.raw(static_cast<std::uint32_t>(vertex_bytes + index_bytes)).raw(std::uint32_t{0x004E4942});
   const ColorScale scale(cluster, look.attributes, look.options.color_by);
   std::string bytes;
-  each_tube(cluster, look, [&](const TubePiece& piece) {
+  each_tube([&](const TubePiece& piece) {
     bytes.resize(piece.positions.size() * stride);
     char* at = bytes.data();
     const auto put = [&at](const void* data, std::size_t size) {
@@ -136,12 +149,12 @@ void write_glb(const Cluster& cluster, const Look& look, const std::string& path
       put(piece.positions[v].data(), 12);
       put(piece.normals[v].data(), 12);
       if (colored) put(vertex_color(scale, particle).data(), 4);
-      put(vertex_attributes(cluster, look, particle).data(), 4 * std::size(kAttributeNames));
+      put(vertex_attributes(cluster, look, each_tube, particle).data(), 4 * std::size(kAttributeNames));
     }
     out << std::string_view(bytes);
   });
   std::uint32_t base = 0;
-  each_tube(cluster, look, [&](const TubePiece& piece) {
+  each_tube([&](const TubePiece& piece) {
     bytes.resize(piece.triangles.size() * 12);
     char* at = bytes.data();
     for (const auto& t : piece.triangles)
@@ -165,7 +178,8 @@ void write_obj(const Cluster& cluster, const Look& look, const std::string& path
       << " particles, radius model " << to_string(look.options.radius.model) << (colored ? ", colour by " : "")
       << (colored ? to_string(look.options.color_by) : "") << "\no dla\n";
   std::size_t base = 1;  // OBJ counts from 1
-  each_tube(cluster, look, [&](const TubePiece& piece) {
+  const LookTubes each_tube(cluster, look);
+  each_tube([&](const TubePiece& piece) {
     for (std::size_t v = 0; v < piece.positions.size(); ++v) {
       out << "v ";
       for (int a = 0; a < 3; ++a) out.number(piece.positions[v][a], 7) << (a < 2 ? " " : "");

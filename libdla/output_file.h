@@ -18,7 +18,7 @@ namespace dla::detail {
 class OutputFile {
  public:
   explicit OutputFile(std::string path) : path_(std::move(path)), temp_(path_ + ".tmp") {
-    file_ = std::fopen(temp_.c_str(), "wb");
+    file_ = std::fopen(temp_.c_str(), "w+b");  // read back when appended to another
     if (!file_) fail();
     buffer_.reserve(kFlushAt + 256);
   }
@@ -78,6 +78,21 @@ class OutputFile {
     char text[24];
     const auto end = std::to_chars(text, text + sizeof text, value);
     return *this << std::string_view(text, static_cast<std::size_t>(end.ptr - text));
+  }
+
+  //! Appends what `part` holds: a file written beside this one (on another thread) and never
+  //! committed, which its destructor removes.
+  void append(OutputFile& part) {
+    part.flush();
+    if (std::fflush(part.file_) != 0 || std::fseek(part.file_, 0, SEEK_SET) != 0) part.fail();
+    flush();
+    std::string chunk(std::size_t{1} << 20, '\0');
+    for (;;) {
+      const std::size_t got = std::fread(chunk.data(), 1, chunk.size(), part.file_);
+      if (got > 0 && std::fwrite(chunk.data(), 1, got, file_) != got) fail();
+      if (got < chunk.size()) break;
+    }
+    if (std::ferror(part.file_)) part.fail();
   }
 
   //! Writes what is left, closes and renames the file into place.

@@ -34,7 +34,7 @@ void write_ply(const Cluster& cluster, const Look& look, const std::string& path
   out << "\nproperty int vertex1\nproperty int vertex2\nend_header\n";
   for (std::size_t i = 0; i < ps.size(); ++i) {
     const Particle& p = ps[i];
-    const std::uint8_t order = a.strahler[i];
+    const auto order = static_cast<std::uint8_t>(a.strahler(i));
     const std::uint8_t tip = a.tip(i) ? 1 : 0;
     if (binary) {
       for (int axis = 0; axis < 3; ++axis) out.raw(static_cast<float>(p.position[axis]));
@@ -70,17 +70,17 @@ void write_ply(const Cluster& cluster, const std::string& path, PlyEncoding enco
 
 void write_instances_ply(const Cluster& cluster, const Attributes& attributes, const InstanceOptions& options,
                          const std::string& path, PlyEncoding encoding) {
-  const std::vector<std::int32_t> ids = instance_particles(cluster, attributes, options);
+  const std::size_t count = count_instances(cluster, attributes, options);
   const bool binary = encoding == PlyEncoding::binary;
   detail::OutputFile out(path);
   header(out, encoding);
   out << "comment instancing points: N is the direction from the parent, pscale the largest scale at which\n"
          "comment unit-radius copies do not overlap, id the particle's index in the structure\n"
          "element vertex ";
-  out.integer(static_cast<long long>(ids.size()));
+  out.integer(static_cast<long long>(count));
   out << "\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\nproperty float ny\n"
          "property float nz\nproperty float pscale\nproperty float age\nproperty int id\nend_header\n";
-  for_each_instance(cluster, attributes, ids, [&](const Instance& instance) {
+  for_each_instance(cluster, attributes, options, [&](const Instance& instance) {
     const float age = attributes.age(static_cast<std::size_t>(instance.particle));
     if (binary) {
       for (int axis = 0; axis < 3; ++axis) out.raw(static_cast<float>(instance.position[axis]));

@@ -70,7 +70,7 @@ struct Tubes {
 
 Tubes tubes_of(const Cluster& c, const Look& look) {
   Tubes t;
-  for_each_tube(c, look.radii, look.options.tubes, [&](const TubePiece& piece) {
+  for_each_tube(c, look.attributes, look.radii(c), look.options.tubes, [&](const TubePiece& piece) {
     t.vertices += piece.positions.size();
     t.triangles += piece.triangles.size();
     for (const Eigen::Vector3f& p : piece.positions) {

@@ -10,6 +10,7 @@
 #include "dla/surface_distance.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <thread>
 #include <vector>
@@ -20,23 +21,36 @@ namespace dla {
 struct AttributeOptions {
   const SurfaceDistance* surface = nullptr;  //!< the constraint mesh: gives boundary_distance
   const std::vector<Vec3>* points = nullptr; //!< seed_distance is to these; default: the seeds
-  int threads = 1;                           //!< for the distances to the surface, 1-256; the
-                                             //!< result does not depend on it
+  int threads = 1;                           //!< for the distances to the surface and between
+                                             //!< tips, 1-256; the result does not depend on it
 };
 
-//! One value per particle, indexed as Cluster::particles (the index is the attach order).
-//! About 22 bytes a particle (26 with a mesh), beside the cluster's 32.
+//! Per-particle values, indexed as Cluster::particles (the index is the attach order): 11 bytes
+//! a particle (15 with a mesh) and 4 a tip, beside the cluster's 32, so that 10^7 particles and
+//! their look fit in 48 bytes a particle. What is cheap to recompute is not stored: the age,
+//! the distance to the seeds, and the radii (radius_model.h).
 struct Attributes {
   std::vector<std::int32_t> depth;         //!< particles on the path to its seed (a seed: 0)
   std::vector<std::int32_t> descendants;   //!< particles in its subtree, itself not counted
-  std::vector<std::uint8_t> children;      //!< particles attached to it, up to 255
-  std::vector<std::uint8_t> strahler;      //!< Strahler order: tips 1, and one more where two
-                                           //!< branches of the same order meet
-  std::vector<float> taper;                //!< place along its strand (strands.h): 1 at the
-                                           //!< strand's start, falling to 0 at its tip
-  std::vector<float> seed_distance;        //!< to the nearest seed (or AttributeOptions::points)
+  //! Packed: the Strahler order (bits 0-5; tips 1, one more where two branches of the same
+  //! order meet, at most 32 below 2^31 particles), branch point (bit 6), and whether the
+  //! particle goes on with its parent's strand (bit 7, strands.h).
+  std::vector<std::uint8_t> shape;
+  //! The place along its strand (strands.h), in 65535ths: 65535 at the strand's start, falling
+  //! to 0 at its tip.
+  std::vector<std::uint16_t> strand_place;
   std::vector<float> boundary_distance;    //!< to the mesh's surface; empty without a mesh
+  //! For each tip, in attach order: half the distance to the nearest other tip, in spacings,
+  //! rounded down (infinity for a lone tip). Unit-radius copies scaled by it never overlap:
+  //! the instancing points' scale (instances.h).
+  std::vector<float> tip_gaps;
+  PointDistance seed_points;               //!< the seeds (or AttributeOptions::points)
+  double seed_reach = 0.0;                 //!< the largest distance of a particle to them
+  double boundary_reach = 0.0;             //!< the largest boundary_distance, 0 without a mesh
   std::size_t seed_count = 0;
+
+  static constexpr std::uint8_t kOrderBits = 0x3f, kBranchPointBit = 0x40, kContinuesBit = 0x80;
+  static constexpr double kPlaceSteps = 65535.0;
 
   std::size_t size() const { return depth.size(); }
   //! Normalised attach order: seeds 0, the first attached particle 0, the last 1.
@@ -45,59 +59,118 @@ struct Attributes {
     if (i < seed_count || attached < 2) return 0.0f;
     return static_cast<float>(static_cast<double>(i - seed_count) / static_cast<double>(attached - 1));
   }
-  bool tip(std::size_t i) const { return children[i] == 0; }
-  bool branch_point(std::size_t i) const { return children[i] >= 2; }
+  int strahler(std::size_t i) const { return shape[i] & kOrderBits; }
+  bool tip(std::size_t i) const { return descendants[i] == 0; }
+  bool branch_point(std::size_t i) const { return (shape[i] & kBranchPointBit) != 0; }
+  bool continues_strand(std::size_t i) const { return (shape[i] & kContinuesBit) != 0; }
+  //! 1 at its strand's start, falling to 0 at its tip.
+  double taper(std::size_t i) const { return strand_place[i] / kPlaceSteps; }
+  //! The distance from a particle at `position` to the nearest seed (or given point).
+  double seed_distance(const Vec3& position) const { return seed_points(position); }
 };
 
-//! Every attribute of every particle. Linear in the particles, but the distance to a mesh,
-//! which takes an AABB-tree query each (about a microsecond).
+//! For each particle with selected[i], in attach order: half the distance to the nearest other
+//! selected particle, in spacings, rounded down (infinity for a lone one). The look-ups are
+//! shared among `threads`; the result does not depend on them.
+inline std::vector<float> half_gaps(const Cluster& cluster, const std::vector<bool>& selected, int threads = 1) {
+  const auto& ps = cluster.particles;
+  const std::size_t n = ps.size();
+  const auto count = static_cast<std::size_t>(std::count(selected.begin(), selected.end(), true));
+  std::vector<float> gaps;
+  if (count == 0) return gaps;
+  NearestOther nearest(ps[0].position, cluster.spacing, count);
+  for (std::size_t i = 0; i < n; ++i)
+    if (selected[i]) nearest.add(ps[i].position);
+  nearest.build();
+  gaps.resize(count);
+  // Particles [from, to), whose gaps start at gaps[first].
+  const auto measure = [&](std::size_t from, std::size_t to, std::size_t first) {
+    for (std::size_t i = from; i < to; ++i) {
+      if (!selected[i]) continue;
+      const double half = 0.5 * nearest.distance_to_other(ps[i].position) / cluster.spacing;
+      float gap = static_cast<float>(half);
+      if (static_cast<double>(gap) > half) gap = std::nextafter(gap, 0.0f);
+      gaps[first++] = gap;
+    }
+  };
+  const auto parts = std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), count / 4096 + 1);
+  std::vector<std::thread> helpers;
+  std::size_t first = 0;
+  for (std::size_t t = 0; t < parts; ++t) {
+    const std::size_t from = n * t / parts, to = n * (t + 1) / parts;
+    if (t + 1 < parts) helpers.emplace_back(measure, from, to, first);
+    else measure(from, to, first);
+    first += static_cast<std::size_t>(std::count(selected.begin() + static_cast<std::ptrdiff_t>(from),
+                                                 selected.begin() + static_cast<std::ptrdiff_t>(to), true));
+  }
+  for (std::thread& helper : helpers) helper.join();
+  return gaps;
+}
+
+//! Every attribute of every particle, in the memory it keeps (nothing more on the side). Linear
+//! in the particles, but the distance to a mesh, which takes an AABB-tree query each (about a
+//! microsecond).
 inline Attributes compute_attributes(const Cluster& cluster, const AttributeOptions& options = {}) {
   if (options.threads < 1 || options.threads > 256)
     throw InvalidInput("threads " + std::to_string(options.threads) + " is not in 1-256");
   const auto& ps = cluster.particles;
   const std::size_t n = ps.size();
+  const auto parent_of = [&](std::size_t i) { return static_cast<std::size_t>(ps[i].parent); };
   Attributes a;
   a.seed_count = cluster.seed_count;
-  a.depth.assign(n, 0);
+  // First, while nothing else is held: the tree of the tips takes 12 bytes a tip.
+  a.tip_gaps = half_gaps(cluster, tip_flags(cluster), options.threads);
   a.descendants.assign(n, 0);
-  a.children.assign(n, 0);
-  a.strahler.assign(n, 1);
-  a.taper.assign(n, 1.0f);
-  a.seed_distance.resize(n);
+  a.shape.assign(n, 1);
+  a.strand_place.assign(n, 0);
+  // Parents come before their children: one pass backwards finishes each subtree first.
+  for (std::size_t i = n; i-- > 0;)
+    if (ps[i].parent >= 0) a.descendants[parent_of(i)] += a.descendants[i] + 1;
 
+  // Each parent's heaviest child goes on with its strand; `depth` holds it until it is filled.
+  a.depth.assign(n, -1);
+  std::vector<std::int32_t>& heaviest = a.depth;
   for (std::size_t i = 0; i < n; ++i) {
     if (ps[i].parent < 0) continue;
-    const auto parent = static_cast<std::size_t>(ps[i].parent);
-    a.depth[i] = a.depth[parent] + 1;
-    if (a.children[parent] < 255) ++a.children[parent];
+    std::int32_t& h = heaviest[parent_of(i)];
+    if (h >= 0) a.shape[parent_of(i)] |= Attributes::kBranchPointBit;  // a second child
+    if (h < 0 || a.descendants[i] > a.descendants[static_cast<std::size_t>(h)]) h = static_cast<std::int32_t>(i);
   }
-  // Parents come before their children: one pass backwards finishes each subtree first.
-  // Children's highest order and how many have it (orders stay far below 255: 2^254 tips).
-  std::vector<std::uint8_t> highest(n, 0), times(n, 0);
+  for (std::size_t i = 0; i < n; ++i)
+    if (ps[i].parent >= 0 && heaviest[parent_of(i)] == static_cast<std::int32_t>(i)) a.shape[i] |= Attributes::kContinuesBit;
+  for (std::size_t i = 0; i < n; ++i) a.depth[i] = ps[i].parent < 0 ? 0 : a.depth[parent_of(i)] + 1;
+
+  // Strahler order, backwards. `strand_place` holds each parent's children's highest order
+  // (low byte) and how many have it, up to 2 (high byte), until it is filled.
   for (std::size_t i = n; i-- > 0;) {
-    if (a.children[i] > 0) a.strahler[i] = static_cast<std::uint8_t>(times[i] >= 2 ? highest[i] + 1 : highest[i]);
-    if (ps[i].parent < 0) continue;
-    const auto parent = static_cast<std::size_t>(ps[i].parent);
-    a.descendants[parent] += a.descendants[i] + 1;
-    if (a.strahler[i] > highest[parent]) {
-      highest[parent] = a.strahler[i];
-      times[parent] = 1;
-    } else if (a.strahler[i] == highest[parent]) {
-      if (times[parent] < 2) ++times[parent];
+    if (a.descendants[i] > 0) {
+      const unsigned highest = a.strand_place[i] & 0xffu, times = a.strand_place[i] >> 8;
+      a.shape[i] = static_cast<std::uint8_t>((a.shape[i] & ~Attributes::kOrderBits) | (times >= 2 ? highest + 1 : highest));
     }
+    if (ps[i].parent < 0) continue;
+    std::uint16_t& parent = a.strand_place[parent_of(i)];
+    const unsigned order = a.shape[i] & Attributes::kOrderBits, highest = parent & 0xffu, times = parent >> 8;
+    if (order > highest) parent = static_cast<std::uint16_t>(order | 1u << 8);
+    else if (order == highest && times < 2) parent = static_cast<std::uint16_t>(order | (times + 1) << 8);
   }
-  for_each_strand(cluster, &a.descendants, [&](const Strand& strand) {
+  // Every particle lies on one strand (a seed at its own strand's start): each place is set.
+  for_each_strand(cluster, [&](std::size_t i) { return a.continues_strand(i); }, [&](const Strand& strand) {
     const double end = static_cast<double>(strand.size() - 1);
     // A strand's start belongs to the strand it continues, unless it is a seed.
     for (std::size_t k = ps[static_cast<std::size_t>(strand[0])].parent < 0 ? 0 : 1; k < strand.size(); ++k)
-      a.taper[static_cast<std::size_t>(strand[k])] = end > 0 ? static_cast<float>(1.0 - static_cast<double>(k) / end) : 1.0f;
+      a.strand_place[static_cast<std::size_t>(strand[k])] = static_cast<std::uint16_t>(
+          std::lround(end > 0 ? Attributes::kPlaceSteps * (1.0 - static_cast<double>(k) / end) : Attributes::kPlaceSteps));
   });
 
   std::vector<Vec3> seeds;
-  if (!options.points)
+  if (options.points) seeds = *options.points;
+  else
     for (std::size_t s = 0; s < cluster.seed_count; ++s) seeds.push_back(ps[s].position);
-  const NearestPoints<> nearest(options.points ? *options.points : seeds);
-  for (std::size_t i = 0; i < n; ++i) a.seed_distance[i] = static_cast<float>(nearest.distance(ps[i].position));
+  a.seed_points = PointDistance(std::move(seeds));
+  for (std::size_t i = 0; i < n; ++i) {
+    const double d = a.seed_distance(ps[i].position);
+    if (d > a.seed_reach && std::isfinite(d)) a.seed_reach = d;
+  }
 
   if (options.surface) {
     a.boundary_distance.resize(n);
@@ -110,6 +183,7 @@ inline Attributes compute_attributes(const Cluster& cluster, const AttributeOpti
     for (std::size_t t = 1; t < threads; ++t) helpers.emplace_back(measure, n * t / threads, n * (t + 1) / threads);
     measure(0, n / threads);
     for (std::thread& helper : helpers) helper.join();
+    if (n > 0) a.boundary_reach = *std::max_element(a.boundary_distance.begin(), a.boundary_distance.end());
   }
   return a;
 }

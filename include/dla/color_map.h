@@ -42,7 +42,7 @@ class ColorScale {
   ColorScale(const Cluster& cluster, const Attributes& attributes, ColorBy by)
       : cluster_(&cluster), attributes_(&attributes), by_(by) {
     if (by == ColorBy::depth) reach_ = attributes.depth.empty() ? 0.0 : *std::max_element(attributes.depth.begin(), attributes.depth.end());
-    if (by == ColorBy::distance) reach_ = largest(distances());
+    if (by == ColorBy::distance) reach_ = attributes.boundary_distance.empty() ? attributes.seed_reach : attributes.boundary_reach;
   }
 
   double operator()(std::size_t i) const {
@@ -52,17 +52,15 @@ class ColorScale {
       case ColorBy::depth: return reach_ > 0 ? attributes_->depth[i] / reach_ : 0.0;
       // The golden ratio spreads tree after tree around the map.
       case ColorBy::seed: return std::fmod(0.15 + 0.618034 * cluster_->particles[i].seed, 1.0);
-      case ColorBy::distance: return reach_ > 0 ? distances()[i] / reach_ : 0.0;
+      case ColorBy::distance: return reach_ > 0 ? distance(i) / reach_ : 0.0;
     }
     return 0.0;
   }
 
  private:
-  const std::vector<float>& distances() const {
-    return attributes_->boundary_distance.empty() ? attributes_->seed_distance : attributes_->boundary_distance;
-  }
-  static double largest(const std::vector<float>& values) {
-    return values.empty() ? 0.0 : *std::max_element(values.begin(), values.end());
+  double distance(std::size_t i) const {
+    return attributes_->boundary_distance.empty() ? attributes_->seed_distance(cluster_->particles[i].position)
+                                                  : attributes_->boundary_distance[i];
   }
 
   const Cluster* cluster_;

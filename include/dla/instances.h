@@ -43,54 +43,70 @@ inline void validate(const InstanceOptions& options) {
 struct Instance {
   Vec3 position;
   Vec3 direction;          //!< unit: from the parent to the particle (a seed: +z)
-  double scale;            //!< half the distance to the nearest other instance, and no more
+  double scale;            //!< half the distance to the nearest other instance (less its
+                           //!< float rounding: about 1e-6 of the structure's size), and no more
                            //!< than the distance to the mesh's surface: unit-radius copies
                            //!< scaled by it never overlap nor cross the mesh
   std::int32_t particle;   //!< index in Cluster::particles
 };
 
-//! Some particles' positions by index, for NearestPoints: 4 bytes a point, not 24.
-struct ParticleSubset {
-  const std::vector<Particle>* particles;
-  const std::vector<std::int32_t>* ids;
-  std::size_t size() const { return ids->size(); }
-  const Vec3& operator[](std::size_t i) const { return (*particles)[static_cast<std::size_t>((*ids)[i])].position; }
+//! Which particles become instancing points: selected(i) says whether particle i does.
+//! Throws InvalidInput for `within` without the distance to a mesh.
+class InstanceSelection {
+ public:
+  InstanceSelection(const Cluster& cluster, const Attributes& attributes, const InstanceOptions& options)
+      : attributes_(attributes), set_(options.set), within_(options.within * cluster.spacing),
+        near_boundary_(options.within != std::numeric_limits<double>::infinity()) {
+    validate(options);
+    if (near_boundary_ && attributes.boundary_distance.empty())
+      throw InvalidInput("--tips-within measures to a constraint mesh (--stl)");
+  }
+  bool operator()(std::size_t i) const {
+    if (set_ == InstanceSet::tips && !attributes_.tip(i)) return false;
+    return !near_boundary_ || attributes_.boundary_distance[i] <= within_;
+  }
+
+ private:
+  const Attributes& attributes_;
+  InstanceSet set_;
+  double within_;
+  bool near_boundary_;
 };
 
-//! The particles that become instancing points, in attach order. Throws InvalidInput for
-//! `within` without the distance to a mesh.
-inline std::vector<std::int32_t> instance_particles(const Cluster& cluster, const Attributes& attributes,
-                                                    const InstanceOptions& options) {
-  validate(options);
-  const bool near_boundary = options.within != std::numeric_limits<double>::infinity();
-  if (near_boundary && attributes.boundary_distance.empty())
-    throw InvalidInput("--tips-within measures to a constraint mesh (--stl)");
-  const double within = options.within * cluster.spacing;
-  std::vector<std::int32_t> ids;
-  for (std::size_t i = 0; i < cluster.particles.size(); ++i) {
-    if (options.set == InstanceSet::tips && !attributes.tip(i)) continue;
-    if (near_boundary && attributes.boundary_distance[i] > within) continue;
-    ids.push_back(static_cast<std::int32_t>(i));
-  }
-  return ids;
+//! How many instancing points the options give.
+inline std::size_t count_instances(const Cluster& cluster, const Attributes& attributes, const InstanceOptions& options) {
+  const InstanceSelection selected(cluster, attributes, options);
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < cluster.particles.size(); ++i) count += selected(i);
+  return count;
 }
 
-//! Calls visit(const Instance&) for the instancing point of each particle in `ids` (from
-//! instance_particles), in order, holding none of them: about 10 bytes a point.
+//! Calls visit(const Instance&) for each instancing point, in attach order, holding none of
+//! them. The tips use the attributes' tip_gaps; another selection measures its own gaps, 16
+//! bytes a point while it runs. Throws as InstanceSelection.
 template <class Visit>
-void for_each_instance(const Cluster& cluster, const Attributes& attributes, const std::vector<std::int32_t>& ids,
+void for_each_instance(const Cluster& cluster, const Attributes& attributes, const InstanceOptions& options,
                        Visit&& visit) {
-  const ParticleSubset points{&cluster.particles, &ids};
-  const NearestPoints<ParticleSubset> nearest(points);
-  for (std::size_t k = 0; k < ids.size(); ++k) {
-    const auto i = static_cast<std::size_t>(ids[k]);
-    const Particle& p = cluster.particles[i];
+  const InstanceSelection selected(cluster, attributes, options);
+  const auto& ps = cluster.particles;
+  const bool every_tip = options.set == InstanceSet::tips && options.within == std::numeric_limits<double>::infinity();
+  std::vector<float> measured;
+  if (!every_tip) {
+    std::vector<bool> chosen(ps.size());
+    for (std::size_t i = 0; i < ps.size(); ++i) chosen[i] = selected(i);
+    measured = half_gaps(cluster, chosen);
+  }
+  const std::vector<float>& gaps = every_tip ? attributes.tip_gaps : measured;
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (!selected(i)) continue;
+    const Particle& p = ps[i];
     Vec3 direction = Vec3::UnitZ();
-    if (p.parent >= 0) direction = (p.position - cluster.particles[static_cast<std::size_t>(p.parent)].position).normalized();
-    double scale = 0.5 * nearest.distance_to_other(k);
+    if (p.parent >= 0) direction = (p.position - ps[static_cast<std::size_t>(p.parent)].position).normalized();
+    double scale = static_cast<double>(gaps[k++]) * cluster.spacing;
     if (!std::isfinite(scale)) scale = cluster.spacing;  // a lone instance: as large as a particle
     if (!attributes.boundary_distance.empty()) scale = std::min(scale, static_cast<double>(attributes.boundary_distance[i]));
-    visit(static_cast<const Instance&>(Instance{p.position, direction, scale, ids[k]}));
+    visit(static_cast<const Instance&>(Instance{p.position, direction, scale, static_cast<std::int32_t>(i)}));
   }
 }
 
@@ -98,8 +114,7 @@ void for_each_instance(const Cluster& cluster, const Attributes& attributes, con
 inline std::vector<Instance> instancing_points(const Cluster& cluster, const Attributes& attributes,
                                                const InstanceOptions& options) {
   std::vector<Instance> instances;
-  for_each_instance(cluster, attributes, instance_particles(cluster, attributes, options),
-                    [&](const Instance& instance) { instances.push_back(instance); });
+  for_each_instance(cluster, attributes, options, [&](const Instance& instance) { instances.push_back(instance); });
   return instances;
 }
 

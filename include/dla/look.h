@@ -26,20 +26,23 @@ inline void validate(const LookOptions& options) {
 struct Look {
   LookOptions options;
   Attributes attributes;
-  std::vector<float> radii;  //!< branch radius of each particle, in spacings
 
   //! Particle i's branch radius in scene units.
-  double radius(const Cluster& cluster, std::size_t i) const { return radii[i] * cluster.spacing; }
+  double radius(const Cluster& cluster, std::size_t i) const {
+    return static_cast<double>(branch_radius(options.radius, cluster, attributes, i)) * cluster.spacing;
+  }
+  //! Every particle's branch radius, in spacings, for the tube meshes.
+  std::vector<float> radii(const Cluster& cluster) const { return branch_radii(options.radius, cluster, attributes); }
 };
 
-//! Computes the attributes and radii. Throws InvalidInput for bad options, or a model that
-//! needs a mesh (`boundary`) without `sources.surface`.
+//! Computes the attributes; the radii come from them when asked. Throws InvalidInput for bad
+//! options, or a model that needs a mesh (`boundary`) without `sources.surface`.
 inline Look make_look(const Cluster& cluster, const LookOptions& options, const AttributeOptions& sources = {}) {
   validate(options);
   Look look;
   look.options = options;
   look.attributes = compute_attributes(cluster, sources);
-  look.radii = branch_radii(look.attributes, options.radius);
+  validate(options.radius, look.attributes);
   return look;
 }
 

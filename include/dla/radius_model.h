@@ -55,13 +55,13 @@ inline void validate(const RadiusOptions& options) {
   detail::require_in("pipe exponent", options.pipe_exponent, 1.0, 10.0);
 }
 
-//! Where a particle lies between the tip radius (0) and the base radius (1) under the model.
-//! `boundary_reach` and `seed_reach` are the largest distances of the structure, which map to
-//! the thickest and the finest branch.
-inline double radius_fraction(const RadiusOptions& options, const Attributes& a, std::size_t i,
-                              double boundary_reach, double seed_reach) {
+//! Where particle i lies between the tip radius (0) and the base radius (1) under the model.
+//! The largest distances of the structure (Attributes::boundary_reach, seed_reach) map to the
+//! thickest and the finest branch.
+inline double radius_fraction(const RadiusOptions& options, const Cluster& cluster, const Attributes& a,
+                              std::size_t i) {
   switch (options.model) {
-    case RadiusModel::taper: return a.taper[i];
+    case RadiusModel::taper: return a.taper(i);
     case RadiusModel::pipe: {
       // tip · (d + 1)^(1/e), capped at the base, as a fraction of the range.
       const double range = options.base_radius - options.tip_radius;
@@ -69,33 +69,36 @@ inline double radius_fraction(const RadiusOptions& options, const Attributes& a,
       const double r = options.tip_radius * std::pow(a.descendants[i] + 1.0, 1.0 / options.pipe_exponent);
       return std::min(1.0, (r - options.tip_radius) / range);
     }
-    case RadiusModel::boundary: return boundary_reach > 0.0 ? a.boundary_distance[i] / boundary_reach : 1.0;
-    case RadiusModel::seed_distance: return seed_reach > 0.0 ? 1.0 - a.seed_distance[i] / seed_reach : 1.0;
+    case RadiusModel::boundary: return a.boundary_reach > 0.0 ? a.boundary_distance[i] / a.boundary_reach : 1.0;
+    case RadiusModel::seed_distance:
+      return a.seed_reach > 0.0 ? 1.0 - a.seed_distance(cluster.particles[i].position) / a.seed_reach : 1.0;
     case RadiusModel::uniform: return 1.0;
   }
   return 1.0;
 }
 
-//! The largest value of `values`, 0 for none.
-inline double largest(const std::vector<float>& values) {
-  return values.empty() ? 0.0 : static_cast<double>(*std::max_element(values.begin(), values.end()));
-}
-
-//! The radius of every particle's branch, in spacings (a float holds them at any spacing:
-//! multiply by the cluster's spacing for scene units).
 //! Throws InvalidInput for bad options, and for `boundary` without a mesh distance.
-inline std::vector<float> branch_radii(const Attributes& attributes,
-                                        const RadiusOptions& options) {
+inline void validate(const RadiusOptions& options, const Attributes& attributes) {
   validate(options);
   if (options.model == RadiusModel::boundary && attributes.boundary_distance.empty())
     throw InvalidInput("the boundary radius model needs a constraint mesh (--stl)");
-  const double boundary_reach = largest(attributes.boundary_distance);
-  const double seed_reach = largest(attributes.seed_distance);
+}
+
+//! Particle i's branch radius, in spacings (a float holds it at any spacing: multiply by the
+//! cluster's spacing for scene units). Computed when asked, as it is cheap, rather than stored.
+//! The options must have passed validate(options, attributes).
+inline float branch_radius(const RadiusOptions& options, const Cluster& cluster, const Attributes& attributes,
+                           std::size_t i) {
+  const double f = radius_fraction(options, cluster, attributes, i);
+  return static_cast<float>(options.tip_radius + (options.base_radius - options.tip_radius) * f);
+}
+
+//! The branch radius of every particle, in spacings, for the tube meshes. Throws as validate.
+inline std::vector<float> branch_radii(const RadiusOptions& options, const Cluster& cluster,
+                                       const Attributes& attributes) {
+  validate(options, attributes);
   std::vector<float> radii(attributes.size());
-  for (std::size_t i = 0; i < radii.size(); ++i) {
-    const double f = radius_fraction(options, attributes, i, boundary_reach, seed_reach);
-    radii[i] = static_cast<float>(options.tip_radius + (options.base_radius - options.tip_radius) * f);
-  }
+  for (std::size_t i = 0; i < radii.size(); ++i) radii[i] = branch_radius(options, cluster, attributes, i);
   return radii;
 }
 

@@ -1,10 +1,11 @@
 #pragma once
 //! \file strands.h
 //! The structure as strands: chains of particles from a branch point or a seed to a tip, the
-//! unit the POV-Ray exporter turns into one sphere_sweep each.
+//! unit the POV-Ray exporter turns into one sphere_sweep each and the tube mesh into one tube.
 
 #include "dla/cluster.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -15,62 +16,95 @@ namespace dla {
 //! with that branch point, so strands join; a seed with no children is a strand of one.
 using Strand = std::vector<std::int32_t>;
 
-//! Calls visit(const Strand&) for each strand, in the order decompose_strands() returns them,
-//! with one buffer. `descendants` (attributes.h), if given, saves recounting the subtrees: the
-//! walk then takes 4 bytes a particle beside the cluster, else 8 while it starts, so writers
-//! stream a structure of 10^7 particles without holding its strands.
-template <class Visit>
-void for_each_strand(const Cluster& cluster, const std::vector<std::int32_t>* descendants, Visit&& visit) {
+//! Which particles are tips (no child), from the tree alone: 1 bit a particle.
+inline std::vector<bool> tip_flags(const Cluster& cluster) {
+  std::vector<bool> tip(cluster.particles.size(), true);
+  for (const Particle& p : cluster.particles)
+    if (p.parent >= 0) tip[static_cast<std::size_t>(p.parent)] = false;
+  return tip;
+}
+
+//! Calls visit(const Strand&) for each strand, one per tip in the tips' attach order, with one
+//! buffer and nothing else: writers stream a structure of 10^7 particles without holding its
+//! strands. `continues(i)` says whether particle i (not a seed) goes on with its parent's
+//! strand; each parent has exactly one such child (Attributes::continues_strand gives it).
+template <class Continues, class Visit>
+void for_each_strand(const Cluster& cluster, Continues&& continues, Visit&& visit) {
   const auto& ps = cluster.particles;
   const std::size_t n = ps.size();
-  std::vector<std::int32_t> subtree;  // fits: a cluster holds fewer than 2^31 particles
-  if (!descendants) {
-    subtree.assign(n, 0);
-    for (std::size_t i = n; i-- > 0;)
-      if (ps[i].parent >= 0) subtree[static_cast<std::size_t>(ps[i].parent)] += subtree[i] + 1;
-  }
-  const std::vector<std::int32_t>& size = descendants ? *descendants : subtree;
-  std::vector<std::int32_t> heavy(n, -1);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (ps[i].parent < 0) continue;
-    std::int32_t& h = heavy[static_cast<std::size_t>(ps[i].parent)];
-    if (h < 0 || size[i] > size[static_cast<std::size_t>(h)]) h = static_cast<std::int32_t>(i);
-  }
-  subtree = {};
+  const std::vector<bool> tips = tip_flags(cluster);
   Strand strand;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::int32_t parent = ps[i].parent;
-    if (parent >= 0 && heavy[static_cast<std::size_t>(parent)] == static_cast<std::int32_t>(i)) continue;
+  for (std::size_t tip = 0; tip < n; ++tip) {
+    if (!tips[tip]) continue;
+    // Up from the tip to the strand's first own particle, then its branch point if any.
     strand.clear();
-    if (parent >= 0) strand.push_back(parent);
-    for (auto j = static_cast<std::int32_t>(i); j >= 0; j = heavy[static_cast<std::size_t>(j)]) strand.push_back(j);
+    auto j = static_cast<std::int32_t>(tip);
+    strand.push_back(j);
+    while (ps[static_cast<std::size_t>(j)].parent >= 0 && continues(static_cast<std::size_t>(j))) {
+      j = ps[static_cast<std::size_t>(j)].parent;
+      strand.push_back(j);
+    }
+    if (ps[static_cast<std::size_t>(j)].parent >= 0) strand.push_back(ps[static_cast<std::size_t>(j)].parent);
+    std::reverse(strand.begin(), strand.end());
     visit(static_cast<const Strand&>(strand));
   }
 }
 
-template <class Visit>
-void for_each_strand(const Cluster& cluster, Visit&& visit) {
-  for_each_strand(cluster, nullptr, std::forward<Visit>(visit));
+//! Whether a strand begins at a seed of its own rather than leaving a branch point: true for
+//! the one strand that goes on from each seed (and a lone seed), false for every strand that
+//! starts inside its parent's branch.
+template <class Continues>
+bool starts_at_own_seed(const Strand& strand, Continues&& continues) {
+  return strand.size() == 1 || continues(static_cast<std::size_t>(strand[1]));
 }
 
-//! Splits the tree into strands. At a branch point the strand goes on into the child with the
-//! largest subtree (ties: the earliest), so the long trunks stay whole; every other child
-//! starts a new strand. Strands come in the order of their first new particle.
+//! For each particle, whether it goes on with its parent's strand: at a branch point the strand
+//! goes on into the child with the largest subtree (ties: the earliest), so the long trunks
+//! stay whole; every other child starts a new strand. 1 bit a particle, from 4 for `subtree`
+//! (particles in each subtree, itself not counted).
+inline std::vector<bool> continuing_children(const Cluster& cluster, const std::vector<std::int32_t>& subtree) {
+  const auto& ps = cluster.particles;
+  const std::size_t n = ps.size();
+  std::vector<std::int32_t> heaviest(n, -1);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (ps[i].parent < 0) continue;
+    std::int32_t& h = heaviest[static_cast<std::size_t>(ps[i].parent)];
+    if (h < 0 || subtree[i] > subtree[static_cast<std::size_t>(h)]) h = static_cast<std::int32_t>(i);
+  }
+  std::vector<bool> continues(n, false);
+  for (std::size_t i = 0; i < n; ++i)
+    continues[i] = ps[i].parent >= 0 && heaviest[static_cast<std::size_t>(ps[i].parent)] == static_cast<std::int32_t>(i);
+  return continues;
+}
+
+//! Particles in each subtree, itself not counted: parents come before their children, so one
+//! pass backwards finishes each subtree first.
+inline std::vector<std::int32_t> subtree_sizes(const Cluster& cluster) {
+  const auto& ps = cluster.particles;
+  std::vector<std::int32_t> size(ps.size(), 0);
+  for (std::size_t i = ps.size(); i-- > 0;)
+    if (ps[i].parent >= 0) size[static_cast<std::size_t>(ps[i].parent)] += size[i] + 1;
+  return size;
+}
+
+//! Every strand, for a cluster without Attributes (tests and small structures).
+template <class Visit>
+void for_each_strand(const Cluster& cluster, Visit&& visit) {
+  const std::vector<bool> continues = continuing_children(cluster, subtree_sizes(cluster));
+  for_each_strand(cluster, [&](std::size_t i) { return static_cast<bool>(continues[i]); }, std::forward<Visit>(visit));
+}
+
+//! Splits the tree into strands, one per tip, in the tips' attach order (for_each_strand).
 inline std::vector<Strand> decompose_strands(const Cluster& cluster) {
   std::vector<Strand> strands;
   for_each_strand(cluster, [&](const Strand& strand) { strands.push_back(strand); });
   return strands;
 }
 
-//! How many strands decompose_strands makes, without making them: every particle with a child
-//! continues exactly one strand into a child, so each other particle starts one.
+//! How many strands decompose_strands makes, without making them: one per tip.
 inline std::size_t count_strands(const Cluster& cluster) {
-  std::vector<bool> has_child(cluster.particles.size(), false);
-  for (const Particle& p : cluster.particles)
-    if (p.parent >= 0) has_child[static_cast<std::size_t>(p.parent)] = true;
-  std::size_t strands = 0;
-  for (bool parent : has_child) strands += !parent;
-  return strands;
+  const std::vector<bool> tips = tip_flags(cluster);
+  return static_cast<std::size_t>(std::count(tips.begin(), tips.end(), true));
 }
 
 }  // namespace dla

@@ -5,7 +5,7 @@
 //! that leaves a branch point starts inside its parent's tube, so branches join without a gap.
 //! The glTF and OBJ writers stream these pieces. See docs/look.md.
 
-#include "dla/cluster.h"
+#include "dla/attributes.h"
 #include "dla/strands.h"
 
 #include <Eigen/Core>
@@ -94,11 +94,11 @@ inline void kept_points(const Cluster& cluster, const std::vector<float>& radii,
 }  // namespace detail
 
 //! Calls visit(const TubePiece&) for the tube of each strand of two or more particles, in
-//! strand order; `radii` are the branch radii (radius_model.h) in spacings. A seed with no
-//! child has no tube. `descendants` (attributes.h), if given, saves recounting the subtrees.
+//! strand order (strands.h, from the attributes' links); `radii` are the branch radii
+//! (Look::radii) in spacings. A seed with no child has no tube.
 template <class Visit>
-void for_each_tube(const Cluster& cluster, const std::vector<float>& radii, const TubeOptions& options, Visit&& visit,
-                   const std::vector<std::int32_t>* descendants = nullptr) {
+void for_each_tube(const Cluster& cluster, const Attributes& attributes, const std::vector<float>& radii,
+                   const TubeOptions& options, Visit&& visit) {
   validate(options);
   const int sides = options.sides;
   const double tolerance = options.tolerance * cluster.spacing;
@@ -113,15 +113,8 @@ void for_each_tube(const Cluster& cluster, const std::vector<float>& radii, cons
   std::vector<Vec3> points, tangents;
   std::vector<double> ring_radii;
   std::vector<std::int32_t> owners;
-  std::vector<bool> seed_started(cluster.seed_count, false);
-  std::vector<std::int32_t> counted;  // descendants, only to prune twigs when not given
-  if (options.min_branch > 1 && !descendants) {
-    counted.assign(cluster.particles.size(), 0);
-    for (std::size_t i = cluster.particles.size(); i-- > 0;)
-      if (cluster.particles[i].parent >= 0) counted[static_cast<std::size_t>(cluster.particles[i].parent)] += counted[i] + 1;
-    descendants = &counted;
-  }
-  for_each_strand(cluster, descendants, [&](const Strand& strand) {
+  const auto continues = [&](std::size_t i) { return attributes.continues_strand(i); };
+  for_each_strand(cluster, continues, [&](const Strand& strand) {
     if (strand.size() < 2) return;
     detail::kept_points(cluster, radii, strand, tolerance, kept);
     const std::size_t rings = kept.size();
@@ -135,15 +128,13 @@ void for_each_tube(const Cluster& cluster, const std::vector<float>& radii, cons
       owners[j] = strand[kept[j]];
     }
     // A strand leaving a branch point starts there, no thicker than its parent's tube nor its
-    // own next point: it begins inside the parent. Its colour is its own. A seed's first
-    // strand is the one that starts at it.
-    const auto first = static_cast<std::size_t>(strand[0]);
-    const bool own_start = first < cluster.seed_count && !seed_started[first];
-    if (own_start) seed_started[first] = true;
+    // own next point: it begins inside the parent. Its colour is its own. A seed's own
+    // strand starts at the seed.
+    const bool own_start = starts_at_own_seed(strand, continues);
     // A branch's particles: its first own particle's subtree; a pruned branch's branches are
     // smaller still, so nothing is left floating.
     if (options.min_branch > 1 &&
-        (*descendants)[static_cast<std::size_t>(strand[own_start ? 0 : 1])] + 1 < options.min_branch)
+        attributes.descendants[static_cast<std::size_t>(strand[own_start ? 0 : 1])] + 1 < options.min_branch)
       return;
     if (!own_start) {
       ring_radii[0] = std::min(ring_radii[0], ring_radii[1]);

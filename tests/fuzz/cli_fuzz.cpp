@@ -78,10 +78,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     // The look the options ask for: attributes, radii, tubes and instancing points.
     const dla::Look look = dla::make_look(cluster, line.grow.look);
-    for (const float radius : look.radii)
+    const std::vector<float> radii = look.radii(cluster);
+    for (const float radius : radii)
       if (!(radius > 0.0f) || !std::isfinite(radius)) std::abort();
     std::size_t triangles = 0;
-    dla::for_each_tube(cluster, look.radii, line.grow.look.tubes,
+    dla::for_each_tube(cluster, look.attributes, radii, line.grow.look.tubes,
                        [&](const dla::TubePiece& piece) { triangles += piece.triangles.size(); });
     if (line.grow.instances.within == std::numeric_limits<double>::infinity())
       for (const dla::Instance& instance : dla::instancing_points(cluster, look.attributes, line.grow.instances))
