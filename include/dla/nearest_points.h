@@ -20,8 +20,8 @@
 namespace dla {
 
 //! Nearest-point queries over `Points`: anything with size() and operator[](i) giving a Vec3,
-//! such as a std::vector<Vec3>. Keeps a reference to the points, which
-//! must outlive it and not change.
+//! such as a std::vector<Vec3>. Keeps a reference to the points, which must outlive it and not
+//! change.
 template <class Points = std::vector<Vec3>>
 class NearestPoints {
  public:
@@ -45,17 +45,6 @@ class NearestPoints {
     double d2 = 0.0;
     tree_.knnSearch(p.data(), 1, &index, &d2);
     return std::sqrt(d2);
-  }
-
-  //! Distance from point i of the set to the nearest other point of it (a point at the same
-  //! place counts, at 0); infinity if the set holds one point.
-  double distance_to_other(std::size_t i) const {
-    std::uint32_t index[2] = {0, 0};
-    double d2[2] = {0.0, 0.0};
-    const Vec3 p = (*adaptor_.points)[i];
-    const std::size_t found = tree_.knnSearch(p.data(), 2, index, d2);
-    if (found < 2) return std::numeric_limits<double>::infinity();
-    return std::sqrt(index[0] == i ? d2[1] : d2[0]);
   }
 
  private:
