@@ -107,7 +107,7 @@ inline std::vector<float> half_gaps(const Cluster& cluster, const std::vector<bo
   return gaps;
 }
 
-//! Every attribute of every particle, in the memory it keeps (nothing more on the side). Linear
+//! Every attribute of every particle, with no more memory on the side than it keeps. Linear
 //! in the particles, but the distance to a mesh, which takes an AABB-tree query each (about a
 //! microsecond).
 inline Attributes compute_attributes(const Cluster& cluster, const AttributeOptions& options = {}) {
@@ -120,24 +120,19 @@ inline Attributes compute_attributes(const Cluster& cluster, const AttributeOpti
   a.seed_count = cluster.seed_count;
   // First, while nothing else is held: the tree of the tips takes 12 bytes a tip.
   a.tip_gaps = half_gaps(cluster, tip_flags(cluster), options.threads);
-  a.descendants.assign(n, 0);
+  a.descendants = subtree_sizes(cluster);
   a.shape.assign(n, 1);
   a.strand_place.assign(n, 0);
-  // Parents come before their children: one pass backwards finishes each subtree first.
-  for (std::size_t i = n; i-- > 0;)
-    if (ps[i].parent >= 0) a.descendants[parent_of(i)] += a.descendants[i] + 1;
-
-  // Each parent's heaviest child goes on with its strand; `depth` holds it until it is filled.
-  a.depth.assign(n, -1);
-  std::vector<std::int32_t>& heaviest = a.depth;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (ps[i].parent < 0) continue;
-    std::int32_t& h = heaviest[parent_of(i)];
-    if (h >= 0) a.shape[parent_of(i)] |= Attributes::kBranchPointBit;  // a second child
-    if (h < 0 || a.descendants[i] > a.descendants[static_cast<std::size_t>(h)]) h = static_cast<std::int32_t>(i);
+  {
+    // The strands' own rule (strands.h), before `depth` exists: its 4 bytes a particle of
+    // scratch come and go in depth's place.
+    const std::vector<bool> continues = continuing_children(cluster, a.descendants);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (continues[i]) a.shape[i] |= Attributes::kContinuesBit;
+      else if (ps[i].parent >= 0) a.shape[parent_of(i)] |= Attributes::kBranchPointBit;  // beside the one going on
+    }
   }
-  for (std::size_t i = 0; i < n; ++i)
-    if (ps[i].parent >= 0 && heaviest[parent_of(i)] == static_cast<std::int32_t>(i)) a.shape[i] |= Attributes::kContinuesBit;
+  a.depth.resize(n);
   for (std::size_t i = 0; i < n; ++i) a.depth[i] = ps[i].parent < 0 ? 0 : a.depth[parent_of(i)] + 1;
 
   // Strahler order, backwards. `strand_place` holds each parent's children's highest order
