@@ -93,7 +93,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   const char* growth = "Growth";
   CLI::Option* particles_option =
       app.add_option("-n,--particles", particles, "particles to attach, seeds not counted; with a mesh, "
-                                                  "default 40000")->capture_default_str()->group(growth);
+                                                  "default 30000")->capture_default_str()->group(growth);
   CLI::Option* spacing = app.add_option(
       "--spacing", options.spacing,
       "distance between a particle and its parent; also the contact distance, in [1e-100, 1e100]; "
@@ -130,8 +130,8 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
 
   const char* spawning = "Spawn";
   CLI::Option* spawn_option =
-      app.add_option("--spawn", spawn, "where walkers start: sphere, disk, box, or with a mesh inside or radial; "
-                                       "with --side inside, default inside")
+      app.add_option("--spawn", spawn, "where walkers start: sphere, disk, box, or with a mesh inside, radial or surface; "
+                                       "with --side inside, default surface")
           ->capture_default_str()->group(spawning);
   app.add_option("--spawn-axis", spawn_axis, "disk: the axis the disk sits on, x, y or z")
       ->capture_default_str()->group(spawning);
@@ -265,6 +265,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   g.tip_radius_given = tip_radius_option->count() > 0;
   if (!g.mesh_path.empty()) {
     // Inside a mesh, a root system: enough particles to fill a bust at the default spacing,
+    // short of the 35,000 or so that cover its skin, where the surface spawn starts walkers;
     // thick trunks and fine tips (docs/look.md shows the main job's picture).
     if (!g.particles_given) options.particles = kMeshParticles;
     if (!g.radius_given) g.look.radius.model = RadiusModel::pipe;
@@ -300,7 +301,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   if (seeds_option->count() && g.seed_count == 0) throw InvalidInput("--seeds 0: there must be a seed");
   if (g.mesh_path.empty()) {
     validate(options);
-    if (options.spawn == SpawnMode::inside || options.spawn == SpawnMode::radial)
+    if (spawns_from_mesh(options.spawn))
       throw InvalidInput("spawn " + spawn + " needs a mesh (--stl)");
   } else if (g.spacing_given) {
     detail::require_in("spacing", options.spacing, kMinSpacing, kMaxSpacing);

@@ -15,7 +15,7 @@
 namespace dla::cli {
 
 //! Defaults with a mesh (--stl) that differ from those without one.
-inline constexpr std::size_t kMeshParticles = 40000;
+inline constexpr std::size_t kMeshParticles = 30000;
 inline constexpr double kMeshBaseRadius = 3.0, kMeshTipRadius = 0.05;
 
 //! The files a run writes (`--formats`), each as PREFIX.EXT (tips: PREFIX_tips.ply).

@@ -175,8 +175,9 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
       } catch (const InvalidInput& e) {
         throw InvalidInput(command.mesh_path + ": " + e.what());
       }
+      // From the skin inside: thin parts (horns, fingers) get walkers by their surface.
       if (!command.spawn_given)
-        options.spawn = command.constraint.side == Side::inside ? SpawnMode::inside : SpawnMode::sphere;
+        options.spawn = command.constraint.side == Side::inside ? SpawnMode::surface : SpawnMode::sphere;
       if (!command.seeds_given)
         options.seeds = constraint->place_seeds(command.seed_count ? command.seed_count : 1, options.rng_seed);
       validate(options, *constraint);

@@ -158,6 +158,21 @@ Vec3 MeshConstraint::draw_radial(Rng& rng) const {
   throw GrowthError("no radial start inside the mesh in a million draws");
 }
 
+Vec3 MeshConstraint::draw_near_surface(Rng& rng) const {
+  constexpr int max_draws = 1'000'000;
+  for (int draw = 0; draw < max_draws; ++draw) {
+    Vec3 normal;
+    const Vec3 s = surface_point(rng, &normal);
+    if (!normal.allFinite()) continue;  // a degenerate triangle
+    // The normal's orientation is not trusted: take whichever side is the growing one.
+    for (const double side : {0.5, -0.5}) {
+      const Vec3 p = s + side * spacing_ * normal;
+      if (encloses(p) == (options_.side == Side::inside)) return p;
+    }
+  }
+  throw GrowthError("no start beside the mesh surface in a million draws");
+}
+
 double MeshConstraint::distance_to_surface(const Vec3& p) const {
   double best = std::numeric_limits<double>::infinity();
   for (const auto& t : mesh_.triangles)

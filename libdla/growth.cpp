@@ -52,7 +52,7 @@ std::string point(const Vec3& p) {
 
 Cluster grow(const GrowthOptions& options, const ProgressFn& progress, const StopFlag* stop) {
   validate(options);
-  if (options.spawn == SpawnMode::inside || options.spawn == SpawnMode::radial)
+  if (spawns_from_mesh(options.spawn))
     throw InvalidInput("spawn " + std::string(to_string(options.spawn)) + " needs a constraint mesh");
   return grow_any(options, progress, nullptr, nullptr, stop);
 }
@@ -81,6 +81,8 @@ void validate(const GrowthOptions& options, const MeshConstraint& constraint) {
   if ((options.spawn == SpawnMode::inside || options.spawn == SpawnMode::radial) && side != Side::inside)
     throw InvalidInput("spawn " + std::string(to_string(options.spawn)) + " needs --side inside, not --side " +
                        std::string(to_string(side)));
+  if (options.spawn == SpawnMode::surface && side == Side::both)
+    throw InvalidInput("spawn surface needs a growing side, --side inside or outside, not --side both");
   for (std::size_t i = 0; i < options.seeds.size(); ++i)
     if (!constraint.on_growth_side(options.seeds[i]))
       throw InvalidInput("seed " + std::to_string(i + 1) + " at " + point(options.seeds[i]) + " is " +

@@ -62,7 +62,7 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--seeds", {"1", "2", "3", "0", "-1", "1000"}},
       {"--scene-mesh", {}},
       {"--no-scene-mesh", {}},
-      {"--spawn", {"sphere", "disk", "box", "inside", "radial", "cube"}},
+      {"--spawn", {"sphere", "disk", "box", "inside", "radial", "surface", "cube"}},
       {"--spawn-axis", {"x", "y", "z", "w"}},
       {"--disk-radius", {"0.25", "1", "1000", "0", "1e300", "nan"}},
       {"--box", {"-40,-40,-40,40,40,40", "-3,-3,-3,3,3,3", "1,1,1,0,0,0", "0,0,0,1", "-1e300,0,0,1,1,1"}},

@@ -9,10 +9,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -77,7 +80,7 @@ TEST(Cli, GrowsInAMeshWithAHoleAndConvertsIt) {
   EXPECT_NE(read_file(dir / "in.inc").find("DLA_Mesh = mesh2"), std::string::npos);
   const std::string json = read_file(dir / "in.json");
   EXPECT_NE(json.find("\"side\": \"inside\""), std::string::npos) << json;
-  EXPECT_NE(json.find("\"spawn\": \"inside\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"spawn\": \"surface\""), std::string::npos) << json;
   ASSERT_EQ(dla3d(dir, "--stl box.stl --seeds 2 -n 800 -o again --spacing 0.5 -q --no-scene-mesh").exit_code, 0);
   EXPECT_EQ(read_file(dir / "in.csv"), read_file(dir / "again.csv"));
   EXPECT_EQ(read_file(dir / "again.inc").find("mesh2"), std::string::npos);
@@ -97,6 +100,37 @@ TEST(Cli, TheMainJobGrowsTwoSeedsInTheBust) {
   EXPECT_NE(read_file(dir / "dla.pov").find("#declare DLA_Sky = z;"), std::string::npos) << "the bust is z-up";
   const std::string csv = read_file(dir / "dla.csv");
   EXPECT_NE(csv.find(",-1,1,"), std::string::npos) << "no second seed";
+}
+
+// The README's main job: the default surface spawn gets walkers into the thin horns, so the
+// roots reach their tips (the volume spawn left them three units, 8 spacings, short).
+TEST(Cli, TheMainJobReachesIntoTheBustsHorns) {
+  DLA_NEED_BUST(bust);
+  ScratchDir dir;
+  ASSERT_EQ(dla3d(dir, "convert '" + bust + "' bust.stl").exit_code, 0);
+  const CliRun run = dla3d(dir, "--stl bust.stl --seeds 2 --formats csv -q");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  std::vector<dla::Vec3> particles;
+  std::istringstream csv(read_file(dir / "dla.csv"));
+  std::string line;
+  std::getline(csv, line);  // the header
+  while (std::getline(csv, line)) {
+    dla::Vec3 p;
+    char comma;
+    std::istringstream fields(line.substr(line.find(',') + 1));
+    fields >> p.x() >> comma >> p.y() >> comma >> p.z();
+    particles.push_back(p);
+  }
+  ASSERT_EQ(particles.size(), 30002u) << "the default count with a mesh, and two seeds";
+  // The horns rise from the forehead (y < -6, the face side) on either side of x = 0.
+  dla::Vec3 tips[2] = {dla::Vec3(0, 0, -1e9), dla::Vec3(0, 0, -1e9)};
+  for (const dla::Vec3& v : dla::read_mesh(bust).vertices)
+    if (v.y() < -6.0 && v.z() > tips[v.x() < 0.0].z()) tips[v.x() < 0.0] = v;
+  for (const dla::Vec3& tip : tips) {
+    double nearest = 1e9;
+    for (const dla::Vec3& p : particles) nearest = std::min(nearest, (p - tip).norm());
+    EXPECT_LT(nearest, 1.2) << "horn tip " << tip.transpose() << ": 3 spacings of 0.4";
+  }
 }
 
 // Starts dla3d in the background, sends it `signal` after `seconds`, and returns its exit code.
@@ -379,6 +413,8 @@ TEST(Cli, BadInputIsOneLineAndNoFiles) {
       "--stl " TEST_DATA_DIR "/open_box.off --spawn radial --side outside",
       "--seeds 2",
       "--spawn inside",
+      "--spawn surface",
+      "--stl " TEST_DATA_DIR "/open_box.off --spawn surface --side both --seed-at 1,1,1",
       "--stl " TEST_DATA_DIR "/../constraint_test.cpp",
       "--up w",
   };

@@ -126,6 +126,30 @@ TEST(Constraint, RadialSpawnGrowsInATube) {
   EXPECT_GT(expect_constrained(cluster, constraint).clipped, 0u);
 }
 
+TEST(Constraint, SurfaceSpawnStartsHalfASpacingOffTheSurfaceOnTheGrowingSide) {
+  for (const Side side : {Side::inside, Side::outside}) {
+    SCOPED_TRACE(std::string(to_string(side)));
+    ConstraintOptions c;
+    c.side = side;
+    const MeshConstraint constraint(make_sphere(Vec3::Zero(), 6.0), c, 0.5);
+    Rng rng(7, 0);
+    for (int i = 0; i < 500; ++i) {
+      const Vec3 p = constraint.draw_near_surface(rng);
+      EXPECT_EQ(testing::generalized_winding_number(constraint.mesh(), p) > 0.5, side == Side::inside);
+      // Half a spacing from the triangle it was drawn on; a neighbour can be nearer inside.
+      const double d = constraint.distance_to_surface(p);
+      EXPECT_LE(d, 0.25 + 1e-9);
+      EXPECT_GE(d, side == Side::inside ? 0.2 : 0.25 - 1e-9);
+    }
+    GrowthOptions o;
+    o.particles = 800;
+    o.spacing = 0.5;
+    o.spawn = SpawnMode::surface;
+    o.seeds = constraint.place_seeds(1, o.rng_seed);
+    expect_constrained(grow(o, constraint), constraint);
+  }
+}
+
 TEST(Constraint, GrowsInsideATestMeshWithAHole) {
   const MeshConstraint constraint(read_mesh(TEST_DATA_DIR "/open_box.off"), {}, 0.5);
   EXPECT_EQ(constraint.repair_report().holes_closed, 1u);
@@ -178,6 +202,11 @@ TEST(Constraint, BadSetupsAreClearErrors) {
   EXPECT_THROW(grow(o, constraint), GrowthError);  // every start outside: no free start
   o.spawn = SpawnMode::inside;
   EXPECT_THROW(grow(o), InvalidInput);  // inside without a mesh
+  o.spawn = SpawnMode::surface;
+  EXPECT_THROW(grow(o), InvalidInput);  // surface without a mesh
+  ConstraintOptions wall;
+  wall.side = Side::both;
+  EXPECT_THROW(grow(o, MeshConstraint(make_open_can(Vec3::Zero(), 5.0, 10.0), wall, 1.0)), InvalidInput);
   EXPECT_THROW(constraint.place_seeds(1000, 1), InvalidInput);  // too many to fit
 }
 

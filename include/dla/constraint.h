@@ -85,6 +85,10 @@ class MeshConstraint {
   //! uniform (`--spawn radial`, Bourke's figure 5): thin features get walkers in proportion to
   //! their surface, not their tiny volume.
   Vec3 draw_radial(Rng& rng) const;
+  //! A point half a spacing off the surface on the growing side, uniform by area
+  //! (`--spawn surface`): growth reaches every part of the mesh, thin horns included, as the
+  //! thesis' roots fill a model from its skin.
+  Vec3 draw_near_surface(Rng& rng) const;
 
   //! `count` seeds on the growing side: inside, deep and far apart; outside, a little off the
   //! surface and far apart. The same for the same `rng_seed`. Throws InvalidInput if they do

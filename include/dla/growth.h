@@ -472,7 +472,9 @@ class Aggregation {
           ++stats.rejected;
           if (++rejected == max_rejected)
             throw GrowthError("the mesh refused " + std::to_string(max_rejected) + " branches of walker " +
-                              std::to_string(k + 1) + ": are the seeds within a spacing of the surface?");
+                              std::to_string(k + 1) + ": it touches the structure only across the surface (seeds " +
+                              "within a spacing of it, or, with the surface spawn, a structure that fills the " +
+                              "mesh's skin: grow fewer particles or use --spawn inside)");
           continue;
         }
         stats.clipped += check.clipped;
@@ -514,6 +516,7 @@ class Aggregation {
       switch (opt_.spawn) {
         case SpawnMode::inside: return constraint_->draw_inside(rng);
         case SpawnMode::radial: return constraint_->draw_radial(rng);
+        case SpawnMode::surface: return constraint_->draw_near_surface(rng);
         case SpawnMode::sphere: {  // around the mesh and the structure
           const Vec3& c = constraint_->center();
           const double R = std::max(constraint_->radius(), (c - cluster_.center).norm() + sight.return_radius);

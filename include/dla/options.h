@@ -17,13 +17,14 @@ namespace dla {
 
 using Vec3 = Eigen::Vector3d;
 
-//! Where walkers start. The words are the CLI's (`--spawn sphere|disk|box|inside|radial`).
+//! Where walkers start. The words are the CLI's (`--spawn sphere|disk|box|inside|radial|surface`).
 enum class SpawnMode {
   sphere,  //!< uniform on a sphere just outside the structure (with a mesh: around the mesh)
   disk,    //!< uniform in a disk across the spawn axis, just outside the structure: directed growth
   box,     //!< uniform in a box
   inside,  //!< uniform in the volume of a constraint mesh (constraint.h)
   radial,  //!< along rays from a constraint mesh's centroid to its surface (constraint.h)
+  surface, //!< just off a constraint mesh's surface, on the growing side (constraint.h)
 };
 
 //! A coordinate axis, for the disk spawn.
@@ -84,6 +85,11 @@ std::string_view to_string(SpawnMode mode);
 std::string_view to_string(Axis axis);
 std::string_view to_string(IndexKind kind);
 
+//! Whether walkers of this mode start from a constraint mesh, so that growth needs one.
+constexpr bool spawns_from_mesh(SpawnMode mode) {
+  return mode == SpawnMode::inside || mode == SpawnMode::radial || mode == SpawnMode::surface;
+}
+
 //! Parses the CLI's words; throws InvalidInput naming the accepted ones.
 SpawnMode parse_spawn_mode(std::string_view word);
 Axis parse_axis(std::string_view word);
@@ -101,6 +107,7 @@ inline std::string_view to_string(SpawnMode mode) {
     case SpawnMode::box: return "box";
     case SpawnMode::inside: return "inside";
     case SpawnMode::radial: return "radial";
+    case SpawnMode::surface: return "surface";
   }
   return "?";
 }
@@ -167,7 +174,7 @@ inline void require_representable(const std::string& what, const Vec3& point, do
 
 inline SpawnMode parse_spawn_mode(std::string_view word) {
   constexpr SpawnMode values[] = {SpawnMode::sphere, SpawnMode::disk, SpawnMode::box, SpawnMode::inside,
-                                  SpawnMode::radial};
+                                  SpawnMode::radial, SpawnMode::surface};
   return detail::parse_word(word, values, "spawn mode");
 }
 

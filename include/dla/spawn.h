@@ -42,6 +42,7 @@ inline Vec3 draw_spawn(const GrowthOptions& o, const Vec3& center, double launch
     }
     case SpawnMode::inside:
     case SpawnMode::radial:
+    case SpawnMode::surface:
       break;  // drawn by a constraint mesh (MeshConstraint); grow() refuses them without one
   }
   return center;
