@@ -42,6 +42,25 @@ TEST(Strands, CoverEveryBranchOnceFromStartToTip) {
   EXPECT_EQ(count_strands(c), strands.size());
 }
 
+// What the POV-Ray writer relies on to format ranges on several threads.
+TEST(Strands, RangesOfTipsGiveTheWholeSequenceInOrder) {
+  GrowthOptions o;
+  o.particles = 2000;
+  const Cluster c = grow(o);
+  const std::vector<bool> tips = tip_flags(c);
+  const std::vector<bool> continues = continuing_children(c, subtree_sizes(c));
+  const auto is_tip = [&](std::size_t i) { return static_cast<bool>(tips[i]); };
+  const auto goes_on = [&](std::size_t i) { return static_cast<bool>(continues[i]); };
+  const std::size_t n = c.particles.size();
+  for (const std::size_t parts : {1u, 3u, 7u}) {
+    std::vector<Strand> joined;
+    for (std::size_t part = 0; part < parts; ++part)
+      for_each_strand_in(c, n * part / parts, n * (part + 1) / parts, is_tip, goes_on,
+                         [&](const Strand& s) { joined.push_back(s); });
+    EXPECT_EQ(joined, decompose_strands(c)) << parts << " parts";
+  }
+}
+
 TEST(Strands, LoneSeedIsAStrandOfOne) {
   Cluster c;
   c.particles = {{Vec3::Zero(), -1, 0}};

@@ -24,18 +24,16 @@ inline std::vector<bool> tip_flags(const Cluster& cluster) {
   return tip;
 }
 
-//! Calls visit(const Strand&) for each strand, one per tip in the tips' attach order, with one
-//! buffer and nothing else: writers stream a structure of 10^7 particles without holding its
-//! strands. `continues(i)` says whether particle i (not a seed) goes on with its parent's
-//! strand; each parent has exactly one such child (Attributes::continues_strand gives it).
-template <class Continues, class Visit>
-void for_each_strand(const Cluster& cluster, Continues&& continues, Visit&& visit) {
+//! for_each_strand (below) for the strands whose tips are among particles [begin, end), with
+//! `is_tip(i)` saying which are tips. Consecutive ranges visit the strands in for_each_strand's
+//! order, so a writer can format ranges on several threads and join the results in order.
+template <class IsTip, class Continues, class Visit>
+void for_each_strand_in(const Cluster& cluster, std::size_t begin, std::size_t end, IsTip&& is_tip,
+                        Continues&& continues, Visit&& visit) {
   const auto& ps = cluster.particles;
-  const std::size_t n = ps.size();
-  const std::vector<bool> tips = tip_flags(cluster);
   Strand strand;
-  for (std::size_t tip = 0; tip < n; ++tip) {
-    if (!tips[tip]) continue;
+  for (std::size_t tip = begin; tip < end; ++tip) {
+    if (!is_tip(tip)) continue;
     // Up from the tip to the strand's first own particle, then its branch point if any.
     strand.clear();
     auto j = static_cast<std::int32_t>(tip);
@@ -48,6 +46,18 @@ void for_each_strand(const Cluster& cluster, Continues&& continues, Visit&& visi
     std::reverse(strand.begin(), strand.end());
     visit(static_cast<const Strand&>(strand));
   }
+}
+
+//! Calls visit(const Strand&) for each strand, one per tip in the tips' attach order, with one
+//! buffer and nothing else: writers stream a structure of 10^7 particles without holding its
+//! strands. `continues(i)` says whether particle i (not a seed) goes on with its parent's
+//! strand; each parent has exactly one such child (Attributes::continues_strand gives it).
+template <class Continues, class Visit>
+void for_each_strand(const Cluster& cluster, Continues&& continues, Visit&& visit) {
+  const std::vector<bool> tips = tip_flags(cluster);
+  for_each_strand_in(
+      cluster, 0, cluster.particles.size(), [&](std::size_t i) { return static_cast<bool>(tips[i]); },
+      std::forward<Continues>(continues), std::forward<Visit>(visit));
 }
 
 //! Whether a strand begins at a seed of its own rather than leaving a branch point: true for
