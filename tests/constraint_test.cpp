@@ -150,6 +150,20 @@ TEST(Constraint, SurfaceSpawnStartsHalfASpacingOffTheSurfaceOnTheGrowingSide) {
   }
 }
 
+// Once the structure covers the skin, walkers find no free start there, or start trapped
+// against it across the surface: a clear error in seconds, not a run that crawls on for ever
+// (a walker refused up to a million times in a row, as before, kept the bust's run going for
+// minutes).
+TEST(Constraint, SurfaceSpawnThatFillsTheSkinEndsWithAnError) {
+  const MeshConstraint constraint(make_sphere(Vec3::Zero(), 4.0), {}, 0.5);
+  GrowthOptions o;
+  o.particles = 100000;  // a sphere of 16 spacings across holds nothing like it
+  o.spacing = 0.5;
+  o.spawn = SpawnMode::surface;
+  o.seeds = {Vec3::Zero()};
+  EXPECT_THROW(grow(o, constraint), GrowthError);
+}
+
 TEST(Constraint, GrowsInsideATestMeshWithAHole) {
   const MeshConstraint constraint(read_mesh(TEST_DATA_DIR "/open_box.off"), {}, 0.5);
   EXPECT_EQ(constraint.repair_report().holes_closed, 1u);

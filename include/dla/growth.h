@@ -388,7 +388,7 @@ class Aggregation {
     const double return_radius = sight.return_radius;
     Vec3 x = launch(rng, sight, reads);
     // Bounds that turn a setup where nothing can stick into an error rather than a hang.
-    constexpr std::uint64_t max_lost = 10'000'000, max_rejected = 1'000'000, max_relaunches = 100'000;
+    constexpr std::uint64_t max_lost = 10'000'000, max_rejected = 10'000, max_relaunches = 100'000;
     std::uint64_t lost = 0, rejected = 0, relaunches = 0, steps = 0;
     const auto relaunch = [&] {
       ++stats.relaunches;
