@@ -1,6 +1,7 @@
 // dla3d as a user meets it: `dla3d -n N -o PREFIX` writes every file; every bad flag or value
 // is one line on stderr, a non-zero exit and no files.
 
+#include "dla/csv_reader.h"
 #include "dla/mesh.h"
 #include "dla/shapes.h"
 #include "cli_util.h"
@@ -13,9 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
-#include <vector>
 
 namespace {
 
@@ -110,25 +109,15 @@ TEST(Cli, TheMainJobReachesIntoTheBustsHorns) {
   ASSERT_EQ(dla3d(dir, "convert '" + bust + "' bust.stl").exit_code, 0);
   const CliRun run = dla3d(dir, "--stl bust.stl --seeds 2 --formats csv -q");
   ASSERT_EQ(run.exit_code, 0) << run.err;
-  std::vector<dla::Vec3> particles;
-  std::istringstream csv(read_file(dir / "dla.csv"));
-  std::string line;
-  std::getline(csv, line);  // the header
-  while (std::getline(csv, line)) {
-    dla::Vec3 p;
-    char comma;
-    std::istringstream fields(line.substr(line.find(',') + 1));
-    fields >> p.x() >> comma >> p.y() >> comma >> p.z();
-    particles.push_back(p);
-  }
-  ASSERT_EQ(particles.size(), 30002u) << "the default count with a mesh, and two seeds";
+  const dla::Cluster grown = dla::read_csv(dir / "dla.csv");
+  ASSERT_EQ(grown.particles.size(), 30002u) << "the default count with a mesh, and two seeds";
   // The horns rise from the forehead (y < -6, the face side) on either side of x = 0.
   dla::Vec3 tips[2] = {dla::Vec3(0, 0, -1e9), dla::Vec3(0, 0, -1e9)};
   for (const dla::Vec3& v : dla::read_mesh(bust).vertices)
     if (v.y() < -6.0 && v.z() > tips[v.x() < 0.0].z()) tips[v.x() < 0.0] = v;
   for (const dla::Vec3& tip : tips) {
     double nearest = 1e9;
-    for (const dla::Vec3& p : particles) nearest = std::min(nearest, (p - tip).norm());
+    for (const dla::Particle& p : grown.particles) nearest = std::min(nearest, (p.position - tip).norm());
     EXPECT_LT(nearest, 1.2) << "horn tip " << tip.transpose() << ": 3 spacings of 0.4";
   }
 }
