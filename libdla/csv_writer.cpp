@@ -2,8 +2,6 @@
 
 #include "output_file.h"
 
-#include <algorithm>
-
 namespace dla {
 
 namespace {
@@ -11,26 +9,29 @@ namespace {
 void write(const Cluster& cluster, const Look* look, const std::string& path) {
   detail::OutputFile out(path);
   out << (look ? "id,x,y,z,parent,seed,radius,age,depth,descendants,order,tip\n" : "id,x,y,z,parent,seed\n");
-  for (std::size_t i = 0; i < cluster.particles.size(); ++i) {
-    const Particle& p = cluster.particles[i];
-    out.integer(static_cast<long long>(i)) << ',';
-    out.number(p.position.x()) << ',';
-    out.number(p.position.y()) << ',';
-    out.number(p.position.z()) << ',';
-    out.integer(p.parent) << ',';
-    out.integer(p.seed);
-    if (look) {
-      const Attributes& a = look->attributes;
-      out << ',';
-      out.number(look->radius(cluster, i), 7) << ',';
-      out.number(a.age(i), 7) << ',';
-      out.integer(a.depth[i]) << ',';
-      out.integer(a.descendants[i]) << ',';
-      out.integer(a.strahler(i)) << ',';
-      out.integer(a.tip(i) ? 1 : 0);
+  // Ranges of rows formatted at once, appended in order: 4096 rows, about 400 kB.
+  write_in_order(out, cluster.particles.size(), 1 << 12, detail::format_threads(), [&](detail::Text& text, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const Particle& p = cluster.particles[i];
+      text.integer(static_cast<long long>(i)) << ',';
+      text.number(p.position.x()) << ',';
+      text.number(p.position.y()) << ',';
+      text.number(p.position.z()) << ',';
+      text.integer(p.parent) << ',';
+      text.integer(p.seed);
+      if (look) {
+        const Attributes& a = look->attributes;
+        text << ',';
+        text.number(look->radius(cluster, i), 7) << ',';
+        text.number(a.age(i), 7) << ',';
+        text.integer(a.depth[i]) << ',';
+        text.integer(a.descendants[i]) << ',';
+        text.integer(a.strahler(i)) << ',';
+        text.integer(a.tip(i) ? 1 : 0);
+      }
+      text << '\n';
     }
-    out << '\n';
-  }
+  });
   out.commit();
 }
 

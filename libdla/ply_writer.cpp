@@ -65,7 +65,7 @@ void write_ply(const Cluster& cluster, const Look& look, const std::string& path
 }
 
 void write_ply(const Cluster& cluster, const std::string& path, PlyEncoding encoding) {
-  write_ply(cluster, make_look(cluster, {}), path, encoding);
+  write_ply(cluster, make_look(cluster, {}, {nullptr, nullptr, 1, false}), path, encoding);  // no instances
 }
 
 void write_instances_ply(const Cluster& cluster, const Attributes& attributes, const InstanceOptions& options,

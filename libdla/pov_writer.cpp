@@ -8,16 +8,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <future>
-#include <memory>
 
 namespace dla {
 
 namespace {
 
-//! Ranges of tips whose strands are formatted at once: with the other writers' threads, enough
-//! to keep two cores busy (the strands are the largest section of 10^7 particles' files).
-constexpr std::size_t kStrandParts = 4;
+//! Particles whose strands (those ending at tips among them) or tips are formatted as one
+//! part of the file, on a thread of its own (write_in_order): up to about 300 kB of text,
+//! still in cache when it is written.
+constexpr std::size_t kChunk = 1 << 12;
 
 std::string file_name(const std::string& path) {
   const std::size_t slash = path.find_last_of('/');
@@ -62,7 +61,7 @@ SceneFrame scene_frame(double spacing, const Vec3& center) {
   return frame;
 }
 
-void vector(detail::OutputFile& out, const Vec3& v, const SceneFrame& frame) {
+void vector(detail::Text& out, const Vec3& v, const SceneFrame& frame) {
   const Vec3 p = frame(v);
   out << '<';
   out.fixed(p.x(), frame.decimals) << ", ";
@@ -107,7 +106,7 @@ std::vector<Vec3> vertex_normals(const TriangleMesh& mesh) {
   return normals;
 }
 
-void write_mesh(detail::OutputFile& out, const TriangleMesh& mesh, const SceneFrame& frame) {
+void write_mesh(detail::Text& out, const TriangleMesh& mesh, const SceneFrame& frame) {
   out << "#declare DLA_Mesh = mesh2 {\n  vertex_vectors { ";
   out.integer(static_cast<long long>(mesh.vertices.size()));
   for (const Vec3& v : mesh.vertices) {
@@ -139,7 +138,7 @@ class RadiusArguments {
  public:
   RadiusArguments(const Cluster& cluster, const Look& look) : cluster_(cluster), attributes_(look.attributes) {}
 
-  void operator()(detail::OutputFile& out, std::size_t i) const {
+  void operator()(detail::Text& out, std::size_t i) const {
     const Attributes& a = attributes_;
     out << "DLA_R(";
     out.fixed(a.taper(i), 4) << ", ";
@@ -160,33 +159,11 @@ void write_geometry(const Cluster& cluster, const TriangleMesh* mesh, const Scen
   const RadiusArguments radius(cluster, look);
   const bool colored = look.options.color_by != ColorBy::none;
   const ColorScale color(cluster, look.attributes, look.options.color_by);
-  const auto paint = [&](detail::OutputFile& out, std::size_t i) {
+  const auto paint = [&](detail::Text& out, std::size_t i) {
     if (!colored) return;
     out << " texture { DLA_Paint(";
     out.fixed(color(i), 4) << ") }";
   };
-  // The tips, with the largest scale at which copies do not overlap (instances.h), go last.
-  // They are written on a thread of their own beside the structure, then appended: the same
-  // bytes in less time.
-  detail::OutputFile tips(path + ".tips");
-  std::future<void> tips_written = std::async(std::launch::async, [&] {
-    const std::size_t count = count_instances(cluster, look.attributes, {});
-    tips << "#declare DLA_TipCount = ";
-    tips.integer(static_cast<long long>(count)) << ";\n";
-    if (count == 0) return;
-    // POV-Ray warns about a union of one object.
-    tips << "#declare DLA_Tips = " << (count > 1 ? "union" : "object") << " {\n";
-    for_each_instance(cluster, look.attributes, InstanceOptions{}, [&](const Instance& tip) {
-      tips << "  DLA_Tip(";
-      vector(tips, tip.position, frame);
-      tips << ", <";
-      tips.fixed(tip.direction.x(), 5) << ", ";
-      tips.fixed(tip.direction.y(), 5) << ", ";
-      tips.fixed(tip.direction.z(), 5) << ">, ";
-      tips.number(tip.scale * frame.scale, 6) << ")\n";
-    });
-    tips << "}\n";
-  });
   detail::OutputFile out(path);
   out << "// dla3d " << version << " geometry: ";
   out.integer(static_cast<long long>(ps.size())) << " particles in ";
@@ -199,15 +176,17 @@ void write_geometry(const Cluster& cluster, const TriangleMesh* mesh, const Scen
   if (mesh) write_mesh(out, *mesh, frame);
   if (options.style == PovStyle::blob) {
     out << "#declare DLA_Structure = blob {\n  threshold DLA_BlobThreshold\n";
-    for (std::size_t i = 0; i < ps.size(); ++i) {
-      out << "  sphere { ";
-      vector(out, ps[i].position, frame);
-      out << ", DLA_BlobRadius(";
-      radius(out, i);
-      out << "), 1";
-      paint(out, i);
-      out << " }\n";
-    }
+    write_in_order(out, ps.size(), kChunk, detail::format_threads(), [&](detail::Text& text, std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        text << "  sphere { ";
+        vector(text, ps[i].position, frame);
+        text << ", DLA_BlobRadius(";
+        radius(text, i);
+        text << "), 1";
+        paint(text, i);
+        text << " }\n";
+      }
+    });
     out << "}\n";
   } else {
     out << "#declare DLA_Structure = union {\n";
@@ -221,7 +200,7 @@ void write_geometry(const Cluster& cluster, const TriangleMesh* mesh, const Scen
     }
     const auto continues = [&](std::size_t i) { return look.attributes.continues_strand(i); };
     const auto is_tip = [&](std::size_t i) { return look.attributes.tip(i); };
-    const auto write_strand = [&](detail::OutputFile& out, const Strand& strand) {
+    const auto write_strand = [&](detail::Text& out, const Strand& strand) {
       if (strand.size() < 2) return;  // a lone seed: its sphere is above
       const auto first = static_cast<std::size_t>(strand[0]), next = static_cast<std::size_t>(strand[1]);
       const bool own_start = starts_at_own_seed(strand, continues);
@@ -254,29 +233,46 @@ void write_geometry(const Cluster& cluster, const TriangleMesh* mesh, const Scen
       }
       out << "  }\n";
     };
-    // The strands by ranges of tips: the first here, the others formatted on threads of their
-    // own into side files and appended in order, the same bytes as one pass.
-    const std::size_t n = ps.size();
-    const auto range_end = [&](std::size_t part) { return n * part / kStrandParts; };
-    std::vector<std::unique_ptr<detail::OutputFile>> parts;
-    std::vector<std::future<void>> parts_written;
-    for (std::size_t part = 1; part < kStrandParts; ++part) {
-      parts.push_back(std::make_unique<detail::OutputFile>(path + ".part" + std::to_string(part)));
-      parts_written.push_back(std::async(std::launch::async, [&, part, &side = *parts.back()] {
-        for_each_strand_in(cluster, range_end(part), range_end(part + 1), is_tip, continues,
-                           [&](const Strand& strand) { write_strand(side, strand); });
-      }));
-    }
-    for_each_strand_in(cluster, 0, range_end(1), is_tip, continues,
-                       [&](const Strand& strand) { write_strand(out, strand); });
-    for (std::size_t part = 0; part + 1 < kStrandParts; ++part) {
-      parts_written[part].get();
-      out.append(*parts[part]);
-    }
+    // The strands by ranges of their tips, formatted at once and appended in order.
+    write_in_order(out, ps.size(), kChunk, detail::format_threads(), [&](detail::Text& text, std::size_t begin, std::size_t end) {
+      for_each_strand_in(cluster, begin, end, is_tip, continues, [&](const Strand& strand) { write_strand(text, strand); });
+    });
     out << "}\n";
   }
-  tips_written.get();
-  out.append(tips);
+  // The tips, with the largest scale at which copies do not overlap (instances.h), go last.
+  // Each range of particles starts at its first tip's gap.
+  const Attributes& a = look.attributes;
+  const std::vector<float> measured =
+      a.tip_gaps.empty() ? half_gaps(cluster, tip_flags(cluster), detail::format_threads()) : std::vector<float>{};
+  const std::vector<float>& gaps = a.tip_gaps.empty() ? measured : a.tip_gaps;
+  std::vector<std::size_t> first_gap{0};
+  for (std::size_t begin = 0; begin < ps.size(); begin += kChunk) {
+    std::size_t tips = 0;
+    for (std::size_t i = begin; i < std::min(ps.size(), begin + kChunk); ++i) tips += a.tip(i);
+    first_gap.push_back(first_gap.back() + tips);
+  }
+  const std::size_t tip_count = first_gap.back();
+  out << "#declare DLA_TipCount = ";
+  out.integer(static_cast<long long>(tip_count)) << ";\n";
+  if (tip_count > 0) {
+    // POV-Ray warns about a union of one object.
+    out << "#declare DLA_Tips = " << (tip_count > 1 ? "union" : "object") << " {\n";
+    write_in_order(out, ps.size(), kChunk, detail::format_threads(), [&](detail::Text& text, std::size_t begin, std::size_t end) {
+      std::size_t k = first_gap[begin / kChunk];
+      for (std::size_t i = begin; i < end; ++i) {
+        if (!a.tip(i)) continue;
+        const Instance tip = instance_at(cluster, a, i, gaps[k++]);
+        text << "  DLA_Tip(";
+        vector(text, tip.position, frame);
+        text << ", <";
+        text.fixed(tip.direction.x(), 5) << ", ";
+        text.fixed(tip.direction.y(), 5) << ", ";
+        text.fixed(tip.direction.z(), 5) << ">, ";
+        text.number(tip.scale * frame.scale, 6) << ")\n";
+      }
+    });
+    out << "}\n";
+  }
   out.commit();
 }
 

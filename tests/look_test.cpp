@@ -10,6 +10,7 @@
 #include "dla/look.h"
 #include "dla/mesh_writers.h"
 #include "dla/ply_writer.h"
+#include "dla/pov_writer.h"
 #include "dla/shapes.h"
 #include "dla/surface_distance.h"
 #include "dla/svg_writer.h"
@@ -24,6 +25,7 @@
 #include <map>
 #include <random>
 #include <set>
+#include <sstream>
 
 namespace dla {
 namespace {
@@ -375,6 +377,40 @@ TEST(Instances, NeverOverlapAndPointAwayFromTheirParents) {
   InstanceOptions near;
   near.within = 2.0;
   EXPECT_THROW(instancing_points(c, a, near), InvalidInput) << "no mesh to be near";
+}
+
+TEST(Instances, TheSameWhetherTheAttributesHoldTheTipsGapsOrNot) {
+  // Over 4096 particles: the scene's tips and strands are formatted in several ranges at once.
+  ScratchDir dir;
+  const Cluster c = grown(12000);
+  const Look with = make_look(c, {}), without = make_look(c, {}, {nullptr, nullptr, 1, false});
+  ASSERT_FALSE(with.attributes.tip_gaps.empty());
+  ASSERT_TRUE(without.attributes.tip_gaps.empty());
+  const std::vector<Instance> measured = instancing_points(c, without.attributes, {});
+  const std::vector<Instance> stored = instancing_points(c, with.attributes, {});
+  ASSERT_EQ(measured.size(), stored.size());
+  for (std::size_t k = 0; k < stored.size(); ++k) {
+    ASSERT_EQ(measured[k].particle, stored[k].particle);
+    ASSERT_EQ(measured[k].scale, stored[k].scale);
+  }
+  write_pov(c, dir / "with", {}, nullptr, &with);
+  write_pov(c, dir / "without", {}, nullptr, &without);
+  const std::string inc = read_file(dir / "with.inc");
+  ASSERT_EQ(inc, read_file(dir / "without.inc"));
+  // Each DLA_Tip line, in order, is the k-th tip's instance.
+  std::istringstream lines(inc.substr(inc.find("#declare DLA_Tips")));
+  std::string line;
+  std::size_t k = 0;
+  while (std::getline(lines, line)) {
+    if (line.rfind("  DLA_Tip(", 0) != 0) continue;
+    ASSERT_LT(k, stored.size());
+    const double scale = std::stod(line.substr(line.rfind(", ") + 2));
+    ASSERT_NEAR(scale, stored[k].scale, 1e-5 * stored[k].scale) << line;
+    const double x = std::stod(line.substr(std::strlen("  DLA_Tip(<")));
+    ASSERT_NEAR(x, stored[k].position.x(), 0.5e-3 * c.spacing + 1e-9) << line;
+    ++k;
+  }
+  EXPECT_EQ(k, stored.size());
 }
 
 TEST(Instances, NearTheBoundaryStayInsideIt) {

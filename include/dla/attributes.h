@@ -23,6 +23,10 @@ struct AttributeOptions {
   const std::vector<Vec3>* points = nullptr; //!< seed_distance is to these; default: the seeds
   int threads = 1;                           //!< for the distances to the surface and between
                                              //!< tips, 1-256; the result does not depend on it
+  //! Measure Attributes::tip_gaps, which only the instancing points (instances.h) use: the
+  //! POV-Ray scene's tips and PREFIX_tips.ply. Without them those measure their own, after
+  //! the rest of the attributes, in more memory.
+  bool tip_gaps = true;
 };
 
 //! Per-particle values, indexed as Cluster::particles (the index is the attach order): 11 bytes
@@ -42,7 +46,7 @@ struct Attributes {
   std::vector<float> boundary_distance;    //!< to the mesh's surface; empty without a mesh
   //! For each tip, in attach order: half the distance to the nearest other tip, in spacings,
   //! rounded down (infinity for a lone tip). Unit-radius copies scaled by it never overlap:
-  //! the instancing points' scale (instances.h).
+  //! the instancing points' scale (instances.h). Empty unless AttributeOptions::tip_gaps.
   std::vector<float> tip_gaps;
   PointDistance seed_points;               //!< the seeds (or AttributeOptions::points)
   double seed_reach = 0.0;                 //!< the largest distance of a particle to them
@@ -83,26 +87,18 @@ inline std::vector<float> half_gaps(const Cluster& cluster, const std::vector<bo
     if (selected[i]) nearest.add(ps[i].position);
   nearest.build();
   gaps.resize(count);
-  // Particles [from, to), whose gaps start at gaps[first].
-  const auto measure = [&](std::size_t from, std::size_t to, std::size_t first) {
-    for (std::size_t i = from; i < to; ++i) {
-      if (!selected[i]) continue;
-      const double half = 0.5 * nearest.distance_to_other(ps[i].position) / cluster.spacing;
+  const auto measure = [&](std::size_t from, std::size_t to) {
+    nearest.distances_to_others(from, to, [&](std::size_t k, double distance) {
+      const double half = 0.5 * distance / cluster.spacing;
       float gap = static_cast<float>(half);
       if (static_cast<double>(gap) > half) gap = std::nextafter(gap, 0.0f);
-      gaps[first++] = gap;
-    }
+      gaps[k] = gap;
+    });
   };
   const auto parts = std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), count / 4096 + 1);
   std::vector<std::thread> helpers;
-  std::size_t first = 0;
-  for (std::size_t t = 0; t < parts; ++t) {
-    const std::size_t from = n * t / parts, to = n * (t + 1) / parts;
-    if (t + 1 < parts) helpers.emplace_back(measure, from, to, first);
-    else measure(from, to, first);
-    first += static_cast<std::size_t>(std::count(selected.begin() + static_cast<std::ptrdiff_t>(from),
-                                                 selected.begin() + static_cast<std::ptrdiff_t>(to), true));
-  }
+  for (std::size_t t = 1; t < parts; ++t) helpers.emplace_back(measure, count * t / parts, count * (t + 1) / parts);
+  measure(0, count / parts);
   for (std::thread& helper : helpers) helper.join();
   return gaps;
 }
@@ -118,23 +114,20 @@ inline Attributes compute_attributes(const Cluster& cluster, const AttributeOpti
   const auto parent_of = [&](std::size_t i) { return static_cast<std::size_t>(ps[i].parent); };
   Attributes a;
   a.seed_count = cluster.seed_count;
-  // First, while nothing else is held: the tree of the tips takes 12 bytes a tip.
-  a.tip_gaps = half_gaps(cluster, tip_flags(cluster), options.threads);
+  // First, while nothing else is held: the tree of the tips takes 16 bytes a tip.
+  if (options.tip_gaps) a.tip_gaps = half_gaps(cluster, tip_flags(cluster), options.threads);
   a.descendants = subtree_sizes(cluster);
   a.shape.assign(n, 1);
   a.strand_place.assign(n, 0);
   {
     // The strands' own rule (strands.h), before `depth` exists: its 4 bytes a particle of
-    // scratch come and go in depth's place.
+    // scratch come and go in depth's place, as the places' below do.
     const std::vector<bool> continues = continuing_children(cluster, a.descendants);
     for (std::size_t i = 0; i < n; ++i) {
       if (continues[i]) a.shape[i] |= Attributes::kContinuesBit;
       else if (ps[i].parent >= 0) a.shape[parent_of(i)] |= Attributes::kBranchPointBit;  // beside the one going on
     }
   }
-  a.depth.resize(n);
-  for (std::size_t i = 0; i < n; ++i) a.depth[i] = ps[i].parent < 0 ? 0 : a.depth[parent_of(i)] + 1;
-
   // Strahler order, backwards. `strand_place` holds each parent's children's highest order
   // (low byte) and how many have it, up to 2 (high byte), until it is filled.
   for (std::size_t i = n; i-- > 0;) {
@@ -148,14 +141,27 @@ inline Attributes compute_attributes(const Cluster& cluster, const AttributeOpti
     if (order > highest) parent = static_cast<std::uint16_t>(order | 1u << 8);
     else if (order == highest && times < 2) parent = static_cast<std::uint16_t>(order | (times + 1) << 8);
   }
-  // Every particle lies on one strand (a seed at its own strand's start): each place is set.
-  for_each_strand(cluster, [&](std::size_t i) { return a.continues_strand(i); }, [&](const Strand& strand) {
-    const double end = static_cast<double>(strand.size() - 1);
-    // A strand's start belongs to the strand it continues, unless it is a seed.
-    for (std::size_t k = ps[static_cast<std::size_t>(strand[0])].parent < 0 ? 0 : 1; k < strand.size(); ++k)
-      a.strand_place[static_cast<std::size_t>(strand[k])] = static_cast<std::uint16_t>(
+  {
+    // Each particle's place along its strand, in two passes over the parents rather than a walk
+    // down every strand (which jumps about memory at 10^7). `step` holds first the particles
+    // after each one to its strand's tip (backwards: each parent's one continuing child comes
+    // after it), then its own place k (forwards: a strand's first own particle is 1, after its
+    // branch point; a seed is 0), so the strand's last place is k plus what was there.
+    std::vector<std::int32_t> step(n, 0);
+    for (std::size_t i = n; i-- > 0;)
+      if (a.continues_strand(i)) step[parent_of(i)] = step[i] + 1;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::int32_t k = ps[i].parent < 0 ? 0 : a.continues_strand(i) ? step[parent_of(i)] + 1 : 1;
+      const double end = static_cast<double>(k + step[i]);
+      step[i] = k;
+      // A strand leaving a branch point starts there (its k = 0), but the branch point keeps
+      // its place on the strand it continues.
+      a.strand_place[i] = static_cast<std::uint16_t>(
           std::lround(end > 0 ? Attributes::kPlaceSteps * (1.0 - static_cast<double>(k) / end) : Attributes::kPlaceSteps));
-  });
+    }
+  }
+  a.depth.resize(n);
+  for (std::size_t i = 0; i < n; ++i) a.depth[i] = ps[i].parent < 0 ? 0 : a.depth[parent_of(i)] + 1;
 
   std::vector<Vec3> seeds;
   if (options.points) seeds = *options.points;

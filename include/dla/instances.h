@@ -73,6 +73,19 @@ class InstanceSelection {
   bool near_boundary_;
 };
 
+//! The instancing point at particle i, whose half gap to the nearest other is `gap` spacings
+//! (half_gaps in attributes.h).
+inline Instance instance_at(const Cluster& cluster, const Attributes& attributes, std::size_t i, float gap) {
+  const auto& ps = cluster.particles;
+  const Particle& p = ps[i];
+  Vec3 direction = Vec3::UnitZ();
+  if (p.parent >= 0) direction = (p.position - ps[static_cast<std::size_t>(p.parent)].position).normalized();
+  double scale = static_cast<double>(gap) * cluster.spacing;
+  if (!std::isfinite(scale)) scale = cluster.spacing;  // a lone instance: as large as a particle
+  if (!attributes.boundary_distance.empty()) scale = std::min(scale, static_cast<double>(attributes.boundary_distance[i]));
+  return {p.position, direction, scale, static_cast<std::int32_t>(i)};
+}
+
 //! How many instancing points the options give.
 inline std::size_t count_instances(const Cluster& cluster, const Attributes& attributes, const InstanceOptions& options) {
   const InstanceSelection selected(cluster, attributes, options);
@@ -82,14 +95,15 @@ inline std::size_t count_instances(const Cluster& cluster, const Attributes& att
 }
 
 //! Calls visit(const Instance&) for each instancing point, in attach order, holding none of
-//! them. The tips use the attributes' tip_gaps; another selection measures its own gaps, 16
-//! bytes a point while it runs. Throws as InstanceSelection.
+//! them. The tips use the attributes' tip_gaps where they were measured; other selections
+//! measure their own gaps, 20 bytes a point while it runs. Throws as InstanceSelection.
 template <class Visit>
 void for_each_instance(const Cluster& cluster, const Attributes& attributes, const InstanceOptions& options,
                        Visit&& visit) {
   const InstanceSelection selected(cluster, attributes, options);
   const auto& ps = cluster.particles;
-  const bool every_tip = options.set == InstanceSet::tips && options.within == std::numeric_limits<double>::infinity();
+  const bool every_tip = options.set == InstanceSet::tips && options.within == std::numeric_limits<double>::infinity() &&
+                         !attributes.tip_gaps.empty();
   std::vector<float> measured;
   if (!every_tip) {
     std::vector<bool> chosen(ps.size());
@@ -98,16 +112,8 @@ void for_each_instance(const Cluster& cluster, const Attributes& attributes, con
   }
   const std::vector<float>& gaps = every_tip ? attributes.tip_gaps : measured;
   std::size_t k = 0;
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    if (!selected(i)) continue;
-    const Particle& p = ps[i];
-    Vec3 direction = Vec3::UnitZ();
-    if (p.parent >= 0) direction = (p.position - ps[static_cast<std::size_t>(p.parent)].position).normalized();
-    double scale = static_cast<double>(gaps[k++]) * cluster.spacing;
-    if (!std::isfinite(scale)) scale = cluster.spacing;  // a lone instance: as large as a particle
-    if (!attributes.boundary_distance.empty()) scale = std::min(scale, static_cast<double>(attributes.boundary_distance[i]));
-    visit(static_cast<const Instance&>(Instance{p.position, direction, scale, static_cast<std::int32_t>(i)}));
-  }
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (selected(i)) visit(static_cast<const Instance&>(instance_at(cluster, attributes, i, gaps[k++])));
 }
 
 //! The instancing points of a structure, all at once.

@@ -64,7 +64,7 @@ class NearestPoints {
 };
 
 //! The distance from each of a set of points to the nearest other, for millions of points in
-//! 12 bytes each and nothing else: an implicit k-d tree (each range's median splits it, the
+//! 16 bytes each and nothing else: an implicit k-d tree (each range's median splits it, the
 //! axes in turn) over float copies relative to an origin. The distances are exact but for the
 //! floats' rounding, which is taken off them: they never exceed the true distance.
 class NearestOther {
@@ -75,37 +75,50 @@ class NearestOther {
     points_.reserve(count);
   }
 
-  void add(const Vec3& p) { points_.push_back(((p - origin_) / scale_).cast<float>()); }
+  void add(const Vec3& p) {
+    points_.push_back({((p - origin_) / scale_).cast<float>(), static_cast<std::uint32_t>(points_.size())});
+  }
+  std::size_t size() const { return points_.size(); }
 
   //! Once every point is added, before the first query.
   void build() {
     float reach = 0.0f;
-    for (const Eigen::Vector3f& p : points_) reach = std::max(reach, p.cwiseAbs().maxCoeff());
+    for (const Point& p : points_) reach = std::max(reach, p.position.cwiseAbs().maxCoeff());
     // Each coordinate is off by half a float step at the reach, a difference by a step per
     // axis, and the float arithmetic adds a few: 8 steps bound it.
     error_ = 8.0 * static_cast<double>(reach) * std::numeric_limits<float>::epsilon();
     axis_count_ = 0;
     for (int axis = 0; axis < 3; ++axis)
-      for (const Eigen::Vector3f& p : points_)
-        if (p[axis] != points_.front()[axis]) {
+      for (const Point& p : points_)
+        if (p.position[axis] != points_.front().position[axis]) {
           axes_[axis_count_++] = axis;  // a flat structure (2D) is split on x and y only
           break;
         }
     build(0, points_.size(), 0);
   }
 
-  //! Distance from `p` (one of the points) to the nearest other point of the set, a point at
-  //! the same place counting at 0; infinity for a set of one.
-  double distance_to_other(const Vec3& p) const {
-    const Eigen::Vector3f q = ((p - origin_) / scale_).cast<float>();
-    float best[2] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity()};
-    search(0, points_.size(), 0, q, best);
-    if (!std::isfinite(best[1])) return std::numeric_limits<double>::infinity();
-    return std::max(0.0, std::sqrt(static_cast<double>(best[1])) - error_) * scale_;
+  //! For the points at places [from, to) of the tree's order (a part of [0, size())), calls
+  //! visit(k, d): d is the distance from the k-th point added to the nearest other point, a
+  //! point at the same place counting at 0, and infinity for a set of one. The tree's order
+  //! keeps neighbours together: the look-ups run in cache, not across it at random.
+  template <class Visit>
+  void distances_to_others(std::size_t from, std::size_t to, Visit&& visit) const {
+    for (std::size_t place = from; place < to; ++place) {
+      float best[2] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity()};
+      search(0, points_.size(), 0, points_[place].position, best);
+      const double d = std::isfinite(best[1]) ? std::max(0.0, std::sqrt(static_cast<double>(best[1])) - error_) * scale_
+                                              : std::numeric_limits<double>::infinity();
+      visit(static_cast<std::size_t>(points_[place].added), d);
+    }
   }
 
  private:
   static constexpr std::size_t kLeaf = 8;
+
+  struct Point {
+    Eigen::Vector3f position;
+    std::uint32_t added;  //!< its place in the order of add()
+  };
 
   void build(std::size_t from, std::size_t to, int depth) {
     if (to - from <= kLeaf || axis_count_ == 0) return;
@@ -113,7 +126,7 @@ class NearestOther {
     const std::size_t middle = from + (to - from) / 2;
     std::nth_element(points_.begin() + static_cast<std::ptrdiff_t>(from), points_.begin() + static_cast<std::ptrdiff_t>(middle),
                      points_.begin() + static_cast<std::ptrdiff_t>(to),
-                     [axis](const Eigen::Vector3f& a, const Eigen::Vector3f& b) { return a[axis] < b[axis]; });
+                     [axis](const Point& a, const Point& b) { return a.position[axis] < b.position[axis]; });
     build(from, middle, depth + 1);
     build(middle + 1, to, depth + 1);
   }
@@ -127,13 +140,13 @@ class NearestOther {
       else if (d2 < best[1]) best[1] = d2;
     };
     if (to - from <= kLeaf || axis_count_ == 0) {
-      for (std::size_t i = from; i < to; ++i) consider(points_[i]);
+      for (std::size_t i = from; i < to; ++i) consider(points_[i].position);
       return;
     }
     const int axis = axes_[depth % axis_count_];
     const std::size_t middle = from + (to - from) / 2;
-    consider(points_[middle]);
-    const float gap = q[axis] - points_[middle][axis];
+    consider(points_[middle].position);
+    const float gap = q[axis] - points_[middle].position[axis];
     const bool left_first = gap < 0.0f;
     if (left_first) search(from, middle, depth + 1, q, best);
     else search(middle + 1, to, depth + 1, q, best);
@@ -143,7 +156,7 @@ class NearestOther {
     }
   }
 
-  std::vector<Eigen::Vector3f> points_;
+  std::vector<Point> points_;
   Vec3 origin_;
   double scale_;
   double error_ = 0.0;
