@@ -1,0 +1,195 @@
+// Space colonization: the kept closest nodes against a full rescan, node for node; the kill
+// distance; determinism; the ends of growth; bad options.
+
+#include "dla/colonization.h"
+#include "dla/strands.h"
+#include "colonization_rescan.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+using namespace dla;
+using dla::testing::colonize_by_rescan;
+
+namespace {
+
+void expect_same_tree(const Cluster& a, const Cluster& b) {
+  ASSERT_EQ(a.particles.size(), b.particles.size());
+  ASSERT_EQ(a.seed_count, b.seed_count);
+  for (std::size_t i = 0; i < a.particles.size(); ++i) {
+    ASSERT_EQ(a.particles[i].position, b.particles[i].position) << "node " << i;
+    ASSERT_EQ(a.particles[i].parent, b.particles[i].parent) << "node " << i;
+    ASSERT_EQ(a.particles[i].seed, b.particles[i].seed) << "node " << i;
+  }
+}
+
+}  // namespace
+
+TEST(Colonization, KeptClosestNodesGiveTheFullRescansTree) {
+  struct Case {
+    const char* name;
+    ColonizationOptions options;
+    AttractorOptions attractors;
+    std::vector<Vec3> roots;
+  };
+  std::vector<Case> cases;
+  {
+    Case c{"the write-up's first test: 100 in a sphere, one root", {}, {}, {Vec3(0, -20, 0)}};
+    c.attractors.count = 100;
+    c.attractors.radius = 20;
+    cases.push_back(c);
+  }
+  {
+    Case c{"three roots, finite influence", {}, {}, {Vec3(-15, 0, 0), Vec3(15, 0, 0), Vec3(0, 0, 15)}};
+    c.attractors.count = 2000;
+    c.attractors.radius = 25;
+    c.options.influence = 6;
+    c.options.kill_distance = 1.5;
+    cases.push_back(c);
+  }
+  {
+    Case c{"graded, with noise and tropism", {}, {}, {Vec3(0, 0, -30)}};
+    c.attractors.count = 3000;
+    c.attractors.radius = 30;
+    c.attractors.falloff = 1.5;
+    c.options.noise_amplitude = 0.4;
+    c.options.noise_scale = 5;
+    c.options.tropism = Vec3(0, 0, 0.2);
+    c.options.rng_seed = 9;
+    cases.push_back(c);
+  }
+  {
+    Case c{"2D venation in a box, a node limit", {}, {}, {Vec3(0, -20, 0)}};
+    c.options.dimensions = 2;
+    c.options.max_nodes = 400;
+    c.attractors.count = 1500;
+    c.attractors.region = AttractorRegion::box;
+    c.attractors.box_min = Vec3(-20, -20, 0);
+    c.attractors.box_max = Vec3(20, 20, 0);
+    cases.push_back(c);
+  }
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::vector<Vec3> attractors = scatter_attractors(c.attractors, 5, c.options.dimensions);
+    const Cluster kept = colonize(c.options, attractors, c.roots);
+    ASSERT_GT(kept.particles.size(), c.roots.size() + 20) << "it grew";
+    expect_same_tree(kept, colonize_by_rescan(c.options, attractors, c.roots));
+    EXPECT_LE(kept.particles.size(), c.options.max_nodes);
+    for (std::size_t i = kept.seed_count; i < kept.particles.size(); ++i) {
+      const Particle& p = kept.particles[i];
+      ASSERT_GE(p.parent, 0);
+      ASSERT_LT(static_cast<std::size_t>(p.parent), i) << "parents come first";
+      const double step = (p.position - kept.particles[static_cast<std::size_t>(p.parent)].position).norm();
+      if (c.options.noise_amplitude == 0.0) {
+        ASSERT_NEAR(step, c.options.spacing, 1e-9) << "one step a node";
+      }
+      if (c.options.dimensions == 2) {
+        ASSERT_EQ(p.position.z(), 0.0);
+      }
+    }
+  }
+}
+
+TEST(Colonization, AttractorsDieExactlyAtTheKillDistance) {
+  ColonizationOptions o;
+  o.kill_distance = 2.0;
+  // On the kill distance from the root: dead before anything grows.
+  EXPECT_EQ(colonize(o, {Vec3(2, 0, 0)}, {Vec3::Zero()}).particles.size(), 1u);
+  // Just beyond it: one step towards it, then it dies.
+  const Cluster one = colonize(o, {Vec3(2.000001, 0, 0)}, {Vec3::Zero()});
+  ASSERT_EQ(one.particles.size(), 2u);
+  EXPECT_NEAR((one.particles[1].position - Vec3(1, 0, 0)).norm(), 0.0, 1e-12);
+  // Along a line: an attractor m steps plus the kill distance away dies after exactly m steps,
+  // one a hair farther after m + 1.
+  for (const double kill : {1.0, 1.5, 2.5, 4.0}) {
+    o.kill_distance = kill;
+    for (const int m : {1, 3, 7}) {
+      EXPECT_EQ(colonize(o, {Vec3(kill + m, 0, 0)}, {Vec3::Zero()}).particles.size(), static_cast<std::size_t>(m + 1))
+          << kill << " " << m;
+      EXPECT_EQ(colonize(o, {Vec3(kill + m + 1e-6, 0, 0)}, {Vec3::Zero()}).particles.size(), static_cast<std::size_t>(m + 2))
+          << kill << " " << m;
+    }
+  }
+}
+
+TEST(Colonization, TheSameInputsGiveTheSameTreeAndTheNoiseSeedMatters) {
+  ColonizationOptions o;
+  o.noise_amplitude = 0.5;
+  AttractorOptions a;
+  a.count = 2000;
+  a.radius = 20;
+  const std::vector<Vec3> attractors = scatter_attractors(a, 1, 3);
+  EXPECT_EQ(attractors, scatter_attractors(a, 1, 3));
+  EXPECT_NE(attractors, scatter_attractors(a, 2, 3));
+  const Cluster first = colonize(o, attractors, {Vec3::Zero()});
+  expect_same_tree(first, colonize(o, attractors, {Vec3::Zero()}));
+  o.rng_seed = 2;
+  const Cluster other = colonize(o, attractors, {Vec3::Zero()});
+  EXPECT_NE(first.particles.back().position, other.particles.back().position);
+}
+
+TEST(Colonization, GrowthEndsWhenItStallsOrMeetsALimit) {
+  ColonizationOptions o;
+  // Two attractors pulling a root in opposite directions: the directions cancel, nothing grows.
+  EXPECT_EQ(colonize(o, {Vec3(5, 0, 0), Vec3(-5, 0, 0)}, {Vec3::Zero()}).particles.size(), 1u);
+  // Out of reach of a finite influence: nothing grows.
+  o.influence = 3;
+  EXPECT_EQ(colonize(o, {Vec3(5, 0, 0)}, {Vec3::Zero()}).particles.size(), 1u);
+  o.influence = std::numeric_limits<double>::infinity();
+  AttractorOptions a;
+  a.count = 3000;
+  a.radius = 25;
+  const std::vector<Vec3> attractors = scatter_attractors(a, 4, 3);
+  o.max_iterations = 3;
+  const Cluster three = colonize(o, attractors, {Vec3::Zero()});
+  std::vector<int> depth(three.particles.size(), 0);
+  for (std::size_t i = 1; i < three.particles.size(); ++i)
+    depth[i] = depth[static_cast<std::size_t>(three.particles[i].parent)] + 1;
+  EXPECT_EQ(*std::max_element(depth.begin(), depth.end()), 3) << "one step an iteration";
+  o.max_iterations = 1000000;
+  o.max_nodes = 50;
+  EXPECT_EQ(colonize(o, attractors, {Vec3::Zero()}).particles.size(), 50u);
+  // A progress callback that says stop: the tree so far, marked incomplete.
+  o.max_nodes = 100000;
+  int calls = 0;
+  const Cluster stopped = colonize(o, attractors, {Vec3::Zero()}, [&](const Cluster&) { return ++calls < 2; });
+  EXPECT_FALSE(stopped.complete);
+  EXPECT_EQ(calls, 2);
+}
+
+TEST(Colonization, BadOptionsGetOneLine) {
+  const std::vector<Vec3> attractors{Vec3(5, 0, 0)};
+  const std::vector<Vec3> root{Vec3::Zero()};
+  const auto refuses = [&](auto&& change) {
+    ColonizationOptions o;
+    change(o);
+    EXPECT_THROW(colonize(o, attractors, root), InvalidInput);
+  };
+  refuses([](ColonizationOptions& o) { o.kill_distance = 0.5; });
+  refuses([](ColonizationOptions& o) { o.kill_distance = std::nan(""); });
+  refuses([](ColonizationOptions& o) { o.influence = 1.5; });
+  refuses([](ColonizationOptions& o) { o.spacing = 0; });
+  refuses([](ColonizationOptions& o) { o.max_nodes = 0; });
+  refuses([](ColonizationOptions& o) { o.max_iterations = 0; });
+  refuses([](ColonizationOptions& o) { o.noise_amplitude = -1; });
+  refuses([](ColonizationOptions& o) { o.noise_scale = 0; });
+  refuses([](ColonizationOptions& o) { o.tropism = Vec3(0, 0, std::numeric_limits<double>::infinity()); });
+  refuses([](ColonizationOptions& o) { o.dimensions = 4; });
+  EXPECT_THROW(colonize({}, attractors, {}), InvalidInput) << "no root";
+  EXPECT_THROW(colonize({}, {Vec3(std::nan(""), 0, 0)}, root), InvalidInput);
+  AttractorOptions a;
+  a.count = 0;
+  EXPECT_THROW(scatter_attractors(a, 1, 3), InvalidInput);
+  a.count = 10;
+  a.falloff = -1;
+  EXPECT_THROW(scatter_attractors(a, 1, 3), InvalidInput);
+  a.falloff = 0;
+  a.region = AttractorRegion::box;
+  a.box_max = a.box_min;
+  EXPECT_THROW(scatter_attractors(a, 1, 3), InvalidInput);
+  EXPECT_EQ(parse_attractor_region("box"), AttractorRegion::box);
+  EXPECT_THROW(parse_attractor_region("cube"), InvalidInput);
+}
