@@ -54,6 +54,91 @@ Vec3 parse_vec3(const std::string& flag, const std::string& text) {
   return {v[0], v[1], v[2]};
 }
 
+//! The Output and Look options' words, and the options whose defaults depend on a mesh.
+struct FileWords {
+  std::string up, radius_model, color_by, instance_set, pov_style, formats = "pov,csv,ply,json";
+  CLI::Option* radius = nullptr;
+  CLI::Option* base_radius = nullptr;
+  CLI::Option* tip_radius = nullptr;
+  CLI::Option* up_option = nullptr;
+  CLI::Option* tips_within = nullptr;
+};
+
+//! The Output and Look options, the same for every growth model.
+void add_file_options(CLI::App& app, FileOptions& f, FileWords& w) {
+  w.up = std::string(to_string(f.pov.up));
+  w.radius_model = std::string(to_string(f.look.radius.model));
+  w.color_by = std::string(to_string(f.look.color_by));
+  w.instance_set = std::string(to_string(f.instances.set));
+  w.pov_style = std::string(to_string(f.pov.style));
+  const char* outputs = "Output";
+  app.add_option("-o,--output", f.output, "prefix of the files written")->capture_default_str()->group(outputs);
+  app.add_flag("--binary", f.binary_ply, "write the PLYs as binary (little-endian): half the size, "
+                                         "ten times faster")->group(outputs);
+  app.add_option("--formats", w.formats, "files to write, a comma list of pov, csv, ply, json, glb, obj, tips "
+                                        "(PREFIX_tips.ply) and svg (2D)")->capture_default_str()->group(outputs);
+
+  const char* looks = "Look";
+  w.radius = app.add_option("--radius", w.radius_model, "branch thickness: taper, pipe, boundary (needs a mesh), "
+                                                        "seed-distance or uniform; with a mesh, default pipe")
+                 ->capture_default_str()->group(looks);
+  w.base_radius = app.add_option("--base-radius", f.look.radius.base_radius, "the thickest branch's radius, in spacings, "
+                                                                             "[0.001, 1000]; with a mesh, default 3")
+                      ->capture_default_str()->group(looks);
+  w.tip_radius = app.add_option("--tip-radius", f.look.radius.tip_radius, "the finest branch's radius, in spacings, "
+                                                                          "[0.001, 1000]; with a mesh, default 0.05")
+                     ->capture_default_str()->group(looks);
+  app.add_option("--pipe-exponent", f.look.radius.pipe_exponent, "pipe: e in r = tip * (descendants + 1)^(1/e), "
+                                                                  "[1, 10]; 2 keeps the area, 3 is Murray's law")
+      ->capture_default_str()->group(looks);
+  app.add_option("--color-by", w.color_by, "colour the glb, obj, svg and POV-Ray scene by none, age, depth, "
+                                           "seed or distance (to the mesh, or to the seeds)")
+      ->capture_default_str()->group(looks);
+  app.add_option("--look", w.pov_style, "POV-Ray: branches (sphere sweeps) or blob (metaballs)")
+      ->capture_default_str()->group(looks);
+  app.add_option("--tube-sides", f.look.tubes.sides, "glb, obj: vertices around a tube, 3-64")
+      ->capture_default_str()->group(looks);
+  app.add_option("--tube-tolerance", f.look.tubes.tolerance, "glb, obj: leave out strand points the tube "
+                                                             "passes within this of, in spacings, [0, 10]")
+      ->capture_default_str()->group(looks);
+  app.add_option("--tube-min-branch", f.look.tubes.min_branch, "glb, obj: leave out branches of fewer particles "
+                                                                "(counting all that grow from them), 1-1000")
+      ->capture_default_str()->group(looks);
+  app.add_option("--instances", w.instance_set, "tips: which particles are instancing points, tips or all")
+      ->capture_default_str()->group(looks);
+  w.tips_within = app.add_option("--tips-within", f.instances.within, "tips: only points within this of the mesh's "
+                                                                      "surface, in spacings, >= 0")->group(looks);
+  w.up_option = app.add_option("--up", w.up, "POV-Ray: the axis that is up in the picture, x, y or z; with a mesh, "
+                                             "default: its longest side's")->capture_default_str()->group(outputs);
+  app.add_flag("-q,--quiet", f.quiet, "no progress bar and no summary")->group(outputs);
+}
+
+//! The words of the Output and Look options, as values.
+void parse_file_words(FileOptions& f, const FileWords& w) {
+  f.pov.up = parse_axis(w.up);
+  f.pov.style = parse_pov_style(w.pov_style);
+  f.look.radius.model = parse_radius_model(w.radius_model);
+  f.look.color_by = parse_color_by(w.color_by);
+  f.instances.set = parse_instance_set(w.instance_set);
+  f.formats = parse_formats(w.formats);
+}
+
+//! Checks the Output and Look options, once their mesh defaults are in.
+void check_file_options(const FileOptions& f, const FileWords& w, int dimensions, bool with_mesh) {
+  validate(f.look);
+  validate(f.instances);
+  if (f.formats.svg && dimensions != 2)
+    throw InvalidInput("--formats svg draws 2D growth: add --dimensions 2, or leave svg out");
+  if (!with_mesh) {
+    if (f.look.radius.model == RadiusModel::boundary)
+      throw InvalidInput("--radius boundary measures to a constraint mesh: give one with --stl");
+    if (w.tips_within->count()) throw InvalidInput("--tips-within measures to a constraint mesh: give one with --stl");
+  }
+  if (f.output.empty()) throw InvalidInput("--output is empty");
+  if (f.output.back() == '/') throw InvalidInput("--output '" + f.output + "' names a folder, not a file prefix");
+  if (f.formats.pov) validate_pov_prefix(f.output);
+}
+
 //! Only -q and --threads may go with --resume: every other option comes from the checkpoint.
 void check_resume_company(const std::vector<std::string>& args) {
   for (std::size_t i = 0; i < args.size(); ++i) {
@@ -64,7 +149,39 @@ void check_resume_company(const std::vector<std::string>& args) {
   }
 }
 
+//! K roots uniform on the sphere around the attractors (around their box, for a box), in
+//! z = 0 for 2D: the Hyphae write-up's third test.
+std::vector<Vec3> roots_around(const ColonizeCommand& c) {
+  const AttractorOptions& a = c.attractors;
+  const bool sphere = a.region == AttractorRegion::sphere;
+  const Vec3 center = sphere ? a.center : Vec3(0.5 * (a.box_min + a.box_max));
+  double radius = sphere ? a.radius : 0.5 * (a.box_max - a.box_min).norm();
+  if (c.options.dimensions == 2 && !sphere) radius = 0.5 * (a.box_max - a.box_min).head<2>().norm();
+  Rng rng(c.options.rng_seed, 0x726f6f7473ULL);  // a stream of its own: "roots"
+  std::vector<Vec3> roots;
+  for (std::size_t k = 0; k < c.root_count; ++k) {
+    Vec3 root = center + radius * random_direction(rng, c.options.dimensions);
+    if (c.options.dimensions == 2) root.z() = 0.0;
+    roots.push_back(root);
+  }
+  return roots;
+}
+
+//! The attractors' lowest point along y: where one root starts by default.
+Vec3 lowest_point(const AttractorOptions& a) {
+  if (a.region == AttractorRegion::sphere) return a.center - Vec3(0.0, a.radius, 0.0);
+  return {0.5 * (a.box_min.x() + a.box_max.x()), a.box_min.y(), 0.5 * (a.box_min.z() + a.box_max.z())};
+}
+
 }  // namespace
+
+std::vector<Vec3> colonize_roots(const ColonizeCommand& command) {
+  if (!command.roots.empty()) return command.roots;
+  if (command.root_count > 0) return roots_around(command);
+  Vec3 root = lowest_point(command.attractors);
+  if (command.options.dimensions == 2) root.z() = 0.0;
+  return {root};
+}
 
 CommandLine parse_command_line(const std::vector<std::string>& args) {
   CommandLine line;
@@ -83,12 +200,6 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   std::string box, drift, index = std::string(to_string(options.index));
   std::string side = std::string(to_string(g.constraint.side));
   std::string constraint_mode = std::string(to_string(g.constraint.mode));
-  std::string up = std::string(to_string(g.pov.up));
-  std::string radius_model = std::string(to_string(g.look.radius.model));
-  std::string color_by = std::string(to_string(g.look.color_by));
-  std::string instance_set = std::string(to_string(g.instances.set));
-  std::string pov_style = std::string(to_string(g.pov.style));
-  std::string formats = "pov,csv,ply,json";
 
   const char* growth = "Growth";
   CLI::Option* particles_option =
@@ -142,50 +253,8 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   app.add_option("--drift", drift, "bias of every step, per unit step length, length < 1")
       ->type_name("X,Y,Z")->group(spawning);
 
-  const char* outputs = "Output";
-  app.add_option("-o,--output", g.output, "prefix of the files written")->capture_default_str()->group(outputs);
-  app.add_flag("--binary", g.binary_ply, "write the PLYs as binary (little-endian): half the size, "
-                                         "ten times faster")->group(outputs);
-  app.add_option("--formats", formats, "files to write, a comma list of pov, csv, ply, json, glb, obj, tips "
-                                      "(PREFIX_tips.ply) and svg (2D)")->capture_default_str()->group(outputs);
-
-  const char* looks = "Look";
-  CLI::Option* radius_option =
-      app.add_option("--radius", radius_model, "branch thickness: taper, pipe, boundary (needs a mesh), "
-                                               "seed-distance or uniform; with a mesh, default pipe")
-          ->capture_default_str()->group(looks);
-  CLI::Option* base_radius_option =
-      app.add_option("--base-radius", g.look.radius.base_radius, "the thickest branch's radius, in spacings, "
-                                                                 "[0.001, 1000]; with a mesh, default 3")
-          ->capture_default_str()->group(looks);
-  CLI::Option* tip_radius_option =
-      app.add_option("--tip-radius", g.look.radius.tip_radius, "the finest branch's radius, in spacings, "
-                                                               "[0.001, 1000]; with a mesh, default 0.05")
-          ->capture_default_str()->group(looks);
-  app.add_option("--pipe-exponent", g.look.radius.pipe_exponent, "pipe: e in r = tip * (descendants + 1)^(1/e), "
-                                                                  "[1, 10]; 2 keeps the area, 3 is Murray's law")
-      ->capture_default_str()->group(looks);
-  app.add_option("--color-by", color_by, "colour the glb, obj, svg and POV-Ray scene by none, age, depth, "
-                                         "seed or distance (to the mesh, or to the seeds)")
-      ->capture_default_str()->group(looks);
-  app.add_option("--look", pov_style, "POV-Ray: branches (sphere sweeps) or blob (metaballs)")
-      ->capture_default_str()->group(looks);
-  app.add_option("--tube-sides", g.look.tubes.sides, "glb, obj: vertices around a tube, 3-64")
-      ->capture_default_str()->group(looks);
-  app.add_option("--tube-tolerance", g.look.tubes.tolerance, "glb, obj: leave out strand points the tube "
-                                                             "passes within this of, in spacings, [0, 10]")
-      ->capture_default_str()->group(looks);
-  app.add_option("--tube-min-branch", g.look.tubes.min_branch, "glb, obj: leave out branches of fewer particles "
-                                                                "(counting all that grow from them), 1-1000")
-      ->capture_default_str()->group(looks);
-  app.add_option("--instances", instance_set, "tips: which particles are instancing points, tips or all")
-      ->capture_default_str()->group(looks);
-  app.add_option("--tips-within", g.instances.within, "tips: only points within this of the mesh's "
-                                                      "surface, in spacings, >= 0")->group(looks);
-  CLI::Option* up_option =
-      app.add_option("--up", up, "POV-Ray: the axis that is up in the picture, x, y or z; with a mesh, "
-                                 "default: its longest side's")->capture_default_str()->group(outputs);
-  app.add_flag("-q,--quiet", g.quiet, "no progress bar and no summary")->group(outputs);
+  FileWords words;
+  add_file_options(app, g, words);
 
   const char* runs = "Long runs";
   app.add_option("--checkpoint", g.checkpoint_path, "save the run to FILE as it goes, and when stopped by Ctrl-C or SIGTERM")
@@ -194,6 +263,59 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   CLI::Option* resume_option =
       app.add_option("--resume", line.resume_path, "grow on from a checkpoint, with the options it was started with")
           ->type_name("FILE")->group(runs);
+
+  ColonizeCommand& c = line.colonize;
+  CLI::App* colonize_command = app.add_subcommand(
+      "colonize", "grow a tree by space colonization: attractor points pull its nearest nodes (docs/colonization.md)");
+  colonize_command->get_formatter()->column_width(34);
+  const char* colonizing = "Colonization";
+  std::vector<std::string> root_at;
+  std::string attractor_region = std::string(to_string(c.attractors.region)), attractor_center, attractor_box,
+              noise, tropism;
+  long long max_nodes = static_cast<long long>(c.options.max_nodes), attractor_count = static_cast<long long>(c.attractors.count),
+            max_iterations = static_cast<long long>(c.options.max_iterations), root_count = 0;
+  colonize_command->add_option("-n,--max-nodes", max_nodes, "nodes at most, roots included")
+      ->capture_default_str()->group(colonizing);
+  colonize_command->add_option("--max-iterations", max_iterations, "growth steps at most")
+      ->capture_default_str()->group(colonizing);
+  colonize_command->add_option("--spacing", c.options.spacing, "the step: distance between a node and its parent, "
+                                                                "[1e-100, 1e100]")->capture_default_str()->group(colonizing);
+  colonize_command->add_option("--kill-distance", c.options.kill_distance, "an attractor dies once a node is this close, "
+                                                                            "in spacings, [1, 1e6]")
+      ->capture_default_str()->group(colonizing);
+  colonize_command->add_option("--influence", c.options.influence, "an attractor pulls its nearest node only this close, "
+                                                                    "in spacings, above the kill distance; default: any")
+      ->group(colonizing);
+  colonize_command->add_option("--noise", noise, "each new node moves by up to A spacings, in features S spacings wide; "
+                                                 "A in [0, 10], S > 0")->type_name("A,S")->group(colonizing);
+  colonize_command->add_option("--tropism", tropism, "added to each step's unit direction (gravity, light), "
+                                                     "each in [-10, 10]")->type_name("X,Y,Z")->group(colonizing);
+  colonize_command->add_option("--dimensions", c.options.dimensions, "3, or 2 for venation in the plane z = 0")
+      ->capture_default_str()->group(colonizing);
+  colonize_command->add_option("--rng-seed", c.options.rng_seed, "seeds the attractors, the roots and the noise")
+      ->capture_default_str()->group(colonizing);
+  const char* attracting = "Attractors and roots";
+  colonize_command->add_option("--attractors", attractor_count, "how many attractors, [1, 1e8]")
+      ->capture_default_str()->group(attracting);
+  colonize_command->add_option("--attractors-in", attractor_region, "where they lie: sphere or box")
+      ->capture_default_str()->group(attracting);
+  colonize_command->add_option("--attractor-center", attractor_center, "the sphere's centre; default the origin")
+      ->type_name("X,Y,Z")->group(attracting);
+  colonize_command->add_option("--attractor-radius", c.attractors.radius, "the sphere's radius, scene units, > 0")
+      ->capture_default_str()->group(attracting);
+  colonize_command->add_option("--attractor-box", attractor_box, "the box; default -50,-50,-50,50,50,50")
+      ->type_name("X0,Y0,Z0,X1,Y1,Z1")->group(attracting);
+  colonize_command->add_option("--attractor-falloff", c.attractors.falloff, "grading towards the sphere's centre, "
+                                                                            "[0, 100]; 0 is uniform")
+      ->capture_default_str()->group(attracting);
+  CLI::Option* root_at_option =
+      colonize_command->add_option("--root-at", root_at, "a root at x,y,z (repeat for several); default: one at "
+                                                         "the attractors' lowest point (-y)")
+          ->type_name("X,Y,Z")->allow_extra_args(false)->group(attracting);
+  colonize_command->add_option("--roots", root_count, "K roots at random on the sphere around the attractors")
+      ->type_name("K")->group(attracting)->excludes(root_at_option);
+  FileWords colonize_words;
+  add_file_options(*colonize_command, c, colonize_words);
 
   CLI::App* convert_command =
       app.add_subcommand("convert", "read a mesh (STL, OFF, OBJ, PLY) and write it as binary STL, then stop");
@@ -223,6 +345,48 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     throw InvalidInput(std::string(e.what()) + " (see dla3d --help)");
   }
 
+  if (colonize_command->parsed()) {
+    line.kind = CommandLine::Kind::colonize;
+    parse_file_words(c, colonize_words);
+    check_file_options(c, colonize_words, c.options.dimensions, false);
+    if (max_nodes < 1) throw InvalidInput("--max-nodes " + std::to_string(max_nodes) + " is not at least 1");
+    if (max_iterations < 1) throw InvalidInput("--max-iterations " + std::to_string(max_iterations) + " is not at least 1");
+    if (attractor_count < 1) throw InvalidInput("--attractors " + std::to_string(attractor_count) + " is not at least 1");
+    if (colonize_command->count("--roots") && root_count < 1)
+      throw InvalidInput("--roots " + std::to_string(root_count) + ": there must be a root");
+    c.options.max_nodes = static_cast<std::size_t>(max_nodes);
+    c.options.max_iterations = static_cast<std::size_t>(max_iterations);
+    c.attractors.count = static_cast<std::size_t>(attractor_count);
+    c.root_count = static_cast<std::size_t>(root_count);
+    c.attractors.region = parse_attractor_region(attractor_region);
+    if (!attractor_center.empty()) c.attractors.center = parse_vec3("--attractor-center", attractor_center);
+    if (!attractor_box.empty()) {
+      const std::vector<double> b = parse_numbers("--attractor-box", attractor_box, 6);
+      c.attractors.box_min = {b[0], b[1], b[2]};
+      c.attractors.box_max = {b[3], b[4], b[5]};
+      if (c.attractors.region != AttractorRegion::box)
+        throw InvalidInput("--attractor-box is for --attractors-in box, not " + attractor_region);
+    }
+    if (!noise.empty()) {
+      const std::vector<double> n = parse_numbers("--noise", noise, 2);
+      c.options.noise_amplitude = n[0];
+      c.options.noise_scale = n[1];
+    }
+    if (!tropism.empty()) c.options.tropism = parse_vec3("--tropism", tropism);
+    for (const std::string& r : root_at) c.roots.push_back(parse_vec3("--root-at", r));
+    validate(c.options);
+    validate(c.attractors);
+    if (c.options.dimensions == 2) {
+      if (c.attractors.center.z() != 0.0) throw InvalidInput("--dimensions 2 grows in z = 0: the attractors' centre is not");
+      for (const Vec3& r : c.roots)
+        if (r.z() != 0.0) throw InvalidInput("--dimensions 2 grows in z = 0: a --root-at is not");
+    }
+    if (c.root_count > c.options.max_nodes || c.roots.size() > c.options.max_nodes)
+      throw InvalidInput("more roots than --max-nodes");
+    for (std::size_t i = 0; i < c.roots.size(); ++i)
+      detail::require_representable("--root-at " + root_at[i], c.roots[i], c.options.spacing);
+    return line;
+  }
   if (convert_command->parsed()) {
     line.kind = CommandLine::Kind::convert;
     const std::string& out = line.convert_out;
@@ -253,16 +417,11 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   options.spawn = parse_spawn_mode(spawn);
   options.spawn_axis = parse_axis(spawn_axis);
   options.index = parse_index_kind(index);
-  g.pov.up = parse_axis(up);
-  g.pov.style = parse_pov_style(pov_style);
-  g.look.radius.model = parse_radius_model(radius_model);
-  g.look.color_by = parse_color_by(color_by);
-  g.instances.set = parse_instance_set(instance_set);
-  g.formats = parse_formats(formats);
+  parse_file_words(g, words);
   g.particles_given = particles_option->count() > 0;
-  g.radius_given = radius_option->count() > 0;
-  g.base_radius_given = base_radius_option->count() > 0;
-  g.tip_radius_given = tip_radius_option->count() > 0;
+  g.radius_given = words.radius->count() > 0;
+  g.base_radius_given = words.base_radius->count() > 0;
+  g.tip_radius_given = words.tip_radius->count() > 0;
   if (!g.mesh_path.empty()) {
     // Inside a mesh, a root system: enough particles to fill a bust at the default spacing,
     // short of the 35,000 or so that cover its skin, where the surface spawn starts walkers;
@@ -272,28 +431,17 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     if (!g.base_radius_given) g.look.radius.base_radius = kMeshBaseRadius;
     if (!g.tip_radius_given) g.look.radius.tip_radius = kMeshTipRadius;
   }
-  validate(g.look);
-  validate(g.instances);
-  if (g.formats.svg && options.dimensions != 2)
-    throw InvalidInput("--formats svg draws 2D growth: add --dimensions 2, or leave svg out");
-  if (g.mesh_path.empty()) {
-    if (g.look.radius.model == RadiusModel::boundary)
-      throw InvalidInput("--radius boundary measures to a constraint mesh: give one with --stl");
-    if (app.count("--tips-within")) throw InvalidInput("--tips-within measures to a constraint mesh: give one with --stl");
-  }
+  check_file_options(g, words, options.dimensions, !g.mesh_path.empty());
   if (!box.empty()) {
     const std::vector<double> b = parse_numbers("--box", box, 6);
     options.spawn_box = Box{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}};
     if (options.spawn != SpawnMode::box) throw InvalidInput("--box is for --spawn box, not --spawn " + spawn);
   }
   if (!drift.empty()) options.drift = parse_vec3("--drift", drift);
-  if (g.output.empty()) throw InvalidInput("--output is empty");
-  if (g.output.back() == '/') throw InvalidInput("--output '" + g.output + "' names a folder, not a file prefix");
-  if (g.formats.pov) validate_pov_prefix(g.output);
   g.constraint.side = parse_side(side);
   g.constraint.mode = parse_constraint_mode(constraint_mode);
   g.spacing_given = spacing->count() > 0;
-  g.up_given = up_option->count() > 0;
+  g.up_given = words.up_option->count() > 0;
   g.spawn_given = spawn_option->count() > 0;
   g.seeds_given = seed_at_option->count() > 0;
   if (g.mesh_path.empty() && seeds_option->count())

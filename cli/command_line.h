@@ -2,6 +2,7 @@
 // dla3d's command line, parsed and checked without touching a file: main.cpp runs what it says,
 // and the CLI fuzzer (tests/fuzz/cli_fuzz.cpp) drives it with arbitrary words.
 
+#include "dla/colonization.h"
 #include "dla/constraint.h"
 #include "dla/instances.h"
 #include "dla/look.h"
@@ -24,9 +25,8 @@ struct Formats {
   bool glb = false, obj = false, tips = false, svg = false;
 };
 
-//! `dla3d [options]`: grow a structure and write its files.
-struct GrowCommand {
-  GrowthOptions options;
+//! What every growth model's files are and look like: the Output and Look options.
+struct FileOptions {
   PovOptions pov;
   LookOptions look;
   InstanceOptions instances;
@@ -34,6 +34,11 @@ struct GrowCommand {
   std::string output = "dla";          //!< prefix of the files written
   bool quiet = false;
   bool binary_ply = false;             //!< PLY as binary_little_endian rather than ASCII
+};
+
+//! `dla3d [options]`: grow a structure by DLA and write its files.
+struct GrowCommand : FileOptions {
+  GrowthOptions options;
   std::string mesh_path;               //!< empty: no constraint
   ConstraintOptions constraint;
   std::size_t seed_count = 0;          //!< --seeds; 0 when not given
@@ -45,23 +50,39 @@ struct GrowCommand {
   bool particles_given = false, radius_given = false, base_radius_given = false, tip_radius_given = false;
 };
 
+//! `dla3d colonize [options]`: grow a tree by space colonization and write its files.
+struct ColonizeCommand : FileOptions {
+  ColonizationOptions options;
+  AttractorOptions attractors;
+  std::vector<Vec3> roots;             //!< --root-at; none: see root_count
+  //! --roots K: K roots at random on the sphere around the attractors; with neither, one
+  //! root at the attractors' lowest point (-y).
+  std::size_t root_count = 0;
+};
+
 //! What the command line asks for.
 struct CommandLine {
   enum class Kind {
-    grow,     //!< `grow` holds the options
-    resume,   //!< --resume FILE, with only -q and --threads beside it
-    convert,  //!< dla3d convert IN OUT.stl
-    analyze,  //!< dla3d analyze PREFIX.csv
-    print,    //!< --help or --version: `text` goes to stdout, exit 0
+    grow,      //!< `grow` holds the options
+    colonize,  //!< dla3d colonize: `colonize` holds the options
+    resume,    //!< --resume FILE, with only -q and --threads beside it
+    convert,   //!< dla3d convert IN OUT.stl
+    analyze,   //!< dla3d analyze PREFIX.csv
+    print,     //!< --help or --version: `text` goes to stdout, exit 0
   };
   Kind kind = Kind::grow;
   GrowCommand grow;
+  ColonizeCommand colonize;
   std::string resume_path;
   bool threads_given = false;  //!< with --resume: grow.options.threads replaces the checkpoint's
   std::string convert_in, convert_out;
   std::string analyze_csv;
   std::string text;
 };
+
+//! The roots a colonize command grows from: its --root-at points; or --roots K on the sphere
+//! around the attractors; or one at the attractors' lowest point (-y).
+std::vector<Vec3> colonize_roots(const ColonizeCommand& command);
 
 //! Parses dla3d's arguments (without the program name). Throws InvalidInput with a one-line
 //! message for a flag or value that cannot work; options that need the mesh to be checked

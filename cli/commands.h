@@ -21,6 +21,11 @@ namespace dla::cli {
 int grow(const GrowCommand& command, const std::vector<std::string>& args, const Checkpoint* resumed,
          const StopFlag& stop, const volatile std::sig_atomic_t& stop_signal);
 
+//! `dla3d colonize`: grows a tree by space colonization and writes the files, as grow() does
+//! (without checkpoints). Returns 0, or 128 + the signal when stopped.
+int colonize(const ColonizeCommand& command, const std::vector<std::string>& args, const StopFlag& stop,
+             const volatile std::sig_atomic_t& stop_signal);
+
 //! `dla3d convert IN OUT.stl`: the project's own mesh reading, to make bust.stl at setup.
 int convert(const std::string& in, const std::string& out, bool quiet);
 

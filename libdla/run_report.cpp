@@ -16,17 +16,59 @@ void vector(detail::OutputFile& out, const Vec3& v) {
   out << '[' << json::number(v.x()) << ", " << json::number(v.y()) << ", " << json::number(v.z()) << ']';
 }
 
+void begin(detail::OutputFile& out, const Cluster& cluster, const RunRecord& record) {
+  out << "{\n  \"generator\": \"dla3d\",\n  \"version\": \"" << version << "\",\n";
+  if (!record.command.empty()) out << "  \"command\": " << json::string(record.command) << ",\n";
+  out << "  \"complete\": " << (cluster.complete ? "true" : "false") << ",\n";
+  if (!record.stopped_by.empty()) out << "  \"stopped_by\": " << json::string(record.stopped_by) << ",\n";
+}
+
+void look_section(detail::OutputFile& out, const LookOptions& look, const PovOptions& pov) {
+  out << "  \"look\": {\n    \"radius\": \"" << to_string(look.radius.model) << "\",\n    \"base_radius\": ";
+  out.number(look.radius.base_radius) << ",\n    \"tip_radius\": ";
+  out.number(look.radius.tip_radius) << ",\n    \"pipe_exponent\": ";
+  out.number(look.radius.pipe_exponent) << ",\n    \"color_by\": \"" << to_string(look.color_by)
+                                        << "\",\n    \"tube_sides\": ";
+  out.integer(look.tubes.sides) << ",\n    \"tube_tolerance\": ";
+  out.number(look.tubes.tolerance) << ",\n    \"pov_look\": \"" << to_string(pov.style) << "\"\n  },\n";
+}
+
+void counts(detail::OutputFile& out, const Cluster& cluster) {
+  out << "  \"counts\": {\n    \"particles\": ";
+  out.integer(static_cast<long long>(cluster.particles.size())) << ",\n    \"seeds\": ";
+  out.integer(static_cast<long long>(cluster.seed_count)) << ",\n    \"attached\": ";
+  out.integer(static_cast<long long>(attached(cluster))) << ",\n    \"strands\": ";
+  out.integer(static_cast<long long>(count_strands(cluster))) << "\n  },\n";
+}
+
+void measures(detail::OutputFile& out, const Cluster& cluster) {
+  out << "  \"measures\": {\n    \"center\": ";
+  vector(out, cluster.center);
+  out << ",\n    \"bounding_radius\": ";
+  out << json::number(bounding_radius(cluster), 9) << ",\n    \"radius_of_gyration\": ";
+  out << json::number(radius_of_gyration(cluster), 9) << ",\n    \"fractal_dimension_gyration\": ";
+  const auto dimension = [&](const FractalFit& fit) { out << json::number(fit.samples >= 2 ? fit.dimension : NAN, 5); };
+  dimension(fractal_dimension_by_gyration(cluster));
+  out << ",\n    \"fractal_dimension_mass_radius\": ";
+  dimension(fractal_dimension_by_mass_radius(cluster));
+  out << "\n  },\n";
+}
+
+//! The timings' first entries, left open for the model's own.
+void timings(detail::OutputFile& out, const Cluster& cluster, const RunRecord& record) {
+  out << "  \"timings\": {\n    \"grow_seconds\": ";
+  out.number(record.grow_seconds, 6) << ",\n    \"write_seconds\": ";
+  out.number(record.write_seconds, 6) << ",\n    \"particles_per_second\": ";
+  out.number(record.grow_seconds > 0 ? static_cast<double>(attached(cluster)) / record.grow_seconds : 0.0, 6);
+}
+
 }  // namespace
 
 void write_run_report(const Cluster& cluster, const GrowthOptions& o, const LookOptions& look,
                       const PovOptions& pov, const RunRecord& record, const std::string& path, const MeshConstraint* constraint,
                       const std::string& mesh_file) {
-  const std::size_t attached = cluster.particles.size() - cluster.seed_count;
   detail::OutputFile out(path);
-  out << "{\n  \"generator\": \"dla3d\",\n  \"version\": \"" << version << "\",\n";
-  if (!record.command.empty()) out << "  \"command\": " << json::string(record.command) << ",\n";
-  out << "  \"complete\": " << (cluster.complete ? "true" : "false") << ",\n";
-  if (!record.stopped_by.empty()) out << "  \"stopped_by\": " << json::string(record.stopped_by) << ",\n";
+  begin(out, cluster, record);
   out << "  \"rng_seed\": ";
   out.integer(static_cast<long long>(o.rng_seed)) << ",\n  \"options\": {\n    \"particles\": ";
   out.integer(static_cast<long long>(o.particles)) << ",\n    \"spacing\": ";
@@ -53,13 +95,7 @@ void write_run_report(const Cluster& cluster, const GrowthOptions& o, const Look
   vector(out, o.drift);
   out << ",\n    \"min_step\": ";
   out.number(o.min_step) << ",\n    \"index\": \"" << to_string(o.index) << "\"\n  },\n";
-  out << "  \"look\": {\n    \"radius\": \"" << to_string(look.radius.model) << "\",\n    \"base_radius\": ";
-  out.number(look.radius.base_radius) << ",\n    \"tip_radius\": ";
-  out.number(look.radius.tip_radius) << ",\n    \"pipe_exponent\": ";
-  out.number(look.radius.pipe_exponent) << ",\n    \"color_by\": \"" << to_string(look.color_by)
-                                        << "\",\n    \"tube_sides\": ";
-  out.integer(look.tubes.sides) << ",\n    \"tube_tolerance\": ";
-  out.number(look.tubes.tolerance) << ",\n    \"pov_look\": \"" << to_string(pov.style) << "\"\n  },\n";
+  look_section(out, look, pov);
   if (constraint) {
     const RepairReport& r = constraint->repair_report();
     out << "  \"constraint\": {\n    \"mesh\": ";
@@ -71,11 +107,7 @@ void write_run_report(const Cluster& cluster, const GrowthOptions& o, const Look
     out << json::string(r.summary());
     out << ",\n    \"closed\": " << (r.closed ? "true" : "false") << "\n  },\n";
   }
-  out << "  \"counts\": {\n    \"particles\": ";
-  out.integer(static_cast<long long>(cluster.particles.size())) << ",\n    \"seeds\": ";
-  out.integer(static_cast<long long>(cluster.seed_count)) << ",\n    \"attached\": ";
-  out.integer(static_cast<long long>(attached)) << ",\n    \"strands\": ";
-  out.integer(static_cast<long long>(count_strands(cluster))) << "\n  },\n";
+  counts(out, cluster);
   const WalkStats& s = cluster.stats;
   out << "  \"walk\": {\n    \"walkers\": ";
   out.integer(static_cast<long long>(s.walkers)) << ",\n    \"steps\": ";
@@ -87,23 +119,56 @@ void write_run_report(const Cluster& cluster, const GrowthOptions& o, const Look
   out.integer(static_cast<long long>(s.lost)) << ",\n    \"rejected\": ";
   out.integer(static_cast<long long>(s.rejected)) << ",\n    \"clipped\": ";
   out.integer(static_cast<long long>(s.clipped)) << "\n  },\n";
-  out << "  \"measures\": {\n    \"center\": ";
-  vector(out, cluster.center);
-  out << ",\n    \"bounding_radius\": ";
-  out << json::number(bounding_radius(cluster), 9) << ",\n    \"radius_of_gyration\": ";
-  out << json::number(radius_of_gyration(cluster), 9) << ",\n    \"fractal_dimension_gyration\": ";
-  const auto dimension = [&](const FractalFit& fit) { out << json::number(fit.samples >= 2 ? fit.dimension : NAN, 5); };
-  dimension(fractal_dimension_by_gyration(cluster));
-  out << ",\n    \"fractal_dimension_mass_radius\": ";
-  dimension(fractal_dimension_by_mass_radius(cluster));
-  out << "\n  },\n  \"timings\": {\n    \"grow_seconds\": ";
-  out.number(record.grow_seconds, 6) << ",\n    \"write_seconds\": ";
-  out.number(record.write_seconds, 6) << ",\n    \"particles_per_second\": ";
-  out.number(record.grow_seconds > 0 ? static_cast<double>(attached) / record.grow_seconds : 0.0, 6);
+  measures(out, cluster);
+  timings(out, cluster, record);
   // How the run was spread over threads changes how long it took, never what it grew.
   out << ",\n    \"threads\": ";
   out.integer(o.threads) << ",\n    \"replays\": ";
   out.integer(static_cast<long long>(cluster.replays));
+  out << "\n  }\n}\n";
+  out.commit();
+}
+
+void write_colonization_report(const Cluster& cluster, const ColonizationOptions& o, const AttractorOptions& a,
+                               const LookOptions& look, const PovOptions& pov, const RunRecord& record,
+                               const std::string& path) {
+  detail::OutputFile out(path);
+  begin(out, cluster, record);
+  out << "  \"model\": \"colonization\",\n  \"rng_seed\": ";
+  out.integer(static_cast<long long>(o.rng_seed)) << ",\n  \"options\": {\n    \"max_nodes\": ";
+  out.integer(static_cast<long long>(o.max_nodes)) << ",\n    \"max_iterations\": ";
+  out.integer(static_cast<long long>(o.max_iterations)) << ",\n    \"spacing\": ";
+  out.number(o.spacing) << ",\n    \"kill_distance\": ";
+  out.number(o.kill_distance) << ",\n    \"influence\": " << json::number(o.influence) << ",\n    \"noise_amplitude\": ";
+  out.number(o.noise_amplitude) << ",\n    \"noise_scale\": ";
+  out.number(o.noise_scale) << ",\n    \"tropism\": ";
+  vector(out, o.tropism);
+  out << ",\n    \"dimensions\": ";
+  out.integer(o.dimensions) << ",\n    \"attractors\": ";
+  out.integer(static_cast<long long>(a.count)) << ",\n    \"attractors_in\": \"" << to_string(a.region) << "\"";
+  if (a.region == AttractorRegion::sphere) {
+    out << ",\n    \"attractor_center\": ";
+    vector(out, a.center);
+    out << ",\n    \"attractor_radius\": ";
+    out.number(a.radius);
+  } else {
+    out << ",\n    \"attractor_box\": [";
+    vector(out, a.box_min);
+    out << ", ";
+    vector(out, a.box_max);
+    out << ']';
+  }
+  out << ",\n    \"attractor_falloff\": ";
+  out.number(a.falloff) << ",\n    \"roots\": [";
+  for (std::size_t i = 0; i < cluster.seed_count; ++i) {
+    if (i) out << ", ";
+    vector(out, cluster.particles[i].position);
+  }
+  out << "]\n  },\n";
+  look_section(out, look, pov);
+  counts(out, cluster);
+  measures(out, cluster);
+  timings(out, cluster, record);
   out << "\n  }\n}\n";
   out.commit();
 }

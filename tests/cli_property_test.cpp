@@ -8,6 +8,8 @@
 //   - exit 2 (bad input) prints one line and writes no file;
 //   - exit 1 (growth or I/O failed) ends with one error line, and any files are marked
 //     incomplete.
+// A quarter of the command lines are `dla3d colonize` ones, drawn from its own table and the
+// Output and Look options.
 // DLA_PROPERTY_RUNS sets the number of command lines (default 150, about a minute; the `slow`
 // ctest entry runs 1,000) and DLA_PROPERTY_SEED the generator's seed. Every option added to
 // dla3d must join the table below: the test fails on an option of --help it does not know.
@@ -23,6 +25,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -92,9 +95,34 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
   return table;
 }
 
-//! The long option names `dla3d --help` lists.
-std::set<std::string> options_of_help(const ScratchDir& dir) {
-  const std::string command = "cd '" + dir.path().string() + "' && '" DLA3D_PATH "' --help > help.txt";
+//! `dla3d colonize`'s own options, drawn as the table's; its Output and Look options are the
+//! table's.
+const std::map<std::string, std::vector<std::string>>& colonize_table() {
+  static const std::map<std::string, std::vector<std::string>> table = {
+      {"--max-nodes", {"30", "200", "1", "0", "-5", "3e9", "x"}},
+      {"--max-iterations", {"50", "1000", "1", "0", "-1"}},
+      {"--spacing", {"1", "0.5", "1e-6", "1e6", "0", "-1", "nan", "1e-300"}},
+      {"--kill-distance", {"2", "1.5", "1", "0.5", "1e7", "nan"}},
+      {"--influence", {"8", "3", "inf", "1", "-1", "nan"}},
+      {"--noise", {"0.3,4", "1,1", "0,8", "11,1", "1,0", "1", "nan,1"}},
+      {"--tropism", {"0,0.3,0", "0,-1,0", "0,0,0", "11,0,0", "nan,0,0", "1,2"}},
+      {"--dimensions", {"3", "2", "1", "x"}},
+      {"--rng-seed", {"1", "7", "18446744073709551615", "-1"}},
+      {"--attractors", {"300", "2000", "1", "0", "-3", "200000000", "x"}},
+      {"--attractors-in", {"sphere", "box", "cone"}},
+      {"--attractor-center", {"0,0,0", "10,0,0", "0,0,5", "1e300,0,0", "nan,0,0"}},
+      {"--attractor-radius", {"20", "5", "1e-3", "0", "-1", "1e300", "inf"}},
+      {"--attractor-box", {"-20,-20,-20,20,20,20", "0,0,0,10,10,0", "1,1,1,0,0,0", "0,0,0,1"}},
+      {"--attractor-falloff", {"1", "0", "100", "-1", "nan"}},
+      {"--root-at", {"0,-20,0", "5,5,0", "0,0,0", "1e300,0,0", "a,b,c"}},
+      {"--roots", {"3", "1", "20", "0", "-2"}},
+  };
+  return table;
+}
+
+//! The long option names `dla3d [colonize] --help` lists.
+std::set<std::string> options_of_help(const ScratchDir& dir, const std::string& subcommand = "") {
+  const std::string command = "cd '" + dir.path().string() + "' && '" DLA3D_PATH "' " + subcommand + " --help > help.txt";
   EXPECT_EQ(std::system(command.c_str()), 0);
   const std::string help = read_file(dir / "help.txt");
   std::filesystem::remove(dir / "help.txt");
@@ -165,6 +193,8 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
   const auto particles = static_cast<std::size_t>(json_value(json, "particles", "\"counts\""));
   const auto edges = static_cast<std::size_t>(json_value(json, "attached", "\"counts\""));
   const double spacing = json_value(json, "spacing");
+  // Space colonization's noise moves each node by up to its amplitude in each coordinate.
+  const double noise = std::max(0.0, json_value(json, "noise_amplitude"));
 
   if (wants("csv")) {
     std::istringstream csv(read_file(dir / (prefix + ".csv")));
@@ -185,7 +215,7 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
       if (parent >= 0) {
         if (parent >= id) return prefix + ".csv has a parent after its child";
         const double length = (p - positions[static_cast<std::size_t>(parent)]).norm();
-        if (!(length > 0.0 && length <= spacing * (1.0 + 1e-9)))
+        if (!(length > 0.0 && length <= spacing * (1.0 + std::sqrt(3.0) * noise + 1e-9)))
           return prefix + ".csv has a branch of length " + std::to_string(length) + " for spacing " + std::to_string(spacing);
       }
       positions.push_back(p);
@@ -266,6 +296,19 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
   // The table knows every option of --help: a new option must join it.
   for (const std::string& name : options_of_help(root))
     EXPECT_TRUE(option_table().count(name)) << name << " is in dla3d --help but not in the property test's table";
+  for (const std::string& name : options_of_help(root, "colonize"))
+    EXPECT_TRUE(colonize_table().count(name) || option_table().count(name))
+        << name << " is in dla3d colonize --help but not in the property test's tables";
+  // What colonize shares with DLA: the Output and Look options (and help).
+  std::vector<std::string> colonize_flags;
+  for (const auto& [flag, values] : colonize_table()) colonize_flags.push_back(flag);
+  for (const char* flag : {"--output", "--binary", "--formats", "--radius", "--base-radius", "--tip-radius",
+                                  "--pipe-exponent", "--color-by", "--look", "--tube-sides", "--tube-tolerance",
+                                  "--tube-min-branch", "--instances", "--tips-within", "--up", "--quiet", "--help"})
+    colonize_flags.push_back(flag);
+  const auto values_of = [&](const std::string& flag) -> const std::vector<std::string>& {
+    return colonize_table().count(flag) ? colonize_table().at(flag) : option_table().at(flag);
+  };
 
   const char* runs_env = std::getenv("DLA_PROPERTY_RUNS");
   const char* seed_env = std::getenv("DLA_PROPERTY_SEED");
@@ -277,23 +320,29 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
 
   std::map<int, int> exits;
   for (int run = 0; run < runs; ++run) {
-    // A few options, mostly valid values: an invalid one ends most runs at once.
+    // A few options, mostly valid values: an invalid one ends most runs at once. One run in
+    // four is space colonization.
+    const bool colonizing = pick(4) == 0;
     std::string args;
     bool particles_given = false, output_given = false;
     const std::size_t count = pick(7);
     for (std::size_t i = 0; i < count; ++i) {
-      const std::string& flag = flags[pick(flags.size())];
-      const std::vector<std::string>& values = option_table().at(flag);
+      const std::string& flag = colonizing ? colonize_flags[pick(colonize_flags.size())] : flags[pick(flags.size())];
+      const std::vector<std::string>& values = colonizing ? values_of(flag) : option_table().at(flag);
       if (flag == "--help" || flag == "--version") {
         if (pick(8) != 0) continue;  // rare: they end every run with a print
       }
       args += " " + flag;
       if (!values.empty()) args += " " + values[pick(3) == 0 ? pick(values.size()) : pick(std::min<std::size_t>(2, values.size()))];
-      particles_given = particles_given || flag == "--particles";
+      particles_given = particles_given || flag == "--particles" || flag == "--max-nodes";
       output_given = output_given || flag == "--output";
     }
     // A resume takes no -n: leave it alone so that some resumes are valid.
     if (!particles_given && args.find("--resume") == std::string::npos) args = " -n " + std::to_string(20 + pick(150)) + args;
+    if (colonizing) {
+      if (args.find("--attractors ") == std::string::npos) args = " --attractors " + std::to_string(50 + pick(1000)) + args;
+      args = " colonize" + args;
+    }
     const std::string command = args.substr(1);
 
     ScratchDir dir;

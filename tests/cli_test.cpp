@@ -417,4 +417,51 @@ TEST(Cli, BadInputIsOneLineAndNoFiles) {
   }
 }
 
+TEST(Cli, ColonizeWritesTheSameFilesAsGrowth) {
+  ScratchDir dir;
+  const CliRun run = dla3d(dir, "colonize -o tree --attractors 2000 --attractor-radius 25 --noise 0.3,5 --rng-seed 3");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("dla3d: grew "), std::string::npos) << run.err;
+  for (const char* name : {"tree.pov", "tree.inc", "tree.csv", "tree.ply", "tree.json"})
+    EXPECT_TRUE(std::filesystem::exists(dir / name)) << name;
+  const dla::Cluster tree = dla::read_csv(dir / "tree.csv");
+  ASSERT_GT(tree.particles.size(), 300u);
+  EXPECT_EQ(tree.seed_count, 1u);
+  // The default root: the attractors' lowest point.
+  EXPECT_EQ(tree.particles[0].position, dla::Vec3(0, -25, 0));
+  const std::string json = read_file(dir / "tree.json");
+  EXPECT_NE(json.find("\"model\": \"colonization\""), std::string::npos);
+  EXPECT_NE(json.find("\"influence\": null"), std::string::npos) << "unbounded";
+  EXPECT_NE(json.find("\"particles\": " + std::to_string(tree.particles.size())), std::string::npos);
+  // The same seed, the same bytes; three roots on the sphere around the attractors; 2D.
+  ASSERT_EQ(dla3d(dir, "colonize -q -o again --attractors 2000 --attractor-radius 25 --noise 0.3,5 --rng-seed 3").exit_code, 0);
+  for (const char* ext : {".csv", ".ply", ".inc"})
+    EXPECT_EQ(read_file(dir / (std::string("tree") + ext)), read_file(dir / (std::string("again") + ext))) << ext;
+  ASSERT_EQ(dla3d(dir, "colonize -q -o three --roots 3 --attractors 1500 --attractor-radius 20").exit_code, 0);
+  const dla::Cluster three = dla::read_csv(dir / "three.csv");
+  ASSERT_EQ(three.seed_count, 3u);
+  for (std::size_t r = 0; r < 3; ++r) EXPECT_NEAR(three.particles[r].position.norm(), 20.0, 1e-9);
+  ASSERT_EQ(dla3d(dir, "colonize -q -o leaf --dimensions 2 --attractors-in box --attractor-box -20,-20,0,20,20,0 "
+                       "--influence 6 --formats svg,csv,json").exit_code, 0);
+  for (const dla::Particle& p : dla::read_csv(dir / "leaf.csv").particles) ASSERT_EQ(p.position.z(), 0.0);
+  EXPECT_TRUE(std::filesystem::exists(dir / "leaf.svg"));
+}
+
+TEST(Cli, ColonizeBadInputIsOneLineAndNoFiles) {
+  const char* cases[] = {
+      "--kill-distance 0.5", "--influence 1", "--noise 1", "--noise 11,1", "--tropism 0,0,20", "--attractors 0",
+      "--attractors-in cone", "--attractor-radius 0", "--attractor-box 0,0,0,1,1,1", "--root-at 1,2",
+      "--roots 0", "--roots 2 --root-at 0,0,0", "-n 0", "--max-iterations 0", "--dimensions 2 --root-at 0,0,1",
+      "--spacing 1e-100", "--particles 10", "--radius boundary", "--formats svg",
+  };
+  for (const char* args : cases) {
+    ScratchDir dir;
+    const CliRun run = dla3d(dir, std::string("colonize -q -o out ") + args);
+    EXPECT_EQ(run.exit_code, 2) << args;
+    EXPECT_EQ(run.err.rfind("dla3d: error: ", 0), 0u) << args << ": " << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << args << ": " << run.err;
+    EXPECT_TRUE(std::filesystem::is_empty(dir.path())) << args << " left files";
+  }
+}
+
 }  // namespace

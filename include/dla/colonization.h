@@ -170,7 +170,10 @@ class LatticeNoise {
 //! A unit direction in fixed point (2^-40 steps): sums of them are exact in any order.
 inline std::array<std::int64_t, 3> fixed_direction(const Vec3& from, const Vec3& to) {
   const Vec3 unit = (to - from).normalized();
-  return {std::llround(unit.x() * 0x1.0p40), std::llround(unit.y() * 0x1.0p40), std::llround(unit.z() * 0x1.0p40)};
+  // Adding and taking away 1.5 * 2^52 rounds to the nearest integer inline (|x| <= 2^40),
+  // where llround is a call.
+  const auto round = [](double x) { return static_cast<std::int64_t>((x * 0x1.0p40 + 0x1.8p52) - 0x1.8p52); };
+  return {round(unit.x()), round(unit.y()), round(unit.z())};
 }
 
 }  // namespace detail

@@ -4,6 +4,7 @@
 //! structure again), counts, walk statistics, measures and timings.
 
 #include "dla/cluster.h"
+#include "dla/colonization.h"
 #include "dla/constraint.h"
 #include "dla/look.h"
 #include "dla/options.h"
@@ -26,5 +27,11 @@ struct RunRecord {
 void write_run_report(const Cluster& cluster, const GrowthOptions& options, const LookOptions& look,
                       const PovOptions& pov, const RunRecord& record, const std::string& path,
                       const MeshConstraint* constraint = nullptr, const std::string& mesh_file = "");
+
+//! The sidecar of a space colonization run (colonization.h): "model": "colonization", its
+//! options and attractors, and the roots; no walk statistics. Throws IOError.
+void write_colonization_report(const Cluster& cluster, const ColonizationOptions& options,
+                               const AttractorOptions& attractors, const LookOptions& look, const PovOptions& pov,
+                               const RunRecord& record, const std::string& path);
 
 }  // namespace dla

@@ -3,11 +3,13 @@
 // grown, with at most 16 particles on at most two threads, for at most a second (a stop flag,
 // as Ctrl-C would), and given the look it asks for. Any words must either be refused with
 // InvalidInput, or parse into options that grow a valid tree with positive radii, tubes and
-// instancing points: never crash, hang, overflow or read out of bounds.
+// instancing points: never crash, hang, overflow or read out of bounds. A colonize command is
+// grown with at most 64 nodes among at most 300 attractors.
 // Build with -DDLA_FUZZ=ON (clang); see docs/testing.md.
 
 #include "../../cli/command_line.h"
 
+#include "dla/colonization.h"
 #include "dla/growth.h"
 #include "dla/instances.h"
 #include "dla/look.h"
@@ -38,6 +40,24 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!word.empty()) words.push_back(word);
   try {
     const dla::cli::CommandLine line = dla::cli::parse_command_line(words);
+    if (line.kind == dla::cli::CommandLine::Kind::colonize) {
+      // Space colonization, small: a tree of valid nodes and positive radii.
+      dla::cli::ColonizeCommand c = line.colonize;
+      c.options.max_nodes = std::min<std::size_t>(c.options.max_nodes, 64);
+      c.attractors.count = std::min<std::size_t>(c.attractors.count, 300);
+      const dla::Cluster tree =
+          dla::colonize(c.options, dla::scatter_attractors(c.attractors, c.options.rng_seed, c.options.dimensions),
+                        dla::cli::colonize_roots(c));
+      if (tree.particles.size() > c.options.max_nodes) std::abort();
+      for (std::size_t i = tree.seed_count; i < tree.particles.size(); ++i) {
+        const dla::Particle& p = tree.particles[i];
+        if (p.parent < 0 || static_cast<std::size_t>(p.parent) >= i || !p.position.allFinite()) std::abort();
+      }
+      const dla::Look look = dla::make_look(tree, c.look);
+      for (const float radius : look.radii(tree))
+        if (!(radius > 0.0f) || !std::isfinite(radius)) std::abort();
+      return 0;
+    }
     if (line.kind != dla::cli::CommandLine::Kind::grow || !line.grow.mesh_path.empty()) return 0;
     dla::GrowthOptions options = line.grow.options;
     options.particles = std::min<std::size_t>(options.particles, 16);

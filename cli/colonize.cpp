@@ -1,0 +1,68 @@
+// `dla3d colonize [options]`: grows a tree by space colonization (dla/colonization.h) among
+// scattered attractors and writes the same files as DLA does.
+
+#include "commands.h"
+#include "run_files.h"
+
+#include "dla/run_report.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace dla::cli {
+
+int colonize(const ColonizeCommand& command, const std::vector<std::string>& args, const StopFlag& stop,
+             const volatile std::sig_atomic_t& stop_signal) {
+  const ColonizationOptions& options = command.options;
+  check_writable(file_names(command).front());
+  const std::vector<Vec3> roots = colonize_roots(command);
+  for (std::size_t i = 0; i < roots.size(); ++i)
+    detail::require_representable("root " + std::to_string(i + 1), roots[i], options.spacing);
+  std::vector<Vec3> attractors = scatter_attractors(command.attractors, options.rng_seed, options.dimensions);
+
+  ProgressBar bar(options.max_nodes, !command.quiet && isatty(STDERR_FILENO));
+  const Clock::time_point start = Clock::now();
+  const Cluster tree = dla::colonize(
+      options, std::move(attractors), roots,
+      [&](const Cluster& so_far) {
+        bar.update(so_far.particles.size());
+        return !stop.load();
+      },
+      &stop);
+  bar.clear();
+  RunRecord record;
+  record.grow_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  record.command = command_line(args);
+  const int signal = stop_signal;
+  if (!tree.complete) record.stopped_by = signal_name(signal);
+
+  PovOptions pov = command.pov;
+  pov.comment = record.command;
+  const Clock::time_point write_start = Clock::now();
+  write_files(tree, command, pov, 1, nullptr, nullptr);
+  record.write_seconds = std::chrono::duration<double>(Clock::now() - write_start).count();
+  if (command.formats.json)
+    write_colonization_report(tree, options, command.attractors, command.look, pov, record, command.output + ".json");
+
+  const std::string nodes = with_commas(static_cast<double>(tree.particles.size()));
+  if (!command.quiet) {
+    std::string written;
+    for (const std::string& name : file_names(command)) written += (written.empty() ? "" : " ") + name;
+    const std::string render =
+        command.formats.pov ? "; render: povray +W1280 +H960 +A " + command.output + ".pov" : "";
+    std::fprintf(stderr, "dla3d: grew %s nodes from %s root%s in %.2f s; bounding radius %.1f\n"
+                         "dla3d: wrote %s%s\n",
+                 nodes.c_str(), with_commas(static_cast<double>(tree.seed_count)).c_str(),
+                 tree.seed_count == 1 ? "" : "s", record.grow_seconds, bounding_radius(tree), written.c_str(),
+                 render.c_str());
+  }
+  if (!tree.complete) {
+    std::fprintf(stderr, "dla3d: stopped by %s after %s nodes; the files hold them\n", signal_name(signal),
+                 nodes.c_str());
+    return 128 + signal;
+  }
+  return 0;
+}
+
+}  // namespace dla::cli

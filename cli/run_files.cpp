@@ -1,0 +1,98 @@
+#include "run_files.h"
+
+#include "dla/csv_writer.h"
+#include "dla/mesh_writers.h"
+#include "dla/ply_writer.h"
+#include "dla/pov_writer.h"
+#include "dla/surface_distance.h"
+#include "dla/svg_writer.h"
+
+#include <malloc.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <fstream>
+#include <future>
+#include <memory>
+
+namespace dla::cli {
+
+std::string with_commas(double value) { return detail::format_count(static_cast<std::uint64_t>(value + 0.5)); }
+
+void check_writable(const std::string& path) {
+  const std::string probe = path + ".tmp";
+  {
+    std::ofstream out(probe);
+    if (!out) throw InvalidInput("cannot write '" + path + "': " + std::strerror(errno));
+  }
+  std::remove(probe.c_str());
+}
+
+std::string command_line(const std::vector<std::string>& args) {
+  std::string line = "dla3d";
+  for (const std::string& arg : args) {
+    const bool plain = !arg.empty() && arg.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                             "0123456789_-+=.,:/@%") == std::string::npos;
+    if (plain) {
+      line += " " + arg;
+      continue;
+    }
+    line += " '";
+    for (const char c : arg) line += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    line += "'";
+  }
+  return line;
+}
+
+std::vector<std::string> file_names(const FileOptions& files) {
+  const Formats& f = files.formats;
+  const std::string& o = files.output;
+  std::vector<std::string> names;
+  if (f.pov) names.insert(names.end(), {o + ".pov", o + ".inc"});
+  if (f.csv) names.push_back(o + ".csv");
+  if (f.ply) names.push_back(o + ".ply");
+  if (f.glb) names.push_back(o + ".glb");
+  if (f.obj) names.push_back(o + ".obj");
+  if (f.tips) names.push_back(o + "_tips.ply");
+  if (f.svg) names.push_back(o + ".svg");
+  if (f.json) names.push_back(o + ".json");
+  return names;
+}
+
+const char* signal_name(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal"; }
+
+void write_files(const Cluster& cluster, const FileOptions& files, const PovOptions& pov, int threads,
+                 const MeshConstraint* constraint, const TriangleMesh* scene_mesh) {
+  // What growth freed (the index) goes back to the system before the writers take theirs.
+  malloc_trim(0);
+  // The writers' threads free buffers of a few hundred kB: mapped, not kept in each thread's
+  // heap, where glibc's adaptive threshold would leave them (about 1 byte a particle at 10^7).
+  mallopt(M_MMAP_THRESHOLD, 128 * 1024);
+  const Formats& formats = files.formats;
+  const std::string& output = files.output;
+  const PlyEncoding encoding = files.binary_ply ? PlyEncoding::binary : PlyEncoding::ascii;
+  const Look look = [&] {
+    // The distance to the mesh feeds the boundary model and the scene's switch to it.
+    const std::unique_ptr<SurfaceDistance> surface =
+        constraint ? std::make_unique<SurfaceDistance>(constraint->mesh()) : nullptr;
+    // The tips' gaps only for the files with instancing points: the PLY and CSV alone go faster.
+    return make_look(cluster, files.look, {surface.get(), nullptr, threads, formats.pov || formats.tips});
+  }();
+  std::vector<std::future<void>> writers;
+  const auto write = [&](bool wanted, auto&& writer) {
+    if (wanted) writers.push_back(std::async(std::launch::async, writer));
+  };
+  write(formats.csv, [&] { write_csv(cluster, look, output + ".csv"); });
+  write(formats.ply, [&] { write_ply(cluster, look, output + ".ply", encoding); });
+  write(formats.glb, [&] { write_glb(cluster, look, output + ".glb"); });
+  write(formats.obj, [&] { write_obj(cluster, look, output + ".obj"); });
+  write(formats.tips, [&] {
+    write_instances_ply(cluster, look.attributes, files.instances, output + "_tips.ply", encoding);
+  });
+  write(formats.svg, [&] { write_svg(cluster, look, output + ".svg"); });
+  if (formats.pov) write_pov(cluster, output, pov, scene_mesh, &look);
+  for (std::future<void>& writer : writers) writer.get();
+}
+
+}  // namespace dla::cli

@@ -1,0 +1,78 @@
+#pragma once
+// What every growth subcommand shares: the progress bar, the command line echoed in the
+// files, the summary's words, and the files themselves (the look, then every writer at once).
+
+#include "command_line.h"
+
+#include "dla/cluster.h"
+#include "dla/constraint.h"
+
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace dla::cli {
+
+using Clock = std::chrono::steady_clock;
+
+//! A non-negative amount rounded to a whole number, thousands grouped.
+std::string with_commas(double value);
+
+//! A one-line progress bar on stderr, drawn only on a terminal and only once a run has taken
+//! a second.
+class ProgressBar {
+ public:
+  ProgressBar(std::size_t total, bool enabled) : total_(total), enabled_(enabled), start_(Clock::now()) {}
+
+  void update(std::size_t done) {
+    if (!enabled_) return;
+    const Clock::time_point now = Clock::now();
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    if (elapsed < 1.0 || now - last_ < std::chrono::milliseconds(100)) return;
+    last_ = now;
+    const double fraction = total_ ? static_cast<double>(done) / total_ : 1.0;
+    const double rate = done / elapsed;
+    const double eta = rate > 0 ? (total_ - done) / rate : 0.0;
+    constexpr int width = 30;
+    const int filled = static_cast<int>(fraction * width);
+    std::string bar(static_cast<std::size_t>(filled), '=');
+    bar.resize(width, ' ');
+    std::fprintf(stderr, "\r\033[K%3d%% [%s] %s/%s  %s/s  ETA %d:%02d", static_cast<int>(fraction * 100),
+                 bar.c_str(), with_commas(done).c_str(), with_commas(total_).c_str(),
+                 with_commas(rate).c_str(), static_cast<int>(eta) / 60, static_cast<int>(eta) % 60);
+    drawn_ = true;
+  }
+
+  void clear() {
+    if (drawn_) std::fprintf(stderr, "\r\033[K");
+    drawn_ = false;
+  }
+
+ private:
+  std::size_t total_;
+  bool enabled_;
+  bool drawn_ = false;
+  Clock::time_point start_;
+  Clock::time_point last_{};
+};
+
+//! Fails early, before a long run, if `path` cannot be created (its temporary name is tried).
+void check_writable(const std::string& path);
+
+//! The arguments as one line a shell reads back: words with anything but plain characters
+//! are single-quoted.
+std::string command_line(const std::vector<std::string>& args);
+
+//! The files the options write, in --formats order, for the summary line.
+std::vector<std::string> file_names(const FileOptions& files);
+
+const char* signal_name(int signal);
+
+//! Makes the look (the distance to `constraint`'s mesh feeds it, when there is one) and writes
+//! every file of `files` but the JSON, each on a thread of its own: the same bytes as one by
+//! one. With `scene_mesh`, the POV-Ray scene shows it.
+void write_files(const Cluster& cluster, const FileOptions& files, const PovOptions& pov, int threads,
+                 const MeshConstraint* constraint, const TriangleMesh* scene_mesh);
+
+}  // namespace dla::cli
