@@ -4,11 +4,13 @@
 #include "commands.h"
 #include "run_files.h"
 
+#include "dla/mesh.h"
 #include "dla/run_report.h"
 
 #include <unistd.h>
 
 #include <cstdio>
+#include <memory>
 
 namespace dla::cli {
 
@@ -20,11 +22,21 @@ int colonize(const ColonizeCommand& command, const std::vector<std::string>& arg
   for (std::size_t i = 0; i < roots.size(); ++i)
     detail::require_representable("root " + std::to_string(i + 1), roots[i], options.spacing);
   std::vector<Vec3> attractors = scatter_attractors(command.attractors, options.rng_seed, options.dimensions);
+  std::unique_ptr<CollisionObject> collide;
+  ColonizationOptions grown_with = options;
+  if (!command.collide_path.empty()) {
+    try {
+      collide = std::make_unique<CollisionObject>(read_mesh(command.collide_path), options.spacing, command.collision);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(command.collide_path + ": " + e.what());
+    }
+    grown_with.collide = collide.get();
+  }
 
   ProgressBar bar(options.max_nodes, !command.quiet && isatty(STDERR_FILENO));
   const Clock::time_point start = Clock::now();
   const Cluster tree = dla::colonize(
-      options, std::move(attractors), roots,
+      grown_with, std::move(attractors), roots,
       [&](const Cluster& so_far) {
         bar.update(so_far.particles.size());
         return !stop.load();
@@ -40,10 +52,12 @@ int colonize(const ColonizeCommand& command, const std::vector<std::string>& arg
   PovOptions pov = command.pov;
   pov.comment = record.command;
   const Clock::time_point write_start = Clock::now();
-  write_files(tree, command, pov, 1, nullptr, nullptr);
+  // The collision mesh shows in the scene, as glass, as a constraint mesh does.
+  write_files(tree, command, pov, 1, nullptr, collide ? &collide->mesh() : nullptr);
   record.write_seconds = std::chrono::duration<double>(Clock::now() - write_start).count();
   if (command.formats.json)
-    write_colonization_report(tree, options, command.attractors, command.look, pov, record, command.output + ".json");
+    write_colonization_report(tree, options, command.attractors, command.look, pov, record, command.output + ".json",
+                              command.collide_path, command.collision);
 
   const std::string nodes = with_commas(static_cast<double>(tree.particles.size()));
   if (!command.quiet) {

@@ -314,6 +314,14 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
           ->type_name("X,Y,Z")->allow_extra_args(false)->group(attracting);
   colonize_command->add_option("--roots", root_count, "K roots at random on the sphere around the attractors")
       ->type_name("K")->group(attracting)->excludes(root_at_option);
+  std::string collision = std::string(to_string(c.collision));
+  const char* colliding = "Collision";
+  colonize_command->add_option("--collide", c.collide_path, "a collision mesh (STL, OFF, OBJ or PLY) that new nodes "
+                                                           "are pushed out of or stuck to")
+      ->type_name("FILE")->group(colliding);
+  colonize_command->add_option("--collision", collision, "push (growth flows around the mesh) or stick (it crawls "
+                                                         "over its surface)")
+      ->capture_default_str()->group(colliding);
   FileWords colonize_words;
   add_file_options(*colonize_command, c, colonize_words);
 
@@ -359,6 +367,11 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     c.attractors.count = static_cast<std::size_t>(attractor_count);
     c.root_count = static_cast<std::size_t>(root_count);
     c.attractors.region = parse_attractor_region(attractor_region);
+    c.collision = parse_collision_mode(collision);
+    if (colonize_command->count("--collision") && c.collide_path.empty())
+      throw InvalidInput("--collision says what --collide's mesh does: give one");
+    if (!c.collide_path.empty() && c.options.dimensions != 3)
+      throw InvalidInput("--collide needs 3 dimensions");
     if (!attractor_center.empty()) c.attractors.center = parse_vec3("--attractor-center", attractor_center);
     if (!attractor_box.empty()) {
       const std::vector<double> b = parse_numbers("--attractor-box", attractor_box, 6);

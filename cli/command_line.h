@@ -58,6 +58,8 @@ struct ColonizeCommand : FileOptions {
   //! --roots K: K roots at random on the sphere around the attractors; with neither, one
   //! root at the attractors' lowest point (-y).
   std::size_t root_count = 0;
+  std::string collide_path;            //!< --collide: a collision mesh; empty: none
+  CollisionMode collision = CollisionMode::push;
 };
 
 //! What the command line asks for.

@@ -131,7 +131,7 @@ void write_run_report(const Cluster& cluster, const GrowthOptions& o, const Look
 
 void write_colonization_report(const Cluster& cluster, const ColonizationOptions& o, const AttractorOptions& a,
                                const LookOptions& look, const PovOptions& pov, const RunRecord& record,
-                               const std::string& path) {
+                               const std::string& path, const std::string& collide_file, CollisionMode collision) {
   detail::OutputFile out(path);
   begin(out, cluster, record);
   out << "  \"model\": \"colonization\",\n  \"rng_seed\": ";
@@ -164,7 +164,10 @@ void write_colonization_report(const Cluster& cluster, const ColonizationOptions
     if (i) out << ", ";
     vector(out, cluster.particles[i].position);
   }
-  out << "]\n  },\n";
+  out << ']';
+  if (!collide_file.empty())
+    out << ",\n    \"collide\": " << json::string(collide_file) << ",\n    \"collision\": \"" << to_string(collision) << '"';
+  out << "\n  },\n";
   look_section(out, look, pov);
   counts(out, cluster);
   measures(out, cluster);

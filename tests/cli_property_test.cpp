@@ -116,6 +116,8 @@ const std::map<std::string, std::vector<std::string>>& colonize_table() {
       {"--attractor-falloff", {"1", "0", "100", "-1", "nan"}},
       {"--root-at", {"0,-20,0", "5,5,0", "0,0,0", "1e300,0,0", "a,b,c"}},
       {"--roots", {"3", "1", "20", "0", "-2"}},
+      {"--collide", {"ball.stl", "box.off", "missing.stl", "noise.stl", "out.csv"}},
+      {"--collision", {"push", "stick", "bounce"}},
   };
   return table;
 }
@@ -193,8 +195,10 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
   const auto particles = static_cast<std::size_t>(json_value(json, "particles", "\"counts\""));
   const auto edges = static_cast<std::size_t>(json_value(json, "attached", "\"counts\""));
   const double spacing = json_value(json, "spacing");
-  // Space colonization's noise moves each node by up to its amplitude in each coordinate.
+  // Space colonization's noise moves each node by up to its amplitude in each coordinate, and
+  // a collision mesh moves it as far as its surface.
   const double noise = std::max(0.0, json_value(json, "noise_amplitude"));
+  const bool collided = json.find("\"collide\": ") != std::string::npos;
 
   if (wants("csv")) {
     std::istringstream csv(read_file(dir / (prefix + ".csv")));
@@ -215,7 +219,7 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
       if (parent >= 0) {
         if (parent >= id) return prefix + ".csv has a parent after its child";
         const double length = (p - positions[static_cast<std::size_t>(parent)]).norm();
-        if (!(length > 0.0 && length <= spacing * (1.0 + std::sqrt(3.0) * noise + 1e-9)))
+        if (!(length > 0.0 && (collided || length <= spacing * (1.0 + std::sqrt(3.0) * noise + 1e-9))))
           return prefix + ".csv has a branch of length " + std::to_string(length) + " for spacing " + std::to_string(spacing);
       }
       positions.push_back(p);

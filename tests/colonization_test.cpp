@@ -2,11 +2,13 @@
 // distance; determinism; the ends of growth; bad options.
 
 #include "dla/colonization.h"
+#include "dla/shapes.h"
 #include "dla/strands.h"
 #include "colonization_rescan.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -158,6 +160,55 @@ TEST(Colonization, GrowthEndsWhenItStallsOrMeetsALimit) {
   const Cluster stopped = colonize(o, attractors, {Vec3::Zero()}, [&](const Cluster&) { return ++calls < 2; });
   EXPECT_FALSE(stopped.complete);
   EXPECT_EQ(calls, 2);
+}
+
+TEST(Colonization, PushKeepsEveryNodeOutOfTheCollisionObject) {
+  const CollisionObject ball(make_sphere(Vec3::Zero(), 8.0, 24, 48), 1.0, CollisionMode::push);
+  ColonizationOptions o;
+  o.collide = &ball;
+  AttractorOptions a;
+  a.count = 3000;
+  a.radius = 25;
+  std::vector<Vec3> attractors;
+  for (const Vec3& p : scatter_attractors(a, 6, 3))
+    if (ball.signed_distance(p) > 2.0) attractors.push_back(p);  // none the tree cannot reach
+  const Cluster tree = colonize(o, attractors, {Vec3(0, -24, 0)});
+  ASSERT_GT(tree.particles.size(), 500u);
+  std::size_t on_surface = 0;
+  for (const Particle& node : tree.particles) {
+    const double d = ball.signed_distance(node.position);
+    ASSERT_GE(d, -1e-9) << "a node inside the object";
+    on_surface += d < 1e-9;
+  }
+  EXPECT_GT(on_surface, 10u) << "growth met the object and went around it";
+  // The kept closest nodes and the rescan agree with a collision too.
+  expect_same_tree(tree, colonize_by_rescan(o, attractors, {Vec3(0, -24, 0)}));
+}
+
+TEST(Colonization, StickHoldsEveryNewNodeOnTheSurface) {
+  const CollisionObject ball(make_sphere(Vec3::Zero(), 10.0, 24, 48), 1.0, CollisionMode::stick);
+  ColonizationOptions o;
+  o.collide = &ball;
+  AttractorOptions a;
+  a.count = 2000;
+  a.radius = 14;
+  const Cluster tree = colonize(o, scatter_attractors(a, 8, 3), {Vec3(0, -10, 0)});
+  ASSERT_GT(tree.particles.size(), 100u);
+  std::vector<double> lengths;
+  for (std::size_t i = tree.seed_count; i < tree.particles.size(); ++i) {
+    ASSERT_LE(std::abs(ball.signed_distance(tree.particles[i].position)), 1e-9) << "node " << i;
+    const Vec3& parent = tree.particles[static_cast<std::size_t>(tree.particles[i].parent)].position;
+    lengths.push_back((tree.particles[i].position - parent).norm());
+    ASSERT_GE(lengths.back(), 0.1) << "a branch of almost no length";
+  }
+  // Attractors inside the ball pull into it: the steps still go a whole step over the surface.
+  std::nth_element(lengths.begin(), lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2), lengths.end());
+  EXPECT_GT(lengths[lengths.size() / 2], 0.9);
+  ColonizationOptions flat = o;
+  flat.dimensions = 2;
+  EXPECT_THROW(colonize(flat, {Vec3(5, 0, 0)}, {Vec3::Zero()}), InvalidInput);
+  EXPECT_EQ(parse_collision_mode("stick"), CollisionMode::stick);
+  EXPECT_THROW(parse_collision_mode("bounce"), InvalidInput);
 }
 
 TEST(Colonization, BadOptionsGetOneLine) {

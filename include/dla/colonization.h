@@ -19,10 +19,12 @@
 //! exact whatever the order of updates: the result is the full rescan's, node for node.
 
 #include "dla/cluster.h"
+#include "dla/constraint.h"
 #include "dla/errors.h"
 #include "dla/growth.h"
 #include "dla/options.h"
 #include "dla/random.h"
+#include "dla/surface_distance.h"
 
 #include <algorithm>
 #include <array>
@@ -95,6 +97,63 @@ inline std::vector<Vec3> scatter_attractors(const AttractorOptions& options, std
   return points;
 }
 
+//! What a collision object does to a new node (`--collision`).
+enum class CollisionMode {
+  push,   //!< a node that would lie inside the object goes to its surface: growth flows around it
+  stick,  //!< every new node goes to the surface: growth crawls over it (veins on an arm)
+};
+
+inline std::string_view to_string(CollisionMode mode) { return mode == CollisionMode::push ? "push" : "stick"; }
+
+inline CollisionMode parse_collision_mode(std::string_view word) {
+  constexpr CollisionMode values[] = {CollisionMode::push, CollisionMode::stick};
+  return detail::parse_word(word, values, "collision");
+}
+
+//! A collision object: a mesh given as a signed distance, negative inside. The distance is the
+//! exact one to the closest point of a triangle (CGAL's AABB tree); the sign is the winding
+//! number of the repaired mesh (inside_test.h), right on open and self-intersecting meshes.
+class CollisionObject {
+ public:
+  //! Repairs `mesh` as a constraint inside it would (closing holes), for `spacing`.
+  CollisionObject(const TriangleMesh& mesh, double spacing, CollisionMode mode)
+      : solid_(mesh, ConstraintOptions{}, spacing), surface_(solid_.mesh()), mode_(mode) {}
+
+  CollisionMode mode() const { return mode_; }
+  const TriangleMesh& mesh() const { return solid_.mesh(); }
+
+  //! The signed distance at p (negative inside), and the surface's closest point.
+  double signed_distance(const Vec3& p, Vec3* closest = nullptr) const {
+    const Vec3 c = surface_.closest_point(p);
+    if (closest) *closest = c;
+    const double d = (p - c).norm();
+    return inside(p) ? -d : d;
+  }
+
+  //! Where a new node stepping from `from` to p goes. With push, onto the surface if p is
+  //! inside. With stick, onto the surface (p - sdf(p) grad(p), the closest point), and then a
+  //! whole `step` along the surface that way: a step into the surface would otherwise shrink to
+  //! nothing, and the veins to a heap of twigs.
+  Vec3 apply(const Vec3& from, const Vec3& p, double step) const {
+    if (mode_ == CollisionMode::push) return inside(p) ? surface_.closest_point(p) : p;
+    const Vec3 closest = surface_.closest_point(p);
+    const Vec3 along = closest - from;
+    if (along.squaredNorm() <= 1e-18 * step * step) return closest;
+    return surface_.closest_point(from + step * along.normalized());
+  }
+
+ private:
+  //! The winding number, asked only where the inside grid cannot tell.
+  bool inside(const Vec3& p) const {
+    const Region region = solid_.inside_test().region(p);
+    return region == Region::surface ? solid_.inside_test().contains(p) : region == Region::inside;
+  }
+
+  MeshConstraint solid_;
+  SurfaceDistance surface_;
+  CollisionMode mode_;
+};
+
 //! How the tree grows among its attractors. Distances are in spacings: the step, the node
 //! spacing, is the tree's spacing.
 struct ColonizationOptions {
@@ -113,6 +172,10 @@ struct ColonizationOptions {
                                  //!< each coordinate in [-10, 10]
   int dimensions = 3;            //!< 2: attractors, roots and steps in z = 0 (leaf venation)
   std::uint64_t rng_seed = 1;    //!< seeds the noise
+  //! A collision object (3D only), not owned: each new node is pushed out of it or stuck to
+  //! it, after the noise. A node that would land within a tenth of a step of its parent does
+  //! not grow.
+  const CollisionObject* collide = nullptr;
 };
 
 inline void validate(const ColonizationOptions& o) {
@@ -130,6 +193,7 @@ inline void validate(const ColonizationOptions& o) {
     throw InvalidInput("tropism has a coordinate that is not in [-10, 10]");
   if (o.dimensions != 2 && o.dimensions != 3)
     throw InvalidInput("dimensions " + std::to_string(o.dimensions) + " is not 2 or 3");
+  if (o.collide && o.dimensions != 3) throw InvalidInput("a collision mesh needs 3 dimensions");
 }
 
 namespace detail {
@@ -193,6 +257,10 @@ inline bool colonization_step(const ColonizationOptions& o, const detail::Lattic
     if (o.dimensions == 2) shift.z() = 0.0;
     next += shift;
   }
+  if (o.collide) {
+    next = o.collide->apply(from, next, o.spacing);
+    if ((next - from).squaredNorm() < 0.01 * o.spacing * o.spacing) return false;
+  }
   *to = next;
   return true;
 }
@@ -252,6 +320,9 @@ inline Cluster colonize(const ColonizationOptions& o, std::vector<Vec3> attracto
   // last child (a node whose attractors have not changed would grow the same child again).
   std::vector<std::array<std::int64_t, 3>> sums(roots.size(), {0, 0, 0});
   std::vector<std::int32_t> pulls(roots.size(), 0), last_child(roots.size(), -1);
+  // Whether a node's attractors changed since it last tried to grow: if not, it would find
+  // what it found then (no step, or the same child), and the collision's queries are skipped.
+  std::vector<std::uint8_t> changed(roots.size(), 0);
   std::size_t live = count;
 
   const auto detach = [&](std::size_t a) {
@@ -261,6 +332,7 @@ inline Cluster colonize(const ColonizationOptions& o, std::vector<Vec3> attracto
     auto& sum = sums[static_cast<std::size_t>(v)];
     for (int axis = 0; axis < 3; ++axis) sum[static_cast<std::size_t>(axis)] -= d[static_cast<std::size_t>(axis)];
     --pulls[static_cast<std::size_t>(v)];
+    changed[static_cast<std::size_t>(v)] = 1;
   };
   const auto attach = [&](std::size_t a, std::int32_t v) {
     closest[a] = v;
@@ -268,6 +340,7 @@ inline Cluster colonize(const ColonizationOptions& o, std::vector<Vec3> attracto
     auto& sum = sums[static_cast<std::size_t>(v)];
     for (int axis = 0; axis < 3; ++axis) sum[static_cast<std::size_t>(axis)] += d[static_cast<std::size_t>(axis)];
     ++pulls[static_cast<std::size_t>(v)];
+    changed[static_cast<std::size_t>(v)] = 1;
   };
   // Visits the ranges that node v at p may change: it takes attractors it is closer to than
   // their node (and within reach), and kills those within the kill distance. Returns the
@@ -331,7 +404,8 @@ inline Cluster colonize(const ColonizationOptions& o, std::vector<Vec3> attracto
     }
     grown.clear();
     for (std::size_t v = 0; v < tree.particles.size(); ++v) {
-      if (pulls[v] == 0) continue;
+      if (pulls[v] == 0 || !changed[v]) continue;
+      changed[v] = 0;
       Vec3 next;
       if (!colonization_step(o, noise, tree.particles[v].position, sums[v], &next)) continue;
       // Its attractors have not moved on since it last grew: it would grow the same child.
@@ -347,6 +421,7 @@ inline Cluster colonize(const ColonizationOptions& o, std::vector<Vec3> attracto
       sums.push_back({0, 0, 0});
       pulls.push_back(0);
       last_child.push_back(-1);
+      changed.push_back(0);
       last_child[static_cast<std::size_t>(parent)] = v;
     }
     for (std::size_t v = first_new; v < tree.particles.size(); ++v) add_node(static_cast<std::int32_t>(v));

@@ -29,9 +29,11 @@ void write_run_report(const Cluster& cluster, const GrowthOptions& options, cons
                       const MeshConstraint* constraint = nullptr, const std::string& mesh_file = "");
 
 //! The sidecar of a space colonization run (colonization.h): "model": "colonization", its
-//! options and attractors, and the roots; no walk statistics. Throws IOError.
+//! options and attractors, the roots, and the collision mesh's file if any; no walk
+//! statistics. Throws IOError.
 void write_colonization_report(const Cluster& cluster, const ColonizationOptions& options,
                                const AttractorOptions& attractors, const LookOptions& look, const PovOptions& pov,
-                               const RunRecord& record, const std::string& path);
+                               const RunRecord& record, const std::string& path, const std::string& collide_file = "",
+                               CollisionMode collision = CollisionMode::push);
 
 }  // namespace dla
