@@ -16,17 +16,8 @@ namespace dla::testing {
 inline Cluster colonize_by_rescan(const ColonizationOptions& o, const std::vector<Vec3>& attractors,
                                   const std::vector<Vec3>& roots) {
   validate(o);
-  Cluster tree;
-  tree.spacing = o.spacing;
-  tree.dimensions = o.dimensions;
-  tree.seed_count = roots.size();
-  for (std::size_t r = 0; r < roots.size(); ++r) {
-    tree.particles.push_back({roots[r], -1, static_cast<std::int32_t>(r)});
-    tree.center += roots[r] / static_cast<double>(roots.size());
-  }
-  const double kill2 = std::pow(o.kill_distance * o.spacing, 2);
-  const double reach2 = std::isfinite(o.influence) ? std::pow(o.influence * o.spacing, 2)
-                                                   : std::numeric_limits<double>::infinity();
+  Cluster tree = detail::roots_only(o, roots);
+  const double kill2 = detail::kill_distance2(o), reach2 = detail::reach2(o);
   std::vector<bool> alive(attractors.size(), true);
   const auto kill_near = [&](std::size_t first_node) {
     for (std::size_t a = 0; a < attractors.size(); ++a)

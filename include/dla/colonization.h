@@ -240,6 +240,25 @@ inline std::array<std::int64_t, 3> fixed_direction(const Vec3& from, const Vec3&
   return {round(unit.x()), round(unit.y()), round(unit.z())};
 }
 
+//! The tree before growth: the roots, as seeds, and nothing else.
+inline Cluster roots_only(const ColonizationOptions& o, const std::vector<Vec3>& roots) {
+  Cluster tree;
+  tree.spacing = o.spacing;
+  tree.dimensions = o.dimensions;
+  tree.seed_count = roots.size();
+  for (std::size_t r = 0; r < roots.size(); ++r) {
+    tree.particles.push_back({roots[r], -1, static_cast<std::int32_t>(r)});
+    tree.center += roots[r] / static_cast<double>(roots.size());
+  }
+  return tree;
+}
+
+//! The squared kill distance and influence radius in scene units (infinity: unbounded).
+inline double kill_distance2(const ColonizationOptions& o) { return std::pow(o.kill_distance * o.spacing, 2); }
+inline double reach2(const ColonizationOptions& o) {
+  return std::isfinite(o.influence) ? std::pow(o.influence * o.spacing, 2) : std::numeric_limits<double>::infinity();
+}
+
 }  // namespace detail
 
 //! Where node `v` grows next, given the sum of unit directions to its attractors (fixed
@@ -280,17 +299,8 @@ inline Cluster colonize(const ColonizationOptions& o, std::vector<Vec3> attracto
     detail::require_representable("root " + std::to_string(i + 1), roots[i], o.spacing);
   for (const Vec3& a : attractors) detail::require_representable("an attractor", a, o.spacing);
 
-  Cluster tree;
-  tree.spacing = o.spacing;
-  tree.dimensions = o.dimensions;
-  tree.seed_count = roots.size();
-  for (std::size_t r = 0; r < roots.size(); ++r) {
-    tree.particles.push_back({roots[r], -1, static_cast<std::int32_t>(r)});
-    tree.center += roots[r] / static_cast<double>(roots.size());
-  }
-  const double kill2 = std::pow(o.kill_distance * o.spacing, 2);
-  const double reach2 = std::isfinite(o.influence) ? std::pow(o.influence * o.spacing, 2)
-                                                   : std::numeric_limits<double>::infinity();
+  Cluster tree = detail::roots_only(o, roots);
+  const double kill2 = detail::kill_distance2(o), reach2 = detail::reach2(o);
 
   // The attractors, reordered into an implicit k-d tree (each range's middle splits it, the
   // axes in turn). Per attractor: its closest node (-1: none within reach, -2: dead) and the
@@ -408,7 +418,7 @@ inline Cluster colonize(const ColonizationOptions& o, std::vector<Vec3> attracto
       changed[v] = 0;
       Vec3 next;
       if (!colonization_step(o, noise, tree.particles[v].position, sums[v], &next)) continue;
-      // Its attractors have not moved on since it last grew: it would grow the same child.
+      // Its attractors changed but still pull it to where it last grew: the same child again.
       if (last_child[v] >= 0 && tree.particles[static_cast<std::size_t>(last_child[v])].position == next) continue;
       grown.emplace_back(static_cast<std::int32_t>(v), next);
     }
