@@ -7,6 +7,7 @@
 
 #include "dla/checkpoint.h"
 #include "dla/csv_writer.h"
+#include "dla/look.h"
 #include "dla/ply_writer.h"
 #include "dla/pov_writer.h"
 #include "dla/random.h"
@@ -37,6 +38,14 @@ const dla::Cluster& made_up_tree(std::size_t n) {
   return tree;
 }
 
+// The made-up tree's look, with the tips' gaps the scene uses: what the CLI writes with.
+const dla::Look& made_up_look(std::size_t n) {
+  static std::map<std::size_t, dla::Look> looks;
+  const auto found = looks.find(n);
+  if (found != looks.end()) return found->second;
+  return looks[n] = dla::make_look(made_up_tree(n), {});
+}
+
 template <class Write>
 void write_file(benchmark::State& state, Write write) {
   const dla::Cluster& tree = made_up_tree(static_cast<std::size_t>(state.range(0)));
@@ -50,6 +59,10 @@ void write_file(benchmark::State& state, Write write) {
 void csv(benchmark::State& state) {
   write_file(state, [](const dla::Cluster& c, const std::string& p) { dla::write_csv(c, p + ".csv"); });
 }
+void csv_look(benchmark::State& state) {
+  const dla::Look& look = made_up_look(static_cast<std::size_t>(state.range(0)));
+  write_file(state, [&](const dla::Cluster& c, const std::string& p) { dla::write_csv(c, look, p + ".csv"); });
+}
 void ply_ascii(benchmark::State& state) {
   write_file(state, [](const dla::Cluster& c, const std::string& p) { dla::write_ply(c, p + ".ply"); });
 }
@@ -60,6 +73,10 @@ void ply_binary(benchmark::State& state) {
 }
 void pov(benchmark::State& state) {
   write_file(state, [](const dla::Cluster& c, const std::string& p) { dla::write_pov(c, p); });
+}
+void pov_look(benchmark::State& state) {
+  const dla::Look& look = made_up_look(static_cast<std::size_t>(state.range(0)));
+  write_file(state, [&](const dla::Cluster& c, const std::string& p) { dla::write_pov(c, p, {}, nullptr, &look); });
 }
 void json(benchmark::State& state) {
   write_file(state, [](const dla::Cluster& c, const std::string& p) {
@@ -76,9 +93,11 @@ void checkpoint(benchmark::State& state) {
   BENCHMARK(f)->Name("write/" #f)->ArgName("n")->Arg(1'000'000)->Arg(10'000'000) \
       ->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime()
 DLA_WRITER_BENCH(csv);
+DLA_WRITER_BENCH(csv_look);
 DLA_WRITER_BENCH(ply_ascii);
 DLA_WRITER_BENCH(ply_binary);
 DLA_WRITER_BENCH(pov);
+DLA_WRITER_BENCH(pov_look);
 DLA_WRITER_BENCH(json);
 DLA_WRITER_BENCH(checkpoint);
 

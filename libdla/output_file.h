@@ -11,7 +11,7 @@
 #include <cstring>
 #include <deque>
 #include <future>
-#include <limits>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <thread>
@@ -22,7 +22,8 @@ namespace dla::detail {
 
 //! Text (and bytes) formatted into memory, with locale-free numbers so the same data gives the
 //! same bytes everywhere: an OutputFile's buffer, or a part of one formatted on another thread
-//! (write_in_order).
+//! (write_in_order). Numbers are formatted straight into the buffer: the writers of 10^7
+//! particles make 10^8 of them, and a std::string's append per piece cost a third of the time.
 class Text {
  public:
   Text() = default;
@@ -31,64 +32,106 @@ class Text {
   virtual ~Text() = default;
 
   Text& operator<<(std::string_view text) {
-    buffer_ += text;
-    if (buffer_.size() >= spill_at_) spill();
+    if (text.empty()) return *this;  // memcpy's pointers must not be null, even for no bytes
+    std::memcpy(room(text.size()), text.data(), text.size());
+    used_ += text.size();
     return *this;
   }
   Text& operator<<(char c) {
-    buffer_ += c;
+    *room(1) = c;
+    ++used_;
     return *this;
   }
   //! A double in the shortest form that reads back exactly, or with `digits` significant digits.
   Text& number(double value, int digits = 0) {
-    char text[40];
-    const auto end = digits > 0 ? std::to_chars(text, text + sizeof text, value,
-                                                std::chars_format::general, digits)
-                                : std::to_chars(text, text + sizeof text, value);
-    return *this << std::string_view(text, static_cast<std::size_t>(end.ptr - text));
+    char* at = room(kNumberBytes);
+    const auto end = digits > 0 ? std::to_chars(at, at + kNumberBytes, value, std::chars_format::general, digits)
+                                : std::to_chars(at, at + kNumberBytes, value);
+    return advance_to(end.ptr);
   }
   //! `value` rounded to `decimals` (0-9) places, trailing zeros dropped: "-12.5", "3"; for
   //! |value| below 9e18 / 10^decimals. Integer arithmetic only: much cheaper than number().
   Text& fixed(double value, int decimals) {
-    static constexpr long long powers[] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000, 1000000000};
-    long long units = std::llround(value * static_cast<double>(powers[decimals]));
-    if (units < 0) {
-      *this << '-';
-      units = -units;
+    static constexpr double scales[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
+    const long long units = std::llround(value * scales[decimals]);
+    char* at = room(kNumberBytes);
+    if (units < 0) *at++ = '-';
+    const auto magnitude = units < 0 ? 0 - static_cast<unsigned long long>(units) : static_cast<unsigned long long>(units);
+    // A division by a constant is a multiplication; by a variable it took a fifth of the time.
+    switch (decimals) {
+      case 0: return advance_to(std::to_chars(at, at + 20, magnitude).ptr);
+      case 1: return advance_to(write_fixed<10>(at, magnitude, 1));
+      case 2: return advance_to(write_fixed<100>(at, magnitude, 2));
+      case 3: return advance_to(write_fixed<1000>(at, magnitude, 3));
+      case 4: return advance_to(write_fixed<10000>(at, magnitude, 4));
+      case 5: return advance_to(write_fixed<100000>(at, magnitude, 5));
+      case 6: return advance_to(write_fixed<1000000>(at, magnitude, 6));
+      case 7: return advance_to(write_fixed<10000000>(at, magnitude, 7));
+      case 8: return advance_to(write_fixed<100000000>(at, magnitude, 8));
+      default: return advance_to(write_fixed<1000000000>(at, magnitude, 9));
     }
-    integer(units / powers[decimals]);
-    long long fraction = units % powers[decimals];
-    if (fraction == 0) return *this;
-    int places = decimals;
-    while (fraction % 10 == 0) fraction /= 10, --places;
-    char text[16];
-    for (int i = places - 1; i >= 0; --i, fraction /= 10) text[i] = static_cast<char>('0' + fraction % 10);
-    return *this << '.' << std::string_view(text, static_cast<std::size_t>(places));
   }
   //! `value`'s bytes, little-endian (the only byte order dla3d builds for), for binary formats.
   template <class T>
   Text& raw(T value) {
     static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "binary files are written little-endian");
-    char bytes[sizeof value];
-    std::memcpy(bytes, &value, sizeof value);
-    return *this << std::string_view(bytes, sizeof value);
+    std::memcpy(room(sizeof value), &value, sizeof value);
+    used_ += sizeof value;
+    return *this;
   }
   Text& integer(long long value) {
-    char text[24];
-    const auto end = std::to_chars(text, text + sizeof text, value);
-    return *this << std::string_view(text, static_cast<std::size_t>(end.ptr - text));
+    char* at = room(kNumberBytes);
+    return advance_to(std::to_chars(at, at + kNumberBytes, value).ptr);
   }
 
-  std::string_view view() const { return buffer_; }
-  void clear() { buffer_.clear(); }
-  void reserve(std::size_t bytes) { buffer_.reserve(bytes); }
+  std::string_view view() const { return {bytes_.get(), used_}; }
+  void clear() { used_ = 0; }
+  void reserve(std::size_t bytes) {
+    if (bytes > capacity_) grow(bytes);
+  }
 
  protected:
-  //! Called once the text reaches `spill_at_`: a file writes it out; text in memory keeps it.
-  virtual void spill() {}
+  //! Makes room for `bytes` more after the text when it is full: text in memory grows, a file
+  //! writes out what it holds.
+  virtual void make_room(std::size_t bytes) { grow(std::max(used_ + bytes, 2 * capacity_)); }
 
-  std::string buffer_;
-  std::size_t spill_at_ = std::numeric_limits<std::size_t>::max();
+  void grow(std::size_t capacity) {
+    // Not std::make_unique: that would zero the bytes, a page fault each 4 kB for nothing.
+    std::unique_ptr<char[]> bigger(new char[capacity]);
+    if (used_ > 0) std::memcpy(bigger.get(), bytes_.get(), used_);
+    bytes_ = std::move(bigger);
+    capacity_ = capacity;
+  }
+
+  std::unique_ptr<char[]> bytes_;
+  std::size_t used_ = 0;
+  std::size_t capacity_ = 0;
+
+ private:
+  //! Enough for any number this class writes: a double's shortest form takes at most 24
+  //! characters, one with 17 digits at most 24, an integer at most 20.
+  static constexpr std::size_t kNumberBytes = 32;
+
+  //! The free bytes after the text, at least `bytes` of them.
+  char* room(std::size_t bytes) {
+    if (capacity_ - used_ < bytes) make_room(bytes);
+    return bytes_.get() + used_;
+  }
+  //! Writes `units` / Scale with `places` decimals, trailing zeros dropped; returns the end.
+  template <unsigned long long Scale>
+  static char* write_fixed(char* at, unsigned long long units, int places) {
+    at = std::to_chars(at, at + 20, units / Scale).ptr;
+    unsigned long long fraction = units % Scale;
+    if (fraction == 0) return at;
+    while (fraction % 10 == 0) fraction /= 10, --places;
+    *at++ = '.';
+    for (int i = places - 1; i >= 0; --i, fraction /= 10) at[i] = static_cast<char>('0' + fraction % 10);
+    return at + places;
+  }
+  Text& advance_to(const char* end) {
+    used_ = static_cast<std::size_t>(end - bytes_.get());
+    return *this;
+  }
 };
 
 //! A file written under a temporary name and renamed into place on commit(), so a failed or
@@ -98,8 +141,7 @@ class OutputFile : public Text {
   explicit OutputFile(std::string path) : path_(std::move(path)), temp_(path_ + ".tmp") {
     file_ = std::fopen(temp_.c_str(), "wb");
     if (!file_) fail();
-    spill_at_ = kFlushAt;
-    buffer_.reserve(kFlushAt + 256);
+    reserve(kBufferBytes);
   }
   OutputFile(const OutputFile&) = delete;
   OutputFile& operator=(const OutputFile&) = delete;
@@ -135,13 +177,15 @@ class OutputFile : public Text {
   }
 
  private:
-  static constexpr std::size_t kFlushAt = 1 << 16;
+  static constexpr std::size_t kBufferBytes = 1 << 16;
 
-  void spill() override { flush(); }
+  void make_room(std::size_t bytes) override {
+    flush();
+    reserve(bytes);
+  }
   void flush() {
-    if (!buffer_.empty() && std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size())
-      fail();
-    buffer_.clear();
+    if (used_ > 0 && std::fwrite(bytes_.get(), 1, used_, file_) != used_) fail();
+    used_ = 0;
   }
   [[noreturn]] void fail() const {
     throw IOError("cannot write '" + path_ + "': " + std::strerror(errno));

@@ -148,6 +148,14 @@ class RadiusArguments {
     out.fixed(a.seed_reach > 0 ? seed / a.seed_reach : 0.0, 3) << ')';
   }
 
+  //! Starts loading particle i's attributes. A strand's particles lie far apart in memory: at
+  //! 10^7, loading them one at a time took a quarter of the scene's time.
+  void prefetch(std::size_t i) const {
+    __builtin_prefetch(&attributes_.strand_place[i]);
+    __builtin_prefetch(&attributes_.descendants[i]);
+    if (attributes_.boundary_reach > 0) __builtin_prefetch(&attributes_.boundary_distance[i]);
+  }
+
  private:
   const Cluster& cluster_;
   const Attributes& attributes_;
@@ -202,6 +210,7 @@ void write_geometry(const Cluster& cluster, const TriangleMesh* mesh, const Scen
     const auto is_tip = [&](std::size_t i) { return look.attributes.tip(i); };
     const auto write_strand = [&](detail::Text& out, const Strand& strand) {
       if (strand.size() < 2) return;  // a lone seed: its sphere is above
+      for (const std::int32_t i : strand) radius.prefetch(static_cast<std::size_t>(i));
       const auto first = static_cast<std::size_t>(strand[0]), next = static_cast<std::size_t>(strand[1]);
       const bool own_start = starts_at_own_seed(strand, continues);
       out << "  sphere_sweep { linear_spline, ";
