@@ -18,20 +18,48 @@ int colonize(const ColonizeCommand& command, const std::vector<std::string>& arg
              const volatile std::sig_atomic_t& stop_signal) {
   const ColonizationOptions& options = command.options;
   check_writable(file_names(command).front());
-  const std::vector<Vec3> roots = colonize_roots(command);
-  for (std::size_t i = 0; i < roots.size(); ++i)
-    detail::require_representable("root " + std::to_string(i + 1), roots[i], options.spacing);
-  std::vector<Vec3> attractors = scatter_attractors(command.attractors, options.rng_seed, options.dimensions);
-  std::unique_ptr<CollisionObject> collide;
   ColonizationOptions grown_with = options;
-  if (!command.collide_path.empty()) {
+  const auto read_solid = [](const std::string& path, const auto& make) {
     try {
-      collide = std::make_unique<CollisionObject>(read_mesh(command.collide_path), options.spacing, command.collision);
+      return make(read_mesh(path));
     } catch (const InvalidInput& e) {
-      throw InvalidInput(command.collide_path + ": " + e.what());
+      throw InvalidInput(path + ": " + e.what());
     }
+  };
+  std::unique_ptr<MeshConstraint> vessel;
+  if (!command.vessel_path.empty()) {
+    vessel = read_solid(command.vessel_path, [&](const TriangleMesh& mesh) {
+      return std::make_unique<MeshConstraint>(mesh, ConstraintOptions{Side::inside, ConstraintMode::reject}, options.spacing);
+    });
+    grown_with.vessel = vessel.get();
+  }
+  std::unique_ptr<CollisionObject> collide;
+  if (!command.collide_path.empty()) {
+    collide = read_solid(command.collide_path, [&](const TriangleMesh& mesh) {
+      return std::make_unique<CollisionObject>(mesh, options.spacing, command.collision);
+    });
     grown_with.collide = collide.get();
   }
+  // Attractors and roots in or on "the mesh": the vessel's, else the collision object's.
+  const MeshConstraint* mesh = vessel ? vessel.get() : collide ? &collide->solid() : nullptr;
+
+  std::vector<Vec3> attractors;
+  if (command.attractors_path.empty()) {
+    attractors = scatter_attractors(command.attractors, options.rng_seed, options.dimensions, mesh);
+  } else {
+    attractors = read_points(command.attractors_path);
+    if (command.sample_attractors) attractors = sample_attractors(attractors, command.attractors.count, options.rng_seed);
+    if (attractors.size() > 100'000'000u)
+      throw InvalidInput(command.attractors_path + ": more than 1e8 attractors");
+    for (const Vec3& a : attractors)
+      if (options.dimensions == 2 && a.z() != 0.0)
+        throw InvalidInput(command.attractors_path + ": --dimensions 2 grows in z = 0, and an attractor is not");
+  }
+  const std::vector<Vec3> roots = colonize_roots(command, attractors, mesh);
+  for (std::size_t i = 0; i < roots.size(); ++i)
+    detail::require_representable("root " + std::to_string(i + 1), roots[i], options.spacing);
+  ColonizationInputs inputs{command.attractors_path, attractors.size(), command.vessel_path, command.collide_path,
+                            command.collision};
 
   ProgressBar bar(options.max_nodes, !command.quiet && isatty(STDERR_FILENO));
   const Clock::time_point start = Clock::now();
@@ -52,12 +80,12 @@ int colonize(const ColonizeCommand& command, const std::vector<std::string>& arg
   PovOptions pov = command.pov;
   pov.comment = record.command;
   const Clock::time_point write_start = Clock::now();
-  // The collision mesh shows in the scene, as glass, as a constraint mesh does.
-  write_files(tree, command, pov, 1, nullptr, collide ? &collide->mesh() : nullptr);
+  // The vessel, else the collision mesh, shows in the scene as glass, as a constraint mesh does.
+  write_files(tree, command, pov, 1, vessel.get(), mesh ? &mesh->mesh() : nullptr);
   record.write_seconds = std::chrono::duration<double>(Clock::now() - write_start).count();
   if (command.formats.json)
     write_colonization_report(tree, options, command.attractors, command.look, pov, record, command.output + ".json",
-                              command.collide_path, command.collision);
+                              inputs);
 
   const std::string nodes = with_commas(static_cast<double>(tree.particles.size()));
   if (!command.quiet) {

@@ -151,13 +151,20 @@ void check_resume_company(const std::vector<std::string>& args) {
 
 //! K roots uniform on the sphere around the attractors (around their box, for a box), in
 //! z = 0 for 2D: the Hyphae write-up's third test.
-std::vector<Vec3> roots_around(const ColonizeCommand& c) {
+//! K roots at random on the sphere around the attractors: the scattering sphere, or the one
+//! around the box they lie in.
+std::vector<Vec3> roots_around(const ColonizeCommand& c, const std::vector<Vec3>& attractors, Rng& rng) {
   const AttractorOptions& a = c.attractors;
-  const bool sphere = a.region == AttractorRegion::sphere;
-  const Vec3 center = sphere ? a.center : Vec3(0.5 * (a.box_min + a.box_max));
-  double radius = sphere ? a.radius : 0.5 * (a.box_max - a.box_min).norm();
-  if (c.options.dimensions == 2 && !sphere) radius = 0.5 * (a.box_max - a.box_min).head<2>().norm();
-  Rng rng(c.options.rng_seed, 0x726f6f7473ULL);  // a stream of its own: "roots"
+  const bool scattered = c.attractors_path.empty() && (a.region == AttractorRegion::sphere || a.region == AttractorRegion::box);
+  Vec3 lo = a.box_min, hi = a.box_max;
+  if (!scattered) {
+    lo = hi = attractors.front();
+    for (const Vec3& p : attractors) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  }
+  const bool sphere = scattered && a.region == AttractorRegion::sphere;
+  const Vec3 center = sphere ? a.center : Vec3(0.5 * (lo + hi));
+  double radius = sphere ? a.radius : 0.5 * (hi - lo).norm();
+  if (c.options.dimensions == 2 && !sphere) radius = 0.5 * (hi - lo).head<2>().norm();
   std::vector<Vec3> roots;
   for (std::size_t k = 0; k < c.root_count; ++k) {
     Vec3 root = center + radius * random_direction(rng, c.options.dimensions);
@@ -167,20 +174,43 @@ std::vector<Vec3> roots_around(const ColonizeCommand& c) {
   return roots;
 }
 
-//! The attractors' lowest point along y: where one root starts by default.
-Vec3 lowest_point(const AttractorOptions& a) {
-  if (a.region == AttractorRegion::sphere) return a.center - Vec3(0.0, a.radius, 0.0);
-  return {0.5 * (a.box_min.x() + a.box_max.x()), a.box_min.y(), 0.5 * (a.box_min.z() + a.box_max.z())};
+//! Where one root starts by default: the lowest point (along y) of the scattering sphere or
+//! box, or else the lowest attractor.
+Vec3 lowest_point(const ColonizeCommand& c, const std::vector<Vec3>& attractors) {
+  const AttractorOptions& a = c.attractors;
+  if (c.attractors_path.empty() && a.region == AttractorRegion::sphere) return a.center - Vec3(0.0, a.radius, 0.0);
+  if (c.attractors_path.empty() && a.region == AttractorRegion::box)
+    return {0.5 * (a.box_min.x() + a.box_max.x()), a.box_min.y(), 0.5 * (a.box_min.z() + a.box_max.z())};
+  return *std::min_element(attractors.begin(), attractors.end(),
+                           [](const Vec3& p, const Vec3& q) { return p.y() < q.y(); });
 }
 
 }  // namespace
 
-std::vector<Vec3> colonize_roots(const ColonizeCommand& command) {
+std::string_view to_string(RootRegion region) {
+  return region == RootRegion::sphere ? "sphere" : region == RootRegion::mesh ? "mesh" : "surface";
+}
+
+RootRegion parse_root_region(std::string_view word) {
+  constexpr RootRegion values[] = {RootRegion::sphere, RootRegion::mesh, RootRegion::surface};
+  return detail::parse_word(word, values, "root region");
+}
+
+std::vector<Vec3> colonize_roots(const ColonizeCommand& command, const std::vector<Vec3>& attractors,
+                                 const MeshConstraint* mesh) {
   if (!command.roots.empty()) return command.roots;
-  if (command.root_count > 0) return roots_around(command);
-  Vec3 root = lowest_point(command.attractors);
-  if (command.options.dimensions == 2) root.z() = 0.0;
-  return {root};
+  if (command.root_count == 0) {
+    Vec3 root = lowest_point(command, attractors);
+    if (command.options.dimensions == 2) root.z() = 0.0;
+    return {root};
+  }
+  Rng rng(command.options.rng_seed, 0x726f6f7473ULL);  // a stream of its own: "roots"
+  if (command.roots_in == RootRegion::sphere) return roots_around(command, attractors, rng);
+  if (!mesh) throw InvalidInput("--roots-in " + std::string(to_string(command.roots_in)) + " needs a mesh: --stl or --collide");
+  std::vector<Vec3> roots;
+  for (std::size_t k = 0; k < command.root_count; ++k)
+    roots.push_back(command.roots_in == RootRegion::mesh ? mesh->draw_inside(rng) : mesh->draw_near_surface(rng));
+  return roots;
 }
 
 CommandLine parse_command_line(const std::vector<std::string>& args) {
@@ -297,8 +327,15 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   const char* attracting = "Attractors and roots";
   colonize_command->add_option("--attractors", attractor_count, "how many attractors, [1, 1e8]")
       ->capture_default_str()->group(attracting);
-  colonize_command->add_option("--attractors-in", attractor_region, "where they lie: sphere or box")
-      ->capture_default_str()->group(attracting);
+  CLI::Option* attractors_in =
+      colonize_command->add_option("--attractors-in", attractor_region, "where they lie: sphere, box, mesh (inside "
+                                                                        "the --stl vessel, else the --collide mesh) or "
+                                                                        "surface (on it)")
+          ->capture_default_str()->group(attracting);
+  colonize_command->add_option("--attractors-from", c.attractors_path, "read them from a file: CSV rows x,y,z (or a "
+                                                                      "header naming x, y, z) or PLY points; with "
+                                                                      "--attractors N, a seeded sample of N")
+      ->type_name("FILE")->group(attracting)->excludes(attractors_in);
   colonize_command->add_option("--attractor-center", attractor_center, "the sphere's centre; default the origin")
       ->type_name("X,Y,Z")->group(attracting);
   colonize_command->add_option("--attractor-radius", c.attractors.radius, "the sphere's radius, scene units, > 0")
@@ -312,10 +349,17 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
       colonize_command->add_option("--root-at", root_at, "a root at x,y,z (repeat for several); default: one at "
                                                          "the attractors' lowest point (-y)")
           ->type_name("X,Y,Z")->allow_extra_args(false)->group(attracting);
-  colonize_command->add_option("--roots", root_count, "K roots at random on the sphere around the attractors")
+  colonize_command->add_option("--roots", root_count, "K roots at random, where --roots-in says")
       ->type_name("K")->group(attracting)->excludes(root_at_option);
+  std::string roots_in = std::string(to_string(c.roots_in));
+  colonize_command->add_option("--roots-in", roots_in, "--roots K: on the sphere around the attractors, in the mesh "
+                                                       "(the vessel, else the collision mesh) or on its surface")
+      ->capture_default_str()->group(attracting);
   std::string collision = std::string(to_string(c.collision));
-  const char* colliding = "Collision";
+  const char* colliding = "Vessel and collision";
+  colonize_command->add_option("--stl", c.vessel_path, "a vessel (STL, OFF, OBJ or PLY) that growth stays inside: a "
+                                                       "step that would cross its surface is refused")
+      ->type_name("FILE")->group(colliding);
   colonize_command->add_option("--collide", c.collide_path, "a collision mesh (STL, OFF, OBJ or PLY) that new nodes "
                                                            "are pushed out of or stuck to")
       ->type_name("FILE")->group(colliding);
@@ -356,7 +400,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   if (colonize_command->parsed()) {
     line.kind = CommandLine::Kind::colonize;
     parse_file_words(c, colonize_words);
-    check_file_options(c, colonize_words, c.options.dimensions, false);
+    check_file_options(c, colonize_words, c.options.dimensions, !c.vessel_path.empty());
     if (max_nodes < 1) throw InvalidInput("--max-nodes " + std::to_string(max_nodes) + " is not at least 1");
     if (max_iterations < 1) throw InvalidInput("--max-iterations " + std::to_string(max_iterations) + " is not at least 1");
     if (attractor_count < 1) throw InvalidInput("--attractors " + std::to_string(attractor_count) + " is not at least 1");
@@ -367,6 +411,14 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     c.attractors.count = static_cast<std::size_t>(attractor_count);
     c.root_count = static_cast<std::size_t>(root_count);
     c.attractors.region = parse_attractor_region(attractor_region);
+    c.sample_attractors = colonize_command->count("--attractors") > 0 && !c.attractors_path.empty();
+    c.roots_in = parse_root_region(roots_in);
+    if (colonize_command->count("--roots-in") && root_count == 0)
+      throw InvalidInput("--roots-in says where --roots K puts its roots: give --roots");
+    const bool on_mesh = c.attractors.region == AttractorRegion::mesh || c.attractors.region == AttractorRegion::surface;
+    if ((on_mesh || c.roots_in != RootRegion::sphere) && c.vessel_path.empty() && c.collide_path.empty())
+      throw InvalidInput("attractors or roots in a mesh need one: give --stl or --collide");
+    if (!c.vessel_path.empty() && c.options.dimensions != 3) throw InvalidInput("--stl needs 3 dimensions");
     c.collision = parse_collision_mode(collision);
     if (colonize_command->count("--collision") && c.collide_path.empty())
       throw InvalidInput("--collision says what --collide's mesh does: give one");

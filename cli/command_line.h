@@ -51,13 +51,29 @@ struct GrowCommand : FileOptions {
 };
 
 //! `dla3d colonize [options]`: grow a tree by space colonization and write its files.
+//! Where `dla3d colonize --roots K` puts its roots (`--roots-in`).
+enum class RootRegion {
+  sphere,   //!< at random on the sphere around the attractors
+  mesh,     //!< inside the mesh, deep and far apart
+  surface,  //!< on the mesh's surface, half a spacing inside
+};
+
+std::string_view to_string(RootRegion region);
+RootRegion parse_root_region(std::string_view word);
+
 struct ColonizeCommand : FileOptions {
   ColonizationOptions options;
   AttractorOptions attractors;
+  //! --attractors-from: the attractors from a file, instead of scattered; with
+  //! `sample_attractors`, a seeded sample of attractors.count of them.
+  std::string attractors_path;
+  bool sample_attractors = false;
   std::vector<Vec3> roots;             //!< --root-at; none: see root_count
-  //! --roots K: K roots at random on the sphere around the attractors; with neither, one
-  //! root at the attractors' lowest point (-y).
+  //! --roots K: K roots in `roots_in`; with neither, one root at the attractors' lowest
+  //! point (-y).
   std::size_t root_count = 0;
+  RootRegion roots_in = RootRegion::sphere;
+  std::string vessel_path;             //!< --stl: a vessel growth stays inside; empty: none
   std::string collide_path;            //!< --collide: a collision mesh; empty: none
   CollisionMode collision = CollisionMode::push;
 };
@@ -83,8 +99,10 @@ struct CommandLine {
 };
 
 //! The roots a colonize command grows from: its --root-at points; or --roots K on the sphere
-//! around the attractors; or one at the attractors' lowest point (-y).
-std::vector<Vec3> colonize_roots(const ColonizeCommand& command);
+//! around the attractors, or in or on `mesh` (the vessel, else the collision mesh); or one at
+//! the attractors' lowest point (-y).
+std::vector<Vec3> colonize_roots(const ColonizeCommand& command, const std::vector<Vec3>& attractors,
+                                 const MeshConstraint* mesh);
 
 //! Parses dla3d's arguments (without the program name). Throws InvalidInput with a one-line
 //! message for a flag or value that cannot work; options that need the mesh to be checked

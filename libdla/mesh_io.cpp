@@ -8,6 +8,7 @@
 #include "output_file.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -113,8 +114,8 @@ class Builder {
     mesh_.triangles.reserve(triangles);
   }
 
-  TriangleMesh finish() {
-    if (mesh_.triangles.empty()) malformed(name_, "has no triangles");
+  TriangleMesh finish(bool need_triangles = true) {
+    if (need_triangles && mesh_.triangles.empty()) malformed(name_, "has no triangles");
     return std::move(mesh_);
   }
 
@@ -370,7 +371,8 @@ class PlyBody {
   const std::string& name_;
 };
 
-TriangleMesh parse_ply(std::string_view bytes, const std::string& name) {
+//! A PLY's mesh; with `points_only`, its vertices alone (faces, if any, are read past).
+TriangleMesh parse_ply(std::string_view bytes, const std::string& name, bool points_only = false) {
   const std::size_t header_end = bytes.find("end_header");
   if (bytes.substr(0, 3) != "ply" || header_end == std::string_view::npos)
     malformed(name, "is not a PLY file (no 'ply' ... 'end_header' header)");
@@ -422,7 +424,7 @@ TriangleMesh parse_ply(std::string_view bytes, const std::string& name) {
     if (element.count > body.size())
       malformed(name, "declares " + std::to_string(element.count) + " " + element.name + " elements, more than its " +
                           std::to_string(body.size()) + " data bytes can hold");
-    const bool vertices = element.name == "vertex", faces = element.name == "face";
+    const bool vertices = element.name == "vertex", faces = element.name == "face" && !points_only;
     int axis_of[3] = {-1, -1, -1};
     int list_of_faces = -1;
     for (std::size_t p = 0; p < element.properties.size(); ++p) {
@@ -459,7 +461,61 @@ TriangleMesh parse_ply(std::string_view bytes, const std::string& name) {
       if (faces) mesh.polygon(ids, "face " + std::to_string(i));
     }
   }
-  return mesh.finish();
+  return mesh.finish(!points_only);
+}
+
+// --- Points: CSV rows ---------------------------------------------------------------------------
+
+//! The fields of one line, split at commas and whitespace.
+std::vector<std::string_view> fields_of(std::string_view line) {
+  std::vector<std::string_view> fields;
+  std::size_t at = 0;
+  while (at < line.size()) {
+    while (at < line.size() && (line[at] == ',' || std::isspace(static_cast<unsigned char>(line[at])))) ++at;
+    const std::size_t start = at;
+    while (at < line.size() && line[at] != ',' && !std::isspace(static_cast<unsigned char>(line[at]))) ++at;
+    if (at > start) fields.push_back(line.substr(start, at - start));
+  }
+  return fields;
+}
+
+std::vector<Vec3> parse_point_rows(std::string_view text, const std::string& name) {
+  std::array<std::size_t, 3> column{0, 1, 2};
+  std::vector<Vec3> points;
+  bool first = true;
+  std::size_t line_number = 0;
+  for (std::size_t at = 0; at < text.size();) {
+    std::size_t end = text.find('\n', at);
+    if (end == std::string_view::npos) end = text.size();
+    const std::string_view line = text.substr(at, end - at);
+    at = end + 1;
+    ++line_number;
+    const std::vector<std::string_view> fields = fields_of(line);
+    if (fields.empty() || fields[0].front() == '#') continue;
+    double value;
+    if (first && !parse_double(fields[0], value)) {
+      // A header: its x, y and z columns hold the point (dla3d's own CSV reads back).
+      column.fill(fields.size());
+      for (std::size_t f = 0; f < fields.size(); ++f) {
+        const std::string word = lower(fields[f]);
+        if (word.size() == 1 && word[0] >= 'x' && word[0] <= 'z') column[static_cast<std::size_t>(word[0] - 'x')] = f;
+      }
+      if (*std::max_element(column.begin(), column.end()) == fields.size())
+        malformed(name, "line 1 is a header without x, y and z columns");
+      first = false;
+      continue;
+    }
+    first = false;
+    const std::string where = "line " + std::to_string(line_number);
+    Vec3 p;
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      if (column[axis] >= fields.size()) malformed(name, where + " has fewer than " + std::to_string(column[axis] + 1) + " fields");
+      if (!parse_double(fields[column[axis]], p[static_cast<Eigen::Index>(axis)]) || !std::isfinite(p[static_cast<Eigen::Index>(axis)]))
+        malformed(name, where + ": '" + std::string(fields[column[axis]].substr(0, 40)) + "' is not a finite number");
+    }
+    points.push_back(p);
+  }
+  return points;
 }
 
 }  // namespace
@@ -474,19 +530,44 @@ TriangleMesh parse_mesh(std::string_view bytes, std::string_view extension, cons
   throw InvalidInput(name + ": unknown mesh format '" + std::string(extension) + "' (use .stl, .off, .obj or .ply)");
 }
 
-TriangleMesh read_mesh(const std::string& path, std::uint64_t* file_hash) {
+namespace {
+
+std::string extension_of(const std::string& path) {
   const std::size_t dot = path.find_last_of('.');
   const std::size_t slash = path.find_last_of('/');
-  const std::string extension =
-      dot == std::string::npos || (slash != std::string::npos && dot < slash) ? "" : path.substr(dot + 1);
-  if (extension.empty()) throw InvalidInput(path + ": no file extension to tell the mesh format (.stl, .off, .obj, .ply)");
+  return dot == std::string::npos || (slash != std::string::npos && dot < slash) ? "" : path.substr(dot + 1);
+}
+
+std::string read_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IOError("cannot read '" + path + "': " + std::strerror(errno));
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw IOError("cannot read '" + path + "': " + std::strerror(errno));
+  return bytes;
+}
+
+}  // namespace
+
+TriangleMesh read_mesh(const std::string& path, std::uint64_t* file_hash) {
+  const std::string extension = extension_of(path);
+  if (extension.empty()) throw InvalidInput(path + ": no file extension to tell the mesh format (.stl, .off, .obj, .ply)");
+  const std::string bytes = read_bytes(path);
   if (file_hash) *file_hash = fnv1a(bytes);
   return parse_mesh(bytes, extension, path);
 }
+
+std::vector<Vec3> parse_points(std::string_view bytes, std::string_view extension, const std::string& name) {
+  const std::string format = lower(extension);
+  if (format != "ply" && format != "csv" && format != "txt" && format != "xyz")
+    throw InvalidInput(name + ": unknown point file format '" + std::string(extension.substr(0, 40)) +
+                       "' (use .csv, .txt, .xyz or .ply)");
+  if (bytes.empty()) malformed(name, "is empty");
+  std::vector<Vec3> points = format == "ply" ? parse_ply(bytes, name, true).vertices : parse_point_rows(bytes, name);
+  if (points.empty()) malformed(name, "holds no points");
+  return points;
+}
+
+std::vector<Vec3> read_points(const std::string& path) { return parse_points(read_bytes(path), extension_of(path), path); }
 
 void write_stl(const TriangleMesh& mesh, const std::string& path) {
   detail::OutputFile out(path);

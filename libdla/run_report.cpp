@@ -131,7 +131,7 @@ void write_run_report(const Cluster& cluster, const GrowthOptions& o, const Look
 
 void write_colonization_report(const Cluster& cluster, const ColonizationOptions& o, const AttractorOptions& a,
                                const LookOptions& look, const PovOptions& pov, const RunRecord& record,
-                               const std::string& path, const std::string& collide_file, CollisionMode collision) {
+                               const std::string& path, const ColonizationInputs& inputs) {
   detail::OutputFile out(path);
   begin(out, cluster, record);
   out << "  \"model\": \"colonization\",\n  \"rng_seed\": ";
@@ -145,18 +145,23 @@ void write_colonization_report(const Cluster& cluster, const ColonizationOptions
   vector(out, o.tropism);
   out << ",\n    \"dimensions\": ";
   out.integer(o.dimensions) << ",\n    \"attractors\": ";
-  out.integer(static_cast<long long>(a.count)) << ",\n    \"attractors_in\": \"" << to_string(a.region) << "\"";
-  if (a.region == AttractorRegion::sphere) {
-    out << ",\n    \"attractor_center\": ";
-    vector(out, a.center);
-    out << ",\n    \"attractor_radius\": ";
-    out.number(a.radius);
+  out.integer(static_cast<long long>(inputs.attractor_count));
+  if (!inputs.attractors_file.empty()) {
+    out << ",\n    \"attractors_from\": " << json::string(inputs.attractors_file);
   } else {
-    out << ",\n    \"attractor_box\": [";
-    vector(out, a.box_min);
-    out << ", ";
-    vector(out, a.box_max);
-    out << ']';
+    out << ",\n    \"attractors_in\": \"" << to_string(a.region) << "\"";
+    if (a.region == AttractorRegion::sphere) {
+      out << ",\n    \"attractor_center\": ";
+      vector(out, a.center);
+      out << ",\n    \"attractor_radius\": ";
+      out.number(a.radius);
+    } else if (a.region == AttractorRegion::box) {
+      out << ",\n    \"attractor_box\": [";
+      vector(out, a.box_min);
+      out << ", ";
+      vector(out, a.box_max);
+      out << ']';
+    }
   }
   out << ",\n    \"attractor_falloff\": ";
   out.number(a.falloff) << ",\n    \"roots\": [";
@@ -165,8 +170,10 @@ void write_colonization_report(const Cluster& cluster, const ColonizationOptions
     vector(out, cluster.particles[i].position);
   }
   out << ']';
-  if (!collide_file.empty())
-    out << ",\n    \"collide\": " << json::string(collide_file) << ",\n    \"collision\": \"" << to_string(collision) << '"';
+  if (!inputs.vessel_file.empty()) out << ",\n    \"vessel\": " << json::string(inputs.vessel_file);
+  if (!inputs.collide_file.empty())
+    out << ",\n    \"collide\": " << json::string(inputs.collide_file) << ",\n    \"collision\": \""
+        << to_string(inputs.collision) << '"';
   out << "\n  },\n";
   look_section(out, look, pov);
   counts(out, cluster);

@@ -109,13 +109,16 @@ const std::map<std::string, std::vector<std::string>>& colonize_table() {
       {"--dimensions", {"3", "2", "1", "x"}},
       {"--rng-seed", {"1", "7", "18446744073709551615", "-1"}},
       {"--attractors", {"300", "2000", "1", "0", "-3", "200000000", "x"}},
-      {"--attractors-in", {"sphere", "box", "cone"}},
+      {"--attractors-in", {"sphere", "box", "mesh", "surface", "cone"}},
+      {"--attractors-from", {"points.csv", "points.ply", "out.csv", "ball.stl", "noise.stl", "missing.csv"}},
       {"--attractor-center", {"0,0,0", "10,0,0", "0,0,5", "1e300,0,0", "nan,0,0"}},
       {"--attractor-radius", {"20", "5", "1e-3", "0", "-1", "1e300", "inf"}},
       {"--attractor-box", {"-20,-20,-20,20,20,20", "0,0,0,10,10,0", "1,1,1,0,0,0", "0,0,0,1"}},
       {"--attractor-falloff", {"1", "0", "100", "-1", "nan"}},
       {"--root-at", {"0,-20,0", "5,5,0", "0,0,0", "1e300,0,0", "a,b,c"}},
       {"--roots", {"3", "1", "20", "0", "-2"}},
+      {"--roots-in", {"sphere", "mesh", "surface", "cube"}},
+      {"--stl", {"ball.stl", "box.off", "missing.stl", "noise.stl"}},
       {"--collide", {"ball.stl", "box.off", "missing.stl", "noise.stl", "out.csv"}},
       {"--collision", {"push", "stick", "bounce"}},
   };
@@ -135,7 +138,7 @@ std::set<std::string> options_of_help(const ScratchDir& dir, const std::string& 
   return names;
 }
 
-//! Inputs the command lines name: two meshes, a file of noise, a checkpoint to resume.
+//! Inputs the command lines name: two meshes, a file of noise, point files, a checkpoint to resume.
 void make_inputs(const ScratchDir& dir) {
   write_stl(make_sphere(Vec3::Zero(), 12.0, 10, 20), dir / "ball.stl");
   std::filesystem::copy_file(TEST_DATA_DIR "/open_box.off", dir / "box.off");
@@ -143,6 +146,9 @@ void make_inputs(const ScratchDir& dir) {
   for (int i = 0; i < 500; ++i) noise += static_cast<char>((i * 7919 + 13) % 251);
   std::ofstream(dir / "noise.stl", std::ios::binary) << noise;
   std::ofstream(dir / "out.csv") << "id,x,y,z,parent,seed\n0,0,0,0,-1,0\n";
+  std::ofstream(dir / "points.csv") << "1,2,3\n-4,5,0\n6,-7,8\n0,-9,0\n3,3,3\n";
+  std::ofstream(dir / "points.ply") << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                       "property float z\nend_header\n1 2 0\n-4 5 0\n0 -9 0\n";
   GrowthOptions o;
   o.particles = 60;
   Cluster part = grow(o);
@@ -352,7 +358,7 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
     ScratchDir dir;
     make_inputs(dir);
     std::filesystem::create_directory(dir.path() / "dir");
-    const std::set<std::string> inputs = {"ball.stl", "box.off", "noise.stl", "out.csv", "saved.ck", "dir"};
+    const std::set<std::string> inputs = {"ball.stl", "box.off", "noise.stl", "out.csv", "points.csv", "points.ply", "saved.ck", "dir"};
     // The bound: far above what any of these takes (under the sanitizers too); `timeout`
     // kills a hang with 137 and the assertion below names the command.
     const testing::CliRun result = testing::dla3d(dir, command, "timeout -s KILL 120");

@@ -447,17 +447,45 @@ TEST(Cli, ColonizeWritesTheSameFilesAsGrowth) {
   EXPECT_TRUE(std::filesystem::exists(dir / "leaf.svg"));
 }
 
+TEST(Cli, ColonizeGrowsInAVesselAndReadsItsAttractorsFromAFile) {
+  ScratchDir dir;
+  const dla::Vec3 lo(-10, -10, -10), hi(10, 10, 10);
+  dla::write_stl(dla::make_box(lo, hi), dir / "box.stl");
+  const CliRun run = dla3d(dir, "colonize -q -o vessel --stl box.stl --attractors-in mesh --attractors 1500 --roots 2 "
+                                "--roots-in mesh --tropism 0,1,0 --radius boundary");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const dla::Cluster tree = dla::read_csv(dir / "vessel.csv");
+  ASSERT_GT(tree.particles.size(), 300u);
+  EXPECT_EQ(tree.seed_count, 2u);
+  for (const dla::Particle& p : tree.particles)
+    ASSERT_TRUE((p.position.array() > lo.array()).all() && (p.position.array() < hi.array()).all());
+  EXPECT_NE(read_file(dir / "vessel.json").find("\"vessel\": \"box.stl\""), std::string::npos);
+  EXPECT_NE(read_file(dir / "vessel.inc").find("DLA_Mesh"), std::string::npos) << "the vessel shows in the scene";
+
+  // dla3d's own CSV as attractors, a sample of 300; the root is the lowest of them.
+  ASSERT_EQ(dla3d(dir, "colonize -q -o again --attractors-from vessel.csv --attractors 300").exit_code, 0);
+  const std::string json = read_file(dir / "again.json");
+  EXPECT_NE(json.find("\"attractors\": 300,"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"attractors_from\": \"vessel.csv\""), std::string::npos) << json;
+  const dla::Vec3 root = dla::read_csv(dir / "again.csv").particles[0].position;
+  EXPECT_TRUE(std::any_of(tree.particles.begin(), tree.particles.end(),
+                          [&](const dla::Particle& p) { return p.position == root; }));
+}
+
 TEST(Cli, ColonizeBadInputIsOneLineAndNoFiles) {
   const char* cases[] = {
       "--kill-distance 0.5", "--influence 1", "--noise 1", "--noise 11,1", "--tropism 0,0,20", "--attractors 0",
       "--attractors-in cone", "--attractor-radius 0", "--attractor-box 0,0,0,1,1,1", "--root-at 1,2",
       "--roots 0", "--roots 2 --root-at 0,0,0", "-n 0", "--max-iterations 0", "--dimensions 2 --root-at 0,0,1",
-      "--spacing 1e-100", "--particles 10", "--radius boundary", "--formats svg",
+      "--spacing 1e-100", "--particles 10", "--radius boundary", "--formats svg", "--attractors-in mesh",
+      "--roots-in mesh", "--attractors-from a.csv --attractors-in box",
+      // Files that cannot be read: exit 1.
+      "--attractors-from missing.csv", "--stl missing.stl", "--collide missing.stl --roots 2 --roots-in surface",
   };
   for (const char* args : cases) {
     ScratchDir dir;
     const CliRun run = dla3d(dir, std::string("colonize -q -o out ") + args);
-    EXPECT_EQ(run.exit_code, 2) << args;
+    EXPECT_EQ(run.exit_code, std::string(args).find("missing") != std::string::npos ? 1 : 2) << args;
     EXPECT_EQ(run.err.rfind("dla3d: error: ", 0), 0u) << args << ": " << run.err;
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << args << ": " << run.err;
     EXPECT_TRUE(std::filesystem::is_empty(dir.path())) << args << " left files";

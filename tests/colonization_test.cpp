@@ -211,6 +211,80 @@ TEST(Colonization, StickHoldsEveryNewNodeOnTheSurface) {
   EXPECT_THROW(parse_collision_mode("bounce"), InvalidInput);
 }
 
+TEST(Colonization, AVesselHoldsTheGrowthAndItsBranches) {
+  // Attractors in a box vessel, and a tropism up that presses growth on its top wall.
+  const Vec3 lo(-6, -6, -6), hi(6, 6, 6);
+  const MeshConstraint vessel(make_box(lo, hi), {Side::inside, ConstraintMode::reject}, 1.0);
+  ColonizationOptions o;
+  o.vessel = &vessel;
+  o.tropism = Vec3(0, 1.5, 0);
+  AttractorOptions a;
+  a.count = 3000;
+  a.region = AttractorRegion::mesh;
+  const std::vector<Vec3> attractors = scatter_attractors(a, 4, 3, &vessel);
+  const std::vector<Vec3> root{Vec3(0, -5, 0)};
+  const auto inside = [&](const Vec3& p) { return (p.array() > lo.array()).all() && (p.array() < hi.array()).all(); };
+  ColonizationOptions free = o;
+  free.vessel = nullptr;
+  const Cluster unbounded = colonize(free, attractors, root);
+  EXPECT_TRUE(std::any_of(unbounded.particles.begin(), unbounded.particles.end(),
+                          [&](const Particle& node) { return !inside(node.position); }))
+      << "without the vessel, the tropism takes growth through the wall";
+  const Cluster tree = colonize(o, attractors, root);
+  ASSERT_GT(tree.particles.size(), 500u);
+  for (const Particle& node : tree.particles)  // and so its branch: the box is convex
+    ASSERT_TRUE(inside(node.position)) << node.position.transpose();
+  expect_same_tree(tree, colonize_by_rescan(o, attractors, root));
+  // Clipped steps end short of the wall instead.
+  const MeshConstraint clipping(make_box(lo, hi), {Side::inside, ConstraintMode::clip}, 1.0);
+  o.vessel = &clipping;
+  for (const Particle& node : colonize(o, attractors, root).particles) ASSERT_TRUE(inside(node.position));
+  EXPECT_THROW(colonize(o, attractors, {Vec3(0, -9, 0)}), InvalidInput) << "a root outside the vessel";
+}
+
+TEST(Colonization, AttractorsInAMeshAndOnItsSurface) {
+  const MeshConstraint ball(make_sphere(Vec3(1, 2, 3), 10.0, 32, 64), {}, 0.5);
+  AttractorOptions a;
+  a.count = 2000;
+  a.region = AttractorRegion::mesh;
+  const std::vector<Vec3> inside = scatter_attractors(a, 3, 3, &ball);
+  ASSERT_EQ(inside.size(), a.count);
+  double mean_radius = 0;
+  for (const Vec3& p : inside) {
+    ASSERT_LE((p - Vec3(1, 2, 3)).norm(), 10.0) << "in the ball";
+    mean_radius += (p - Vec3(1, 2, 3)).norm() / static_cast<double>(inside.size());
+  }
+  EXPECT_NEAR(mean_radius, 0.75 * 10.0, 0.25) << "uniform in the volume: the mean radius is 3R/4";
+  a.region = AttractorRegion::surface;
+  for (const Vec3& p : scatter_attractors(a, 3, 3, &ball)) {
+    // Half a spacing off a triangle, so a little less near the edges of a neighbour.
+    ASSERT_LE(ball.distance_to_surface(p), 0.25 + 1e-9);
+    ASSERT_GE(ball.distance_to_surface(p), 0.2);
+    ASSERT_LT((p - Vec3(1, 2, 3)).norm(), 10.0);
+  }
+  EXPECT_EQ(scatter_attractors(a, 3, 3, &ball), scatter_attractors(a, 3, 3, &ball));
+  EXPECT_THROW(scatter_attractors(a, 3, 3), InvalidInput) << "no mesh";
+  EXPECT_THROW(scatter_attractors(a, 3, 2, &ball), InvalidInput) << "2D";
+  EXPECT_EQ(parse_attractor_region("surface"), AttractorRegion::surface);
+}
+
+TEST(Colonization, ASampleOfAttractorsIsASubsetOfTheRightSize) {
+  AttractorOptions a;
+  a.count = 1000;
+  const std::vector<Vec3> all = scatter_attractors(a, 2, 3);
+  const std::vector<Vec3> some = sample_attractors(all, 300, 7);
+  ASSERT_EQ(some.size(), 300u);
+  std::size_t at = 0;  // in the file's order, without repeats
+  for (const Vec3& p : some) {
+    while (at < all.size() && all[at] != p) ++at;
+    ASSERT_LT(at++, all.size()) << "a point not in the file, or out of order";
+  }
+  EXPECT_EQ(some, sample_attractors(all, 300, 7));
+  EXPECT_NE(some, sample_attractors(all, 300, 8));
+  EXPECT_EQ(sample_attractors(all, 1000, 7), all);
+  EXPECT_THROW(sample_attractors(all, 1001, 7), InvalidInput);
+}
+
 TEST(Colonization, BadOptionsGetOneLine) {
   const std::vector<Vec3> attractors{Vec3(5, 0, 0)};
   const std::vector<Vec3> root{Vec3::Zero()};

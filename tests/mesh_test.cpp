@@ -119,6 +119,58 @@ TEST(MeshFiles, MalformedFilesNameTheFileAndTheFault) {
   }
 }
 
+TEST(PointFiles, CsvRowsHeadersAndPlyVertices) {
+  const std::vector<Vec3> three{Vec3(1, 2, 3), Vec3(-4.5, 0, 6e-3), Vec3(7, 8, 9)};
+  EXPECT_EQ(parse_points("1,2,3\n-4.5,0,6e-3\n\n7,8,9", "csv", "p.csv"), three);
+  EXPECT_EQ(parse_points("# x y z\n1 2 3\r\n-4.5\t0 6e-3\n7, 8, 9\n", "xyz", "p.xyz"), three);
+  // A header names the columns: dla3d's own CSV reads back.
+  EXPECT_EQ(parse_points("id,x,y,z,parent,seed\n0,1,2,3,-1,0\n1,-4.5,0,6e-3,0,0\n2,7,8,9,1,0\n", "CSV", "d.csv"), three);
+  EXPECT_EQ(parse_points("Z,Y,X\n3,2,1\n", "txt", "p.txt"), std::vector<Vec3>{Vec3(1, 2, 3)});
+  // A PLY's vertices, faces read past; binary too.
+  const std::string ply_ascii =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n1 2 3\n-4.5 0 0.006\n7 8 9\n3 0 1 2\n";
+  const std::vector<Vec3> from_ply = parse_points(ply_ascii, "ply", "p.ply");
+  ASSERT_EQ(from_ply.size(), 3u);
+  EXPECT_NEAR((from_ply[1] - three[1]).norm(), 0.0, 1e-6);
+  std::string ply_binary =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+      "property double z\nend_header\n";
+  const double xyz[9] = {1, 2, 3, -4.5, 0, 6e-3, 7, 8, 9};
+  ply_binary.append(reinterpret_cast<const char*>(xyz), sizeof xyz);
+  EXPECT_EQ(parse_points(ply_binary, "ply", "b.ply"), three);
+  ScratchDir dir;
+  write_bytes(dir / "p.csv", "1,2,3\n-4.5,0,6e-3\n7,8,9\n");
+  EXPECT_EQ(read_points(dir / "p.csv"), three);
+  EXPECT_THROW(read_points(dir / "missing.csv"), IOError);
+}
+
+TEST(PointFiles, MalformedFilesNameTheFileAndTheFault) {
+  const struct {
+    const char* ext;
+    std::string bytes;
+    const char* says;
+  } cases[] = {
+      {"csv", "", "is empty"},
+      {"csv", "# nothing\n\n", "holds no points"},
+      {"csv", "1,2\n", "line 1 has fewer than 3 fields"},
+      {"csv", "1,2,3\n4,5,nan\n", "line 2: 'nan' is not a finite number"},
+      {"csv", "1,2,3\n4,five,6\n", "line 2: 'five' is not a finite number"},
+      {"csv", "a,b,c\n1,2,3\n", "a header without x, y and z"},
+      {"csv", "x,y,z\n1,2,1e999\n", "not a finite number"},
+      {"ply", "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nend_header\n",
+       "holds no points"},
+      {"ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n0\n", "without x, y and z"},
+      {"json", "[1, 2, 3]", "unknown point file format"},
+  };
+  for (const auto& c : cases) {
+    const std::string name = std::string("bad.") + c.ext;
+    const std::string what = message_of([&] { parse_points(c.bytes, c.ext, name); });
+    EXPECT_EQ(what.rfind(name + ": ", 0), 0u) << what;
+    EXPECT_NE(what.find(c.says), std::string::npos) << what;
+  }
+}
+
 TEST(MeshRepair, MergesDropsAndClosesAHole) {
   TriangleMesh mesh = make_sphere(Vec3::Zero(), 5.0, 12, 24);
   const std::size_t full = mesh.triangles.size();

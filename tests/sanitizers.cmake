@@ -37,7 +37,7 @@ step(${CMAKE_COMMAND} -E env TSAN_OPTIONS=halt_on_error=1
      ${tsan_dir}/tests/dla_tests --gtest_filter=Threads.*:Constraint.SameResultOnEveryThreadCount)
 
 if(CLANGXX)
-  foreach(format stl off obj ply cli csv)
+  foreach(format stl off obj ply points cli csv)
     set(corpus ${WORK_DIR}/fuzz_corpus/${format})
     file(MAKE_DIRECTORY ${corpus})
     step(${WORK_DIR}/tests/fuzz/fuzz_${format} -max_total_time=${FUZZ_SECONDS} -rss_limit_mb=2048 -timeout=10

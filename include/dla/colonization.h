@@ -39,14 +39,25 @@ namespace dla {
 
 //! Where scattered attractors lie (`--attractors-in`).
 enum class AttractorRegion {
-  sphere,  //!< a ball (a disk in 2D) of `radius` around `center`
-  box,     //!< the box [box_min, box_max] (a rectangle in z = 0 in 2D)
+  sphere,   //!< a ball (a disk in 2D) of `radius` around `center`
+  box,      //!< the box [box_min, box_max] (a rectangle in z = 0 in 2D)
+  mesh,     //!< uniform in a mesh's enclosed volume (3D)
+  surface,  //!< uniform by area on a mesh's surface, half a spacing inside it (3D)
 };
 
-inline std::string_view to_string(AttractorRegion region) { return region == AttractorRegion::sphere ? "sphere" : "box"; }
+inline std::string_view to_string(AttractorRegion region) {
+  switch (region) {
+    case AttractorRegion::sphere: return "sphere";
+    case AttractorRegion::box: return "box";
+    case AttractorRegion::mesh: return "mesh";
+    case AttractorRegion::surface: return "surface";
+  }
+  return "?";
+}
 
 inline AttractorRegion parse_attractor_region(std::string_view word) {
-  constexpr AttractorRegion values[] = {AttractorRegion::sphere, AttractorRegion::box};
+  constexpr AttractorRegion values[] = {AttractorRegion::sphere, AttractorRegion::box, AttractorRegion::mesh,
+                                        AttractorRegion::surface};
   return detail::parse_word(word, values, "attractor region");
 }
 
@@ -76,25 +87,56 @@ inline void validate(const AttractorOptions& o) {
     throw InvalidInput("the attractor box's min corner is not below its max corner");
 }
 
-//! `options.count` points drawn with the generator seeded by `seed`, in z = 0 for 2D.
-inline std::vector<Vec3> scatter_attractors(const AttractorOptions& options, std::uint64_t seed, int dimensions) {
+//! `options.count` points drawn with the generator seeded by `seed`, in z = 0 for 2D. The
+//! `mesh` and `surface` regions draw from `mesh` (a solid one: a vessel or a collision object's),
+//! in 3D only; throws InvalidInput without one.
+inline std::vector<Vec3> scatter_attractors(const AttractorOptions& options, std::uint64_t seed, int dimensions,
+                                            const MeshConstraint* mesh = nullptr) {
   validate(options);
+  const bool on_mesh = options.region == AttractorRegion::mesh || options.region == AttractorRegion::surface;
+  if (on_mesh && !mesh)
+    throw InvalidInput("attractors in a " + std::string(to_string(options.region)) + " need a mesh: a vessel or a collision mesh");
+  if (on_mesh && dimensions != 3) throw InvalidInput("attractors in a mesh need 3 dimensions");
   Rng rng(seed, 0x617474726163746fULL);  // a stream of its own: "attracto"
   std::vector<Vec3> points;
   points.reserve(options.count);
   for (std::size_t i = 0; i < options.count; ++i) {
-    if (options.region == AttractorRegion::sphere) {
-      const double r = options.radius * std::pow(rng.uniform(), (1.0 + options.falloff) / dimensions);
-      points.push_back(options.center + r * random_direction(rng, dimensions));
-    } else {
-      Vec3 p;
-      for (int axis = 0; axis < 3; ++axis)
-        p[axis] = options.box_min[axis] + rng.uniform() * (options.box_max[axis] - options.box_min[axis]);
-      if (dimensions == 2) p.z() = 0.0;
-      points.push_back(p);
+    switch (options.region) {
+      case AttractorRegion::sphere: {
+        const double r = options.radius * std::pow(rng.uniform(), (1.0 + options.falloff) / dimensions);
+        points.push_back(options.center + r * random_direction(rng, dimensions));
+        break;
+      }
+      case AttractorRegion::box: {
+        Vec3 p;
+        for (int axis = 0; axis < 3; ++axis)
+          p[axis] = options.box_min[axis] + rng.uniform() * (options.box_max[axis] - options.box_min[axis]);
+        if (dimensions == 2) p.z() = 0.0;
+        points.push_back(p);
+        break;
+      }
+      case AttractorRegion::mesh: points.push_back(mesh->draw_inside(rng)); break;
+      case AttractorRegion::surface: points.push_back(mesh->draw_near_surface(rng)); break;
     }
   }
   return points;
+}
+
+//! `count` of `points` (attractors read from a file) chosen at random without repeats, in
+//! their order, with the generator seeded by `seed`. Throws InvalidInput if there are fewer.
+inline std::vector<Vec3> sample_attractors(const std::vector<Vec3>& points, std::size_t count, std::uint64_t seed) {
+  if (count > points.size())
+    throw InvalidInput("a sample of " + std::to_string(count) + " attractors from " + std::to_string(points.size()) +
+                       " points");
+  // Selection sampling (Knuth's algorithm S): each point is kept with the chance that fills
+  // the sample exactly, in one pass.
+  Rng rng(seed, 0x617474726163746fULL);
+  std::vector<Vec3> chosen;
+  chosen.reserve(count);
+  for (std::size_t i = 0; i < points.size() && chosen.size() < count; ++i)
+    if (static_cast<double>(points.size() - i) * rng.uniform() < static_cast<double>(count - chosen.size()))
+      chosen.push_back(points[i]);
+  return chosen;
 }
 
 //! What a collision object does to a new node (`--collision`).
@@ -121,6 +163,8 @@ class CollisionObject {
 
   CollisionMode mode() const { return mode_; }
   const TriangleMesh& mesh() const { return solid_.mesh(); }
+  //! The object as a solid: attractors and roots can be drawn in it or on its surface.
+  const MeshConstraint& solid() const { return solid_; }
 
   //! The signed distance at p (negative inside), and the surface's closest point.
   double signed_distance(const Vec3& p, Vec3* closest = nullptr) const {
@@ -176,6 +220,10 @@ struct ColonizationOptions {
   //! it, after the noise. A node that would land within a tenth of a step of its parent does
   //! not grow.
   const CollisionObject* collide = nullptr;
+  //! A vessel (3D only), not owned: growth stays on its growing side. A step that would cross
+  //! its surface is refused (the node does not grow; its attractors may pull it again), or with
+  //! ConstraintMode::clip cut short of the surface.
+  const MeshConstraint* vessel = nullptr;
 };
 
 inline void validate(const ColonizationOptions& o) {
@@ -194,6 +242,7 @@ inline void validate(const ColonizationOptions& o) {
   if (o.dimensions != 2 && o.dimensions != 3)
     throw InvalidInput("dimensions " + std::to_string(o.dimensions) + " is not 2 or 3");
   if (o.collide && o.dimensions != 3) throw InvalidInput("a collision mesh needs 3 dimensions");
+  if (o.vessel && o.dimensions != 3) throw InvalidInput("a vessel needs 3 dimensions");
 }
 
 namespace detail {
@@ -280,6 +329,11 @@ inline bool colonization_step(const ColonizationOptions& o, const detail::Lattic
     next = o.collide->apply(from, next, o.spacing);
     if ((next - from).squaredNorm() < 0.01 * o.spacing * o.spacing) return false;
   }
+  if (o.vessel) {
+    const BranchCheck check = o.vessel->check_branch(from, next);
+    if (!check.accepted) return false;
+    next = check.end;
+  }
   *to = next;
   return true;
 }
@@ -295,8 +349,11 @@ inline Cluster colonize(const ColonizationOptions& o, std::vector<Vec3> attracto
   if (roots.size() > o.max_nodes)
     throw InvalidInput(std::to_string(roots.size()) + " roots are more than the " + std::to_string(o.max_nodes) +
                        " nodes allowed");
-  for (std::size_t i = 0; i < roots.size(); ++i)
+  for (std::size_t i = 0; i < roots.size(); ++i) {
     detail::require_representable("root " + std::to_string(i + 1), roots[i], o.spacing);
+    if (o.vessel && !o.vessel->on_growth_side(roots[i]))
+      throw InvalidInput("root " + std::to_string(i + 1) + " is outside the vessel");
+  }
   for (const Vec3& a : attractors) detail::require_representable("an attractor", a, o.spacing);
 
   Cluster tree = detail::roots_only(o, roots);

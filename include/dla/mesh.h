@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace dla {
@@ -30,6 +31,16 @@ TriangleMesh read_mesh(const std::string& path, std::uint64_t* file_hash = nullp
 //! Reads a mesh from bytes, in the format named by `extension` ("stl", "off", "obj", "ply");
 //! `name` prefixes the error messages. The readers behind read_mesh().
 TriangleMesh parse_mesh(std::string_view bytes, std::string_view extension, const std::string& name);
+
+//! Reads points (attractors): a PLY's vertices, ASCII or binary (faces, if any, are ignored), or
+//! the rows of a text file (.csv, .txt, .xyz) of x, y and z separated by commas or spaces. A
+//! first line that is not numbers is a header naming the columns, and its x, y and z columns
+//! are read: dla3d's own CSV reads back. Lines starting with '#' are comments. Throws IOError
+//! if the file cannot be read and InvalidInput, naming it, if it is malformed or holds no point.
+std::vector<Vec3> read_points(const std::string& path);
+
+//! The reader behind read_points(), from bytes, the format named by `extension`.
+std::vector<Vec3> parse_points(std::string_view bytes, std::string_view extension, const std::string& name);
 
 //! Writes a binary STL (its header does not begin with "solid"). Throws IOError.
 void write_stl(const TriangleMesh& mesh, const std::string& path);

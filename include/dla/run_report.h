@@ -28,12 +28,20 @@ void write_run_report(const Cluster& cluster, const GrowthOptions& options, cons
                       const PovOptions& pov, const RunRecord& record, const std::string& path,
                       const MeshConstraint* constraint = nullptr, const std::string& mesh_file = "");
 
+//! The files a space colonization run read, for its record.
+struct ColonizationInputs {
+  std::string attractors_file;  //!< the attractors' file; empty: they were scattered
+  std::size_t attractor_count = 0;  //!< how many grew the tree
+  std::string vessel_file;      //!< the vessel's mesh; empty: none
+  std::string collide_file;     //!< the collision mesh; empty: none
+  CollisionMode collision = CollisionMode::push;
+};
+
 //! The sidecar of a space colonization run (colonization.h): "model": "colonization", its
-//! options and attractors, the roots, and the collision mesh's file if any; no walk
-//! statistics. Throws IOError.
+//! options and attractors, the roots, and the vessel's and collision mesh's files if any; no
+//! walk statistics. Throws IOError.
 void write_colonization_report(const Cluster& cluster, const ColonizationOptions& options,
                                const AttractorOptions& attractors, const LookOptions& look, const PovOptions& pov,
-                               const RunRecord& record, const std::string& path, const std::string& collide_file = "",
-                               CollisionMode collision = CollisionMode::push);
+                               const RunRecord& record, const std::string& path, const ColonizationInputs& inputs);
 
 }  // namespace dla

@@ -43,11 +43,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (line.kind == dla::cli::CommandLine::Kind::colonize) {
       // Space colonization, small: a tree of valid nodes and positive radii.
       dla::cli::ColonizeCommand c = line.colonize;
+      // Meshes and point files are the readers' fuzzers' and the property test's.
+      if (!c.vessel_path.empty() || !c.collide_path.empty() || !c.attractors_path.empty()) return 0;
       c.options.max_nodes = std::min<std::size_t>(c.options.max_nodes, 64);
       c.attractors.count = std::min<std::size_t>(c.attractors.count, 300);
-      const dla::Cluster tree =
-          dla::colonize(c.options, dla::scatter_attractors(c.attractors, c.options.rng_seed, c.options.dimensions),
-                        dla::cli::colonize_roots(c));
+      const std::vector<dla::Vec3> attractors =
+          dla::scatter_attractors(c.attractors, c.options.rng_seed, c.options.dimensions);
+      const dla::Cluster tree = dla::colonize(c.options, attractors, dla::cli::colonize_roots(c, attractors, nullptr));
       if (tree.particles.size() > c.options.max_nodes) std::abort();
       for (std::size_t i = tree.seed_count; i < tree.particles.size(); ++i) {
         const dla::Particle& p = tree.particles[i];
