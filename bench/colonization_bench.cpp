@@ -1,4 +1,4 @@
-// Space colonization (include/dla/colonization.h): the kept closest nodes against a full
+// Space colonization (include/dla/models/colonization.h): the kept closest nodes against a full
 // rescan of every attractor at every iteration (tests/colonization_rescan.h), side by side on
 // the same attractors, and the kept version at 10^6 attractors. Attractors fill a sphere of
 // radius R (scattered once, not timed), one root at its bottom. Arguments: attractors, R,
@@ -7,7 +7,7 @@
 //   build/bench/dla_colonization_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 // (medians in docs/performance.md).
 
-#include "dla/colonization.h"
+#include "dla/models/colonization.h"
 #include "colonization_rescan.h"
 
 #include <benchmark/benchmark.h>

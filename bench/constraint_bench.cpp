@@ -6,9 +6,9 @@
 // The share of time in each call is its count per particle (a counter here) times its unit
 // cost, over the time per particle (docs/performance.md).
 
-#include "dla/constraint.h"
-#include "dla/grid_index.h"
-#include "dla/growth.h"
+#include "dla/mesh/constraint.h"
+#include "dla/index/grid_index.h"
+#include "dla/models/growth.h"
 
 #include <benchmark/benchmark.h>
 

@@ -4,10 +4,10 @@
 //   build/bench/dla_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 // (medians in docs/performance.md).
 
-#include "dla/grid_index.h"
-#include "dla/growth.h"
-#include "dla/kdtree_index.h"
-#include "dla/spatial_index.h"
+#include "dla/index/grid_index.h"
+#include "dla/models/growth.h"
+#include "dla/index/kdtree_index.h"
+#include "dla/index/spatial_index.h"
 
 #include <benchmark/benchmark.h>
 

@@ -7,9 +7,9 @@
 //   build/bench/dla_look_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 // (medians in docs/performance.md).
 
-#include "dla/growth.h"
-#include "dla/look.h"
-#include "dla/mesh_writers.h"
+#include "dla/models/growth.h"
+#include "dla/look/look.h"
+#include "dla/io/mesh_writers.h"
 
 #include <benchmark/benchmark.h>
 

@@ -5,13 +5,13 @@
 //   build/bench/dla_writer_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 // (medians in docs/performance.md).
 
-#include "dla/checkpoint.h"
-#include "dla/csv_writer.h"
-#include "dla/look.h"
-#include "dla/ply_writer.h"
-#include "dla/pov_writer.h"
-#include "dla/random.h"
-#include "dla/run_report.h"
+#include "dla/io/checkpoint.h"
+#include "dla/io/csv_writer.h"
+#include "dla/look/look.h"
+#include "dla/io/ply_writer.h"
+#include "dla/io/pov_writer.h"
+#include "dla/core/random.h"
+#include "dla/io/run_report.h"
 
 #include <benchmark/benchmark.h>
 

@@ -1,8 +1,8 @@
 #include "commands.h"
 
-#include "dla/analysis.h"
-#include "dla/csv_reader.h"
-#include "dla/json.h"
+#include "dla/core/analysis.h"
+#include "dla/io/csv_reader.h"
+#include "dla/io/json.h"
 
 #include <cstdio>
 

@@ -1,11 +1,11 @@
-// `dla3d colonize [options]`: grows a tree by space colonization (dla/colonization.h) among
+// `dla3d colonize [options]`: grows a tree by space colonization (dla/models/colonization.h) among
 // scattered attractors and writes the same files as DLA does.
 
 #include "commands.h"
 #include "run_files.h"
 
-#include "dla/mesh.h"
-#include "dla/run_report.h"
+#include "dla/mesh/mesh.h"
+#include "dla/io/run_report.h"
 
 #include <unistd.h>
 

@@ -2,12 +2,12 @@
 // dla3d's command line, parsed and checked without touching a file: main.cpp runs what it says,
 // and the CLI fuzzer (tests/fuzz/cli_fuzz.cpp) drives it with arbitrary words.
 
-#include "dla/colonization.h"
-#include "dla/constraint.h"
-#include "dla/instances.h"
-#include "dla/look.h"
-#include "dla/options.h"
-#include "dla/pov_writer.h"
+#include "dla/models/colonization.h"
+#include "dla/mesh/constraint.h"
+#include "dla/look/instances.h"
+#include "dla/look/look.h"
+#include "dla/core/options.h"
+#include "dla/io/pov_writer.h"
 
 #include <cstddef>
 #include <string>

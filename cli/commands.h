@@ -3,8 +3,8 @@
 
 #include "command_line.h"
 
-#include "dla/checkpoint.h"
-#include "dla/growth.h"
+#include "dla/io/checkpoint.h"
+#include "dla/models/growth.h"
 
 #include <csignal>
 #include <string>

@@ -1,6 +1,6 @@
 #include "commands.h"
 
-#include "dla/mesh.h"
+#include "dla/mesh/mesh.h"
 
 #include <cstdio>
 

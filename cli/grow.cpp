@@ -4,9 +4,9 @@
 #include "commands.h"
 #include "run_files.h"
 
-#include "dla/constraint.h"
-#include "dla/mesh.h"
-#include "dla/run_report.h"
+#include "dla/mesh/constraint.h"
+#include "dla/mesh/mesh.h"
+#include "dla/io/run_report.h"
 
 #include <unistd.h>
 

@@ -6,7 +6,7 @@
 #include "command_line.h"
 #include "commands.h"
 
-#include "dla/checkpoint.h"
+#include "dla/io/checkpoint.h"
 
 #include <csignal>
 #include <cstdio>

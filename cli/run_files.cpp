@@ -1,11 +1,11 @@
 #include "run_files.h"
 
-#include "dla/csv_writer.h"
-#include "dla/mesh_writers.h"
-#include "dla/ply_writer.h"
-#include "dla/pov_writer.h"
-#include "dla/surface_distance.h"
-#include "dla/svg_writer.h"
+#include "dla/io/csv_writer.h"
+#include "dla/io/mesh_writers.h"
+#include "dla/io/ply_writer.h"
+#include "dla/io/pov_writer.h"
+#include "dla/mesh/surface_distance.h"
+#include "dla/io/svg_writer.h"
 
 #include <malloc.h>
 

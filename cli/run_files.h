@@ -4,8 +4,8 @@
 
 #include "command_line.h"
 
-#include "dla/cluster.h"
-#include "dla/constraint.h"
+#include "dla/core/cluster.h"
+#include "dla/mesh/constraint.h"
 
 #include <chrono>
 #include <cstdio>

@@ -6,10 +6,10 @@
 //   open_can [PARTICLES] [PREFIX]     defaults: 30000 open_can
 //   povray +W1280 +H960 +A open_can.pov
 
-#include "dla/constraint.h"
-#include "dla/growth.h"
-#include "dla/pov_writer.h"
-#include "dla/shapes.h"
+#include "dla/mesh/constraint.h"
+#include "dla/models/growth.h"
+#include "dla/io/pov_writer.h"
+#include "dla/mesh/shapes.h"
 
 #include <cstdio>
 #include <cstdlib>

@@ -2,7 +2,7 @@
 // words, the cluster's header, its particles (x, y, z as doubles; parent, seed as int32), its
 // walk statistics, and the FNV-1a hash of all that.
 
-#include "dla/checkpoint.h"
+#include "dla/io/checkpoint.h"
 
 #include "output_file.h"
 

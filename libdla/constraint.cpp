@@ -1,4 +1,4 @@
-#include "dla/constraint.h"
+#include "dla/mesh/constraint.h"
 
 #include <algorithm>
 #include <cmath>

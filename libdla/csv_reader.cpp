@@ -1,4 +1,4 @@
-#include "dla/csv_reader.h"
+#include "dla/io/csv_reader.h"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "dla/csv_writer.h"
+#include "dla/io/csv_writer.h"
 
 #include "output_file.h"
 

@@ -1,11 +1,11 @@
 // The non-template entry points: validate the options and run the engine with the chosen
 // index, so programs that call grow() compile the engine once, here.
 
-#include "dla/growth.h"
+#include "dla/models/growth.h"
 
-#include "dla/grid_index.h"
-#include "dla/kdtree_index.h"
-#include "dla/spatial_index.h"
+#include "dla/index/grid_index.h"
+#include "dla/index/kdtree_index.h"
+#include "dla/index/spatial_index.h"
 
 namespace dla {
 

@@ -4,7 +4,7 @@
 // twice or not at all. This file is built with -ffp-contract=off so no fused multiply-add
 // breaks that symmetry.
 
-#include "dla/inside_test.h"
+#include "dla/mesh/inside_test.h"
 
 #include <algorithm>
 #include <array>

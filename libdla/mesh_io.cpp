@@ -2,9 +2,9 @@
 // allocates, indices against the vertex count and coordinates for finiteness, and names the
 // file and the place in its messages.
 
-#include "dla/mesh.h"
+#include "dla/mesh/mesh.h"
 
-#include "dla/hash.h"
+#include "dla/core/hash.h"
 #include "output_file.h"
 
 #include <algorithm>

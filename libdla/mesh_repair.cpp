@@ -1,7 +1,7 @@
 // The CGAL side of mesh repair, kept to this one translation unit: CGAL's headers take tens of
 // seconds and over a gigabyte to compile.
 
-#include "dla/mesh_repair.h"
+#include "dla/mesh/mesh_repair.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>

@@ -1,6 +1,6 @@
-#include "dla/mesh_writers.h"
+#include "dla/io/mesh_writers.h"
 
-#include "dla/json.h"
+#include "dla/io/json.h"
 #include "dla/version.h"
 #include "output_file.h"
 

@@ -1,7 +1,7 @@
 #pragma once
 // Files written whole or not at all, formatted locale-free, large ones on several threads.
 
-#include "dla/errors.h"
+#include "dla/core/errors.h"
 
 #include <algorithm>
 #include <cerrno>

@@ -1,4 +1,4 @@
-#include "dla/ply_writer.h"
+#include "dla/io/ply_writer.h"
 
 #include "dla/version.h"
 #include "output_file.h"

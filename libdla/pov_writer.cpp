@@ -1,7 +1,7 @@
-#include "dla/pov_writer.h"
+#include "dla/io/pov_writer.h"
 
-#include "dla/instances.h"
-#include "dla/strands.h"
+#include "dla/look/instances.h"
+#include "dla/look/strands.h"
 #include "dla/version.h"
 #include "output_file.h"
 

@@ -1,8 +1,8 @@
-#include "dla/run_report.h"
+#include "dla/io/run_report.h"
 
-#include "dla/analysis.h"
-#include "dla/json.h"
-#include "dla/strands.h"
+#include "dla/core/analysis.h"
+#include "dla/io/json.h"
+#include "dla/look/strands.h"
 #include "dla/version.h"
 #include "output_file.h"
 

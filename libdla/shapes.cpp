@@ -1,4 +1,4 @@
-#include "dla/shapes.h"
+#include "dla/mesh/shapes.h"
 
 #include <cmath>
 

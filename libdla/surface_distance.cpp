@@ -1,9 +1,9 @@
 // CGAL's AABB tree behind SurfaceDistance, kept to this one translation unit (CGAL's headers
 // take tens of seconds to compile).
 
-#include "dla/surface_distance.h"
+#include "dla/mesh/surface_distance.h"
 
-#include "dla/errors.h"
+#include "dla/core/errors.h"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>

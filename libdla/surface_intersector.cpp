@@ -1,7 +1,7 @@
 // Embree 3 behind SurfaceIntersector. The scene is robust: with the default flags about 7% of
 // segments through a mesh vertex pass the surface unseen.
 
-#include "dla/surface_intersector.h"
+#include "dla/mesh/surface_intersector.h"
 
 #include <embree3/rtcore.h>
 #include <xmmintrin.h>

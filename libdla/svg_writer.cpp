@@ -1,4 +1,4 @@
-#include "dla/svg_writer.h"
+#include "dla/io/svg_writer.h"
 
 #include "dla/version.h"
 #include "output_file.h"

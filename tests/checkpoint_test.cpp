@@ -1,9 +1,9 @@
 // Checkpoints read back exactly what was written, refuse damaged files, and a run resumed from
 // one ends as the uninterrupted run does, with a constraint mesh too.
 
-#include "dla/checkpoint.h"
-#include "dla/growth.h"
-#include "dla/shapes.h"
+#include "dla/io/checkpoint.h"
+#include "dla/models/growth.h"
+#include "dla/mesh/shapes.h"
 #include "test_util.h"
 
 #include <gtest/gtest.h>

@@ -4,8 +4,8 @@
 #include "cli_util.h"
 #include "test_util.h"
 
-#include "dla/checkpoint.h"
-#include "dla/growth.h"
+#include "dla/io/checkpoint.h"
+#include "dla/models/growth.h"
 
 #include <gtest/gtest.h>
 

@@ -18,10 +18,10 @@
 #include "clients.h"
 #include "test_util.h"
 
-#include "dla/checkpoint.h"
-#include "dla/growth.h"
-#include "dla/mesh.h"
-#include "dla/shapes.h"
+#include "dla/io/checkpoint.h"
+#include "dla/models/growth.h"
+#include "dla/mesh/mesh.h"
+#include "dla/mesh/shapes.h"
 
 #include <gtest/gtest.h>
 

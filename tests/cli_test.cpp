@@ -1,9 +1,9 @@
 // dla3d as a user meets it: `dla3d -n N -o PREFIX` writes every file; every bad flag or value
 // is one line on stderr, a non-zero exit and no files.
 
-#include "dla/csv_reader.h"
-#include "dla/mesh.h"
-#include "dla/shapes.h"
+#include "dla/io/csv_reader.h"
+#include "dla/mesh/mesh.h"
+#include "dla/mesh/shapes.h"
 #include "cli_util.h"
 #include "mesh_util.h"
 #include "test_util.h"

@@ -3,9 +3,9 @@
 // error in the .glb. Each test skips, by name, when its client is missing (tests/clients.h).
 
 #include "clients.h"
-#include "dla/growth.h"
-#include "dla/mesh_writers.h"
-#include "dla/ply_writer.h"
+#include "dla/models/growth.h"
+#include "dla/io/mesh_writers.h"
+#include "dla/io/ply_writer.h"
 
 #include <gtest/gtest.h>
 

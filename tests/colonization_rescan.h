@@ -4,7 +4,7 @@
 // against, node for node (tests/colonization_test.cpp), and the baseline they are measured
 // against (bench/colonization_bench.cpp).
 
-#include "dla/colonization.h"
+#include "dla/models/colonization.h"
 
 #include <array>
 #include <cstdint>

@@ -1,9 +1,9 @@
 // Space colonization: the kept closest nodes against a full rescan, node for node; the kill
 // distance; determinism; the ends of growth; bad options.
 
-#include "dla/colonization.h"
-#include "dla/shapes.h"
-#include "dla/strands.h"
+#include "dla/models/colonization.h"
+#include "dla/mesh/shapes.h"
+#include "dla/look/strands.h"
 #include "colonization_rescan.h"
 
 #include <gtest/gtest.h>

@@ -2,10 +2,10 @@
 // particle on the growing side, no branch through the surface, clipped branches ending at it,
 // every seed growing, the same files for the same seed.
 
-#include "dla/constraint.h"
-#include "dla/growth.h"
-#include "dla/mesh_repair.h"
-#include "dla/shapes.h"
+#include "dla/mesh/constraint.h"
+#include "dla/models/growth.h"
+#include "dla/mesh/mesh_repair.h"
+#include "dla/mesh/shapes.h"
 #include "mesh_util.h"
 #include "test_util.h"
 

@@ -2,9 +2,9 @@
 // changes the walk (the index's bounds, the order of random draws, the arithmetic) changes the
 // checksum. When a change is meant to, update the value in a commit of its own that says why.
 
-#include "dla/csv_writer.h"
-#include "dla/growth.h"
-#include "dla/hash.h"
+#include "dla/io/csv_writer.h"
+#include "dla/models/growth.h"
+#include "dla/core/hash.h"
 #include "test_util.h"
 
 #include <gtest/gtest.h>

@@ -1,9 +1,9 @@
 // Growth end to end: the invariants of the grown tree under every option that changes the
 // walk, determinism, the fractal dimension, and that bad options are refused.
 
-#include "dla/analysis.h"
-#include "dla/growth.h"
-#include "dla/kdtree_index.h"
+#include "dla/core/analysis.h"
+#include "dla/models/growth.h"
+#include "dla/index/kdtree_index.h"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
 // Every index against brute force: probes never overshoot the nearest distance and are exact
 // when they name a particle; radius visits find exactly the particles within the radius.
 
-#include "dla/grid_index.h"
-#include "dla/kdtree_index.h"
-#include "dla/random.h"
-#include "dla/spatial_index.h"
+#include "dla/index/grid_index.h"
+#include "dla/index/kdtree_index.h"
+#include "dla/core/random.h"
+#include "dla/index/spatial_index.h"
 
 #include <gtest/gtest.h>
 

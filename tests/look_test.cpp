@@ -2,18 +2,18 @@
 // force, the radius models' ranges and orderings, tube meshes that are closed, outward and
 // untwisted, instancing points that never overlap, and the files built from them.
 
-#include "dla/constraint.h"
-#include "dla/csv_reader.h"
-#include "dla/csv_writer.h"
-#include "dla/growth.h"
-#include "dla/instances.h"
-#include "dla/look.h"
-#include "dla/mesh_writers.h"
-#include "dla/ply_writer.h"
-#include "dla/pov_writer.h"
-#include "dla/shapes.h"
-#include "dla/surface_distance.h"
-#include "dla/svg_writer.h"
+#include "dla/mesh/constraint.h"
+#include "dla/io/csv_reader.h"
+#include "dla/io/csv_writer.h"
+#include "dla/models/growth.h"
+#include "dla/look/instances.h"
+#include "dla/look/look.h"
+#include "dla/io/mesh_writers.h"
+#include "dla/io/ply_writer.h"
+#include "dla/io/pov_writer.h"
+#include "dla/mesh/shapes.h"
+#include "dla/mesh/surface_distance.h"
+#include "dla/io/svg_writer.h"
 #include "test_util.h"
 
 #include <gtest/gtest.h>

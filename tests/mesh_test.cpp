@@ -2,12 +2,12 @@
 // independent reference: files written and read back, the generalized winding number by solid
 // angles, and segment/triangle hits by brute force.
 
-#include "dla/constraint.h"
-#include "dla/inside_test.h"
-#include "dla/mesh.h"
-#include "dla/mesh_repair.h"
-#include "dla/shapes.h"
-#include "dla/surface_intersector.h"
+#include "dla/mesh/constraint.h"
+#include "dla/mesh/inside_test.h"
+#include "dla/mesh/mesh.h"
+#include "dla/mesh/mesh_repair.h"
+#include "dla/mesh/shapes.h"
+#include "dla/mesh/surface_intersector.h"
 #include "mesh_util.h"
 #include "test_util.h"
 

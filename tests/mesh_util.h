@@ -3,7 +3,7 @@
 // methods: the generalized winding number by solid angles, and segment/triangle hits by
 // Moller-Trumbore over every triangle.
 
-#include "dla/mesh.h"
+#include "dla/mesh/mesh.h"
 
 #include <gtest/gtest.h>
 

@@ -1,10 +1,10 @@
 // POV-Ray renders the emitted scene as it is: the image is not blank and the structure is
 // framed, in 3D and in the plane.
 
-#include "dla/growth.h"
-#include "dla/pov_writer.h"
-#include "dla/shapes.h"
-#include "dla/surface_distance.h"
+#include "dla/models/growth.h"
+#include "dla/io/pov_writer.h"
+#include "dla/mesh/shapes.h"
+#include "dla/mesh/surface_distance.h"
 #include "mesh_util.h"
 #include "test_util.h"
 

@@ -1,6 +1,6 @@
 // The spawn distributions: where starts fall, and that they are uniform there.
 
-#include "dla/spawn.h"
+#include "dla/models/spawn.h"
 
 #include <gtest/gtest.h>
 

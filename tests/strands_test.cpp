@@ -1,7 +1,7 @@
 // Strands cover every branch exactly once and run from a start to a tip.
 
-#include "dla/growth.h"
-#include "dla/strands.h"
+#include "dla/models/growth.h"
+#include "dla/look/strands.h"
 
 #include <gtest/gtest.h>
 

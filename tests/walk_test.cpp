@@ -1,8 +1,8 @@
 // The walk's building blocks: directions, the exterior return rule (checked by simulating the
 // Brownian motion it replaces) and the contact test of a short step.
 
-#include "dla/random.h"
-#include "dla/walk.h"
+#include "dla/core/random.h"
+#include "dla/models/walk.h"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
 // The files: CSV reads back exactly, PLY is self-consistent, the same seed gives the same
 // bytes, and a file that cannot be written fails cleanly with nothing left behind.
 
-#include "dla/csv_writer.h"
-#include "dla/growth.h"
-#include "dla/ply_writer.h"
-#include "dla/pov_writer.h"
-#include "dla/run_report.h"
+#include "dla/io/csv_writer.h"
+#include "dla/models/growth.h"
+#include "dla/io/ply_writer.h"
+#include "dla/io/pov_writer.h"
+#include "dla/io/run_report.h"
 #include "test_util.h"
 
 #include <gtest/gtest.h>

@@ -1,9 +1,9 @@
 // Grows a small two-seed structure from C++ and writes it for POV-Ray and as CSV.
 // Usage: grow_tree PREFIX
 
-#include <dla/csv_writer.h>
-#include <dla/growth.h>
-#include <dla/pov_writer.h>
+#include <dla/io/csv_writer.h>
+#include <dla/models/growth.h>
+#include <dla/io/pov_writer.h>
 
 #include <cstdio>
 

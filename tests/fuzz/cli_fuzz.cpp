@@ -9,10 +9,10 @@
 
 #include "../../cli/command_line.h"
 
-#include "dla/colonization.h"
-#include "dla/growth.h"
-#include "dla/instances.h"
-#include "dla/look.h"
+#include "dla/models/colonization.h"
+#include "dla/models/growth.h"
+#include "dla/look/instances.h"
+#include "dla/look/look.h"
 
 #include <algorithm>
 #include <chrono>

@@ -2,8 +2,8 @@
 // must either be refused with InvalidInput or give a tree (parents before children) whose
 // measures compute without a fault. Build with -DDLA_FUZZ=ON (clang); see docs/testing.md.
 
-#include "dla/analysis.h"
-#include "dla/csv_reader.h"
+#include "dla/core/analysis.h"
+#include "dla/io/csv_reader.h"
 
 #include <cstdint>
 #include <cstdlib>

@@ -4,7 +4,7 @@
 // or be refused with InvalidInput: never crash, hang, leak or read out of bounds.
 // Build with -DDLA_FUZZ=ON (clang); see docs/testing.md.
 
-#include "dla/mesh.h"
+#include "dla/mesh/mesh.h"
 
 #include <cstdint>
 #include <cstdlib>

@@ -1,0 +1,236 @@
+#pragma once
+//! \file options.h
+//! What a growth run is asked to do, with defaults, and the one place it is checked.
+
+#include "dla/core/errors.h"
+
+#include <Eigen/Core>
+
+#include <cstdio>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace dla {
+
+using Vec3 = Eigen::Vector3d;
+
+//! Where walkers start. The words are the CLI's (`--spawn sphere|disk|box|inside|radial|surface`).
+enum class SpawnMode {
+  sphere,  //!< uniform on a sphere just outside the structure (with a mesh: around the mesh)
+  disk,    //!< uniform in a disk across the spawn axis, just outside the structure: directed growth
+  box,     //!< uniform in a box
+  inside,  //!< uniform in the volume of a constraint mesh (constraint.h)
+  radial,  //!< along rays from a constraint mesh's centroid to its surface (constraint.h)
+  surface, //!< just off a constraint mesh's surface, on the growing side (constraint.h)
+};
+
+//! A coordinate axis, for the disk spawn.
+enum class Axis { x, y, z };
+
+//! The nearest-particle look-up behind the walk (`--index grid|kdtree|brute`); see docs/index.md.
+enum class IndexKind {
+  grid,    //!< cell grid with a pyramid of occupancy bits: the fastest, the default
+  kdtree,  //!< nanoflann's dynamic k-d tree
+  brute,   //!< a linear scan: a reference for tests, slow
+};
+
+//! An axis-aligned box given by two opposite corners.
+struct Box {
+  Vec3 min = Vec3::Zero();
+  Vec3 max = Vec3::Zero();
+};
+
+//! Options of one growth run. Lengths are in scene units; the spacing sets the scale.
+struct GrowthOptions {
+  std::size_t particles = 10000;     //!< particles to attach, seeds not counted
+  double spacing = 1.0;              //!< distance between a particle and its parent, and the
+                                     //!< contact distance: no two particles come closer;
+                                     //!< in [1e-100, 1e100]
+  double stickiness = 1.0;           //!< probability of sticking at a contact, in [1e-4, 1]
+  std::uint64_t rng_seed = 1;        //!< seeds every random choice of the run
+  int dimensions = 3;                //!< 3, or 2 for growth in the plane z = 0
+  std::vector<Vec3> seeds = {Vec3::Zero()};  //!< where the structure starts, one tree per
+                                             //!< seed; within kMaxCoordinate spacings of the
+                                             //!< origin
+  SpawnMode spawn = SpawnMode::sphere;       //!< where walkers start
+  Axis spawn_axis = Axis::z;         //!< disk spawn: the disk sits on the + side of this axis
+  double disk_radius = 0.25;         //!< disk spawn: radius as a fraction of the launch
+                                     //!< radius, in (0, 1000]
+  std::optional<Box> spawn_box;      //!< box spawn: a fixed box; unset, the cube around the
+                                     //!< launch sphere, growing with the structure
+  Vec3 drift = Vec3::Zero();         //!< bias added to every step, per unit step length,
+                                     //!< |drift| < 1 (gravity, wind)
+  double min_step = 0.5;             //!< step length near the structure, in spacings,
+                                     //!< [0.01, 1]
+  IndexKind index = IndexKind::grid; //!< nearest-particle look-up
+  int threads = 1;                   //!< walkers run at once, 1-256, with the grid index; the
+                                     //!< result is the same for every count, byte for byte
+};
+
+//! The limits validate() holds options to. Beyond them the arithmetic of the walk breaks down
+//! (squared distances overflow or underflow, steps vanish in the rounding of a coordinate) or
+//! a walker would take practically for ever to stick.
+inline constexpr double kMinSpacing = 1e-100, kMaxSpacing = 1e100;
+inline constexpr double kMinStickiness = 1e-4;  //!< ~10^4 contacts a particle at the least
+inline constexpr double kMinMinStep = 0.01;     //!< ~10^4 near steps a spacing at the most
+inline constexpr double kMaxDiskRadius = 1000.0;
+//! Largest distance, in spacings, of a seed or a spawn box corner from the origin: a double
+//! then still resolves a ten-millionth of a spacing.
+inline constexpr double kMaxCoordinate = 1e9;
+
+std::string_view to_string(SpawnMode mode);
+std::string_view to_string(Axis axis);
+std::string_view to_string(IndexKind kind);
+
+//! Whether walkers of this mode start from a constraint mesh, so that growth needs one.
+constexpr bool spawns_from_mesh(SpawnMode mode) {
+  return mode == SpawnMode::inside || mode == SpawnMode::radial || mode == SpawnMode::surface;
+}
+
+//! Parses the CLI's words; throws InvalidInput naming the accepted ones.
+SpawnMode parse_spawn_mode(std::string_view word);
+Axis parse_axis(std::string_view word);
+IndexKind parse_index_kind(std::string_view word);
+
+//! Throws InvalidInput with a one-line message at the first option that cannot work.
+void validate(const GrowthOptions& options);
+
+// ---------------------------------------------------------------------------------------------
+
+inline std::string_view to_string(SpawnMode mode) {
+  switch (mode) {
+    case SpawnMode::sphere: return "sphere";
+    case SpawnMode::disk: return "disk";
+    case SpawnMode::box: return "box";
+    case SpawnMode::inside: return "inside";
+    case SpawnMode::radial: return "radial";
+    case SpawnMode::surface: return "surface";
+  }
+  return "?";
+}
+
+inline std::string_view to_string(Axis axis) {
+  switch (axis) {
+    case Axis::x: return "x";
+    case Axis::y: return "y";
+    case Axis::z: return "z";
+  }
+  return "?";
+}
+
+inline std::string_view to_string(IndexKind kind) {
+  switch (kind) {
+    case IndexKind::grid: return "grid";
+    case IndexKind::kdtree: return "kdtree";
+    case IndexKind::brute: return "brute";
+  }
+  return "?";
+}
+
+namespace detail {
+template <class Enum, std::size_t N>
+Enum parse_word(std::string_view word, const Enum (&values)[N], std::string_view what) {
+  std::string accepted;
+  for (Enum value : values) {
+    if (word == to_string(value)) return value;
+    accepted += (accepted.empty() ? "" : ", ") + std::string(to_string(value));
+  }
+  throw InvalidInput(std::string(what) + " '" + std::string(word) + "' is not one of " + accepted);
+}
+
+inline std::string format_number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", value);
+  return buffer;
+}
+
+//! A count with its thousands grouped: "64,687".
+inline std::string format_count(std::uint64_t value) {
+  std::string digits = std::to_string(value);
+  for (int i = static_cast<int>(digits.size()) - 3; i > 0; i -= 3) digits.insert(static_cast<std::size_t>(i), ",");
+  return digits;
+}
+
+//! Throws InvalidInput "WHAT VALUE is not in [LOW, HIGH]" unless low <= value <= high (NaN
+//! never is).
+inline void require_in(const std::string& what, double value, double low, double high) {
+  if (!(value >= low && value <= high))
+    throw InvalidInput(what + " " + format_number(value) + " is not in [" + format_number(low) + ", " +
+                       format_number(high) + "]");
+}
+
+//! Throws InvalidInput unless every coordinate of `point` is finite and within
+//! kMaxCoordinate spacings of the origin.
+inline void require_representable(const std::string& what, const Vec3& point, double spacing) {
+  if (!point.allFinite()) throw InvalidInput(what + " is not finite");
+  if (point.cwiseAbs().maxCoeff() > kMaxCoordinate * spacing)
+    throw InvalidInput(what + " lies more than " + format_number(kMaxCoordinate) +
+                       " spacings from the origin, beyond what double precision resolves");
+}
+}  // namespace detail
+
+inline SpawnMode parse_spawn_mode(std::string_view word) {
+  constexpr SpawnMode values[] = {SpawnMode::sphere, SpawnMode::disk, SpawnMode::box, SpawnMode::inside,
+                                  SpawnMode::radial, SpawnMode::surface};
+  return detail::parse_word(word, values, "spawn mode");
+}
+
+inline Axis parse_axis(std::string_view word) {
+  constexpr Axis values[] = {Axis::x, Axis::y, Axis::z};
+  return detail::parse_word(word, values, "axis");
+}
+
+inline IndexKind parse_index_kind(std::string_view word) {
+  constexpr IndexKind values[] = {IndexKind::grid, IndexKind::kdtree, IndexKind::brute};
+  return detail::parse_word(word, values, "index");
+}
+
+inline void validate(const GrowthOptions& o) {
+  using detail::format_number;
+  // Parents are stored as 32-bit indices.
+  if (o.particles + o.seeds.size() > 2'000'000'000u)
+    throw InvalidInput("particles " + std::to_string(o.particles) + " is more than 2e9");
+  detail::require_in("spacing", o.spacing, kMinSpacing, kMaxSpacing);
+  detail::require_in("stickiness", o.stickiness, kMinStickiness, 1.0);
+  if (o.dimensions != 2 && o.dimensions != 3)
+    throw InvalidInput("dimensions " + std::to_string(o.dimensions) + " is not 2 or 3");
+  if (o.seeds.empty()) throw InvalidInput("there is no seed");
+  for (std::size_t i = 0; i < o.seeds.size(); ++i) {
+    const Vec3& s = o.seeds[i];
+    detail::require_representable("seed " + std::to_string(i + 1), s, o.spacing);
+    if (o.dimensions == 2 && s.z() != 0.0)
+      throw InvalidInput("seed " + std::to_string(i + 1) + " has z = " + format_number(s.z()) +
+                         " but growth in 2 dimensions is in the plane z = 0");
+    for (std::size_t j = 0; j < i; ++j)
+      if ((o.seeds[j] - s).norm() < o.spacing)
+        throw InvalidInput("seeds " + std::to_string(j + 1) + " and " + std::to_string(i + 1) +
+                           " are closer than the spacing " + format_number(o.spacing));
+  }
+  if (o.dimensions == 2 && o.spawn == SpawnMode::disk && o.spawn_axis == Axis::z)
+    throw InvalidInput("the disk spawn axis must be x or y in 2 dimensions");
+  if (!(o.disk_radius > 0.0 && o.disk_radius <= kMaxDiskRadius))
+    throw InvalidInput("disk radius " + format_number(o.disk_radius) + " is not in (0, " +
+                       format_number(kMaxDiskRadius) + "]");
+  if (o.spawn_box) {
+    const Box& b = *o.spawn_box;
+    detail::require_representable("spawn box's min corner", b.min, o.spacing);
+    detail::require_representable("spawn box's max corner", b.max, o.spacing);
+    const int axes = o.dimensions;
+    for (int a = 0; a < axes; ++a)
+      if (!(b.min[a] < b.max[a]))
+        throw InvalidInput("spawn box is empty: its min corner is not below its max corner");
+  }
+  if (!o.drift.allFinite() || !(o.drift.norm() < 1.0))
+    throw InvalidInput("drift length " + format_number(o.drift.norm()) + " is not below 1");
+  if (o.dimensions == 2 && o.drift.z() != 0.0)
+    throw InvalidInput("drift has a z component but growth in 2 dimensions is in the plane z = 0");
+  detail::require_in("min step", o.min_step, kMinMinStep, 1.0);
+  if (o.threads < 1 || o.threads > 256) throw InvalidInput("threads " + std::to_string(o.threads) + " is not in 1-256");
+  if (o.threads > 1 && o.index != IndexKind::grid)
+    throw InvalidInput("threads above 1 need the grid index, not " + std::string(to_string(o.index)));
+}
+
+}  // namespace dla

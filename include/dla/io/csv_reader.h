@@ -1,0 +1,22 @@
+#pragma once
+//! \file csv_reader.h
+//! A structure read back from the CSV that write_csv() makes (`id,x,y,z,parent,seed`), for
+//! `dla3d analyze` and for tools that measure what was grown.
+
+#include "dla/core/cluster.h"
+
+#include <string>
+#include <string_view>
+
+namespace dla {
+
+//! Parses a dla3d CSV held in `text`; `name` names it in errors. The spacing is the median
+//! branch length; the structure is planar if every z is 0. Throws InvalidInput, one line naming
+//! `name` and the row, for anything else: rows out of order, a parent that is not an earlier
+//! particle, a number that is not finite, no branch to measure.
+Cluster parse_csv(std::string_view text, const std::string& name);
+
+//! Reads and parses the CSV at `path`; throws IOError if it cannot be read.
+Cluster read_csv(const std::string& path);
+
+}  // namespace dla

@@ -1,0 +1,49 @@
+#pragma once
+//! \file pov_writer.h
+//! POV-Ray scene: PREFIX.pov (camera, lights, look) that includes PREFIX.inc (the geometry:
+//! one sphere_sweep per strand, or a blob of spheres, and a DLA_Tip at every tip). The radius
+//! model, the radii and the colours are switches at the top of the .pov. See docs/formats.md
+//! and docs/look.md.
+
+#include "dla/look/look.h"
+#include "dla/mesh/mesh.h"
+
+#include <string>
+#include <string_view>
+
+namespace dla {
+
+//! What the structure is made of in the scene (`--look branches|blob`).
+enum class PovStyle {
+  branches,  //!< a sphere_sweep along each strand
+  blob,      //!< metaballs: a blob of one sphere per particle (the thesis' "uncanny growth")
+};
+
+inline std::string_view to_string(PovStyle style) { return style == PovStyle::branches ? "branches" : "blob"; }
+
+inline PovStyle parse_pov_style(std::string_view word) {
+  constexpr PovStyle values[] = {PovStyle::branches, PovStyle::blob};
+  return detail::parse_word(word, values, "look");
+}
+
+struct PovOptions {
+  PovStyle style = PovStyle::branches;
+  Axis up = Axis::y;          //!< the scene's up direction (a scanned mesh is often z-up)
+  std::string comment;        //!< one line written at the top of the .pov (the command, say)
+};
+
+//! Throws InvalidInput if the prefix's file name has a double quote, a backslash or a control
+//! character: POV-Ray's #include cannot name such a file (spaces and other characters work).
+void validate_pov_prefix(const std::string& prefix);
+
+//! Writes PREFIX.pov and PREFIX.inc; the .pov includes the .inc by its file name, so the two
+//! stay side by side. The look gives the radius model and range (switchable in the .pov: the
+//! .inc carries what every model needs) and the colour; without one, the default look. With
+//! a `mesh` (the constraint), the .inc also holds it as a smooth mesh2, shown as glass and
+//! framed with the structure. A structure whose spacing is far from 1, or that lies far from
+//! the origin, is written scaled and shifted (the .pov says so). Throws IOError if a file
+//! cannot be written.
+void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptions& options = {},
+               const TriangleMesh* mesh = nullptr, const Look* look = nullptr);
+
+}  // namespace dla

@@ -1,0 +1,127 @@
+#pragma once
+//! \file instances.h
+//! Instancing points, the thesis' object fill: where copies of an object (a leaf, a flower, a
+//! crystal) go, which way they point and how large they may be without overlapping. Written
+//! as PREFIX_tips.ply for Houdini's Copy to Points and Blender's geometry nodes, and called as
+//! DLA_Tip in the POV-Ray scene. See docs/look.md.
+
+#include "dla/look/attributes.h"
+#include "dla/index/nearest_points.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string_view>
+#include <vector>
+
+namespace dla {
+
+//! Which particles become instancing points (`--instances tips|all`).
+enum class InstanceSet {
+  tips,  //!< the particles with no child
+  all,   //!< every particle
+};
+
+inline std::string_view to_string(InstanceSet set) { return set == InstanceSet::tips ? "tips" : "all"; }
+
+inline InstanceSet parse_instance_set(std::string_view word) {
+  constexpr InstanceSet values[] = {InstanceSet::tips, InstanceSet::all};
+  return detail::parse_word(word, values, "instance set");
+}
+
+struct InstanceOptions {
+  InstanceSet set = InstanceSet::tips;
+  //! Keep only points within this distance of the mesh's surface, in spacings, >= 0
+  //! (`--tips-within`: the thesis' leaves near the boundary); infinity keeps all.
+  double within = std::numeric_limits<double>::infinity();
+};
+
+inline void validate(const InstanceOptions& options) {
+  if (!(options.within >= 0.0)) throw InvalidInput("tips within " + detail::format_number(options.within) + " is not >= 0");
+}
+
+struct Instance {
+  Vec3 position;
+  Vec3 direction;          //!< unit: from the parent to the particle (a seed: +z)
+  double scale;            //!< half the distance to the nearest other instance (less its
+                           //!< float rounding: about 1e-6 of the structure's size), and no more
+                           //!< than the distance to the mesh's surface: unit-radius copies
+                           //!< scaled by it never overlap nor cross the mesh
+  std::int32_t particle;   //!< index in Cluster::particles
+};
+
+//! Which particles become instancing points: selected(i) says whether particle i does.
+//! Throws InvalidInput for `within` without the distance to a mesh.
+class InstanceSelection {
+ public:
+  InstanceSelection(const Cluster& cluster, const Attributes& attributes, const InstanceOptions& options)
+      : attributes_(attributes), set_(options.set), within_(options.within * cluster.spacing),
+        near_boundary_(options.within != std::numeric_limits<double>::infinity()) {
+    validate(options);
+    if (near_boundary_ && attributes.boundary_distance.empty())
+      throw InvalidInput("--tips-within measures to a constraint mesh (--stl)");
+  }
+  bool operator()(std::size_t i) const {
+    if (set_ == InstanceSet::tips && !attributes_.tip(i)) return false;
+    return !near_boundary_ || attributes_.boundary_distance[i] <= within_;
+  }
+
+ private:
+  const Attributes& attributes_;
+  InstanceSet set_;
+  double within_;
+  bool near_boundary_;
+};
+
+//! The instancing point at particle i, whose half gap to the nearest other is `gap` spacings
+//! (half_gaps in attributes.h).
+inline Instance instance_at(const Cluster& cluster, const Attributes& attributes, std::size_t i, float gap) {
+  const auto& ps = cluster.particles;
+  const Particle& p = ps[i];
+  Vec3 direction = Vec3::UnitZ();
+  if (p.parent >= 0) direction = (p.position - ps[static_cast<std::size_t>(p.parent)].position).normalized();
+  double scale = static_cast<double>(gap) * cluster.spacing;
+  if (!std::isfinite(scale)) scale = cluster.spacing;  // a lone instance: as large as a particle
+  if (!attributes.boundary_distance.empty()) scale = std::min(scale, static_cast<double>(attributes.boundary_distance[i]));
+  return {p.position, direction, scale, static_cast<std::int32_t>(i)};
+}
+
+//! How many instancing points the options give.
+inline std::size_t count_instances(const Cluster& cluster, const Attributes& attributes, const InstanceOptions& options) {
+  const InstanceSelection selected(cluster, attributes, options);
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < cluster.particles.size(); ++i) count += selected(i);
+  return count;
+}
+
+//! Calls visit(const Instance&) for each instancing point, in attach order, holding none of
+//! them. The tips use the attributes' tip_gaps where they were measured; other selections
+//! measure their own gaps, 20 bytes a point while it runs. Throws as InstanceSelection.
+template <class Visit>
+void for_each_instance(const Cluster& cluster, const Attributes& attributes, const InstanceOptions& options,
+                       Visit&& visit) {
+  const InstanceSelection selected(cluster, attributes, options);
+  const auto& ps = cluster.particles;
+  const bool every_tip = options.set == InstanceSet::tips && options.within == std::numeric_limits<double>::infinity() &&
+                         !attributes.tip_gaps.empty();
+  std::vector<float> measured;
+  if (!every_tip) {
+    std::vector<bool> chosen(ps.size());
+    for (std::size_t i = 0; i < ps.size(); ++i) chosen[i] = selected(i);
+    measured = half_gaps(cluster, chosen);
+  }
+  const std::vector<float>& gaps = every_tip ? attributes.tip_gaps : measured;
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (selected(i)) visit(static_cast<const Instance&>(instance_at(cluster, attributes, i, gaps[k++])));
+}
+
+//! The instancing points of a structure, all at once.
+inline std::vector<Instance> instancing_points(const Cluster& cluster, const Attributes& attributes,
+                                               const InstanceOptions& options) {
+  std::vector<Instance> instances;
+  for_each_instance(cluster, attributes, options, [&](const Instance& instance) { instances.push_back(instance); });
+  return instances;
+}
+
+}  // namespace dla

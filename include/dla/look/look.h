@@ -1,0 +1,49 @@
+#pragma once
+//! \file look.h
+//! How a grown structure looks in every file: its attributes, the radius model's radii, the
+//! colour and the tube mesh's resolution, computed once after growth and shared by the
+//! writers. See docs/look.md.
+
+#include "dla/look/attributes.h"
+#include "dla/look/color_map.h"
+#include "dla/look/radius_model.h"
+#include "dla/look/tubes.h"
+
+namespace dla {
+
+struct LookOptions {
+  RadiusOptions radius;               //!< branch thickness
+  ColorBy color_by = ColorBy::none;   //!< vertex colours of the tube meshes, textures in POV-Ray
+  TubeOptions tubes;                  //!< the glTF and OBJ tube meshes
+};
+
+inline void validate(const LookOptions& options) {
+  validate(options.radius);
+  validate(options.tubes);
+}
+
+//! A structure's look: its options and what they give for each particle.
+struct Look {
+  LookOptions options;
+  Attributes attributes;
+
+  //! Particle i's branch radius in scene units.
+  double radius(const Cluster& cluster, std::size_t i) const {
+    return static_cast<double>(branch_radius(options.radius, cluster, attributes, i)) * cluster.spacing;
+  }
+  //! Every particle's branch radius, in spacings, for the tube meshes.
+  std::vector<float> radii(const Cluster& cluster) const { return branch_radii(options.radius, cluster, attributes); }
+};
+
+//! Computes the attributes; the radii come from them when asked. Throws InvalidInput for bad
+//! options, or a model that needs a mesh (`boundary`) without `sources.surface`.
+inline Look make_look(const Cluster& cluster, const LookOptions& options, const AttributeOptions& sources = {}) {
+  validate(options);
+  Look look;
+  look.options = options;
+  look.attributes = compute_attributes(cluster, sources);
+  validate(options.radius, look.attributes);
+  return look;
+}
+
+}  // namespace dla

@@ -1,0 +1,105 @@
+#pragma once
+//! \file radius_model.h
+//! How thick each branch is: a radius per particle from its attributes, between a tip radius
+//! and a base radius. The words are the CLI's (`--radius taper|pipe|boundary|seed-distance|
+//! uniform`). See docs/look.md.
+
+#include "dla/look/attributes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string_view>
+#include <vector>
+
+namespace dla {
+
+enum class RadiusModel {
+  taper,          //!< base at each strand's start, tip at its end (Bourke)
+  pipe,           //!< the pipe model: tip · (descendants + 1)^(1/e), up to base (da Vinci, Murray)
+  boundary,       //!< thick far from the mesh's surface, fine near it (the thesis' wire fill)
+  seed_distance,  //!< thick at the seeds, finer the farther from them
+  uniform,        //!< the base radius everywhere
+};
+
+//! The range of branch radii, in spacings: beyond it a branch vanishes or swallows the scene.
+inline constexpr double kMinBranchRadius = 1e-3, kMaxBranchRadius = 1e3;
+
+struct RadiusOptions {
+  RadiusModel model = RadiusModel::taper;
+  double tip_radius = 0.25;    //!< the finest radius, in spacings, in [1e-3, 1e3]
+  double base_radius = 0.5;    //!< the thickest radius, in spacings, in [1e-3, 1e3]
+  double pipe_exponent = 2.0;  //!< pipe: e, in [1, 10]; 2 keeps the cross-section's area, about
+                               //!< 3 is Murray's law
+};
+
+inline std::string_view to_string(RadiusModel model) {
+  switch (model) {
+    case RadiusModel::taper: return "taper";
+    case RadiusModel::pipe: return "pipe";
+    case RadiusModel::boundary: return "boundary";
+    case RadiusModel::seed_distance: return "seed-distance";
+    case RadiusModel::uniform: return "uniform";
+  }
+  return "?";
+}
+
+inline RadiusModel parse_radius_model(std::string_view word) {
+  constexpr RadiusModel values[] = {RadiusModel::taper, RadiusModel::pipe, RadiusModel::boundary,
+                                    RadiusModel::seed_distance, RadiusModel::uniform};
+  return detail::parse_word(word, values, "radius model");
+}
+
+inline void validate(const RadiusOptions& options) {
+  detail::require_in("base radius", options.base_radius, kMinBranchRadius, kMaxBranchRadius);
+  detail::require_in("tip radius", options.tip_radius, kMinBranchRadius, kMaxBranchRadius);
+  detail::require_in("pipe exponent", options.pipe_exponent, 1.0, 10.0);
+}
+
+//! Where particle i lies between the tip radius (0) and the base radius (1) under the model.
+//! The largest distances of the structure (Attributes::boundary_reach, seed_reach) map to the
+//! thickest and the finest branch.
+inline double radius_fraction(const RadiusOptions& options, const Cluster& cluster, const Attributes& a,
+                              std::size_t i) {
+  switch (options.model) {
+    case RadiusModel::taper: return a.taper(i);
+    case RadiusModel::pipe: {
+      // tip · (d + 1)^(1/e), capped at the base, as a fraction of the range.
+      const double range = options.base_radius - options.tip_radius;
+      if (range <= 0.0) return 1.0;
+      const double r = options.tip_radius * std::pow(a.descendants[i] + 1.0, 1.0 / options.pipe_exponent);
+      return std::min(1.0, (r - options.tip_radius) / range);
+    }
+    case RadiusModel::boundary: return a.boundary_reach > 0.0 ? a.boundary_distance[i] / a.boundary_reach : 1.0;
+    case RadiusModel::seed_distance:
+      return a.seed_reach > 0.0 ? 1.0 - a.seed_distance(cluster.particles[i].position) / a.seed_reach : 1.0;
+    case RadiusModel::uniform: return 1.0;
+  }
+  return 1.0;
+}
+
+//! Throws InvalidInput for bad options, and for `boundary` without a mesh distance.
+inline void validate(const RadiusOptions& options, const Attributes& attributes) {
+  validate(options);
+  if (options.model == RadiusModel::boundary && attributes.boundary_distance.empty())
+    throw InvalidInput("the boundary radius model needs a constraint mesh (--stl)");
+}
+
+//! Particle i's branch radius, in spacings (a float holds it at any spacing: multiply by the
+//! cluster's spacing for scene units). Computed when asked, as it is cheap, rather than stored.
+//! The options must have passed validate(options, attributes).
+inline float branch_radius(const RadiusOptions& options, const Cluster& cluster, const Attributes& attributes,
+                           std::size_t i) {
+  const double f = radius_fraction(options, cluster, attributes, i);
+  return static_cast<float>(options.tip_radius + (options.base_radius - options.tip_radius) * f);
+}
+
+//! The branch radius of every particle, in spacings, for the tube meshes. Throws as validate.
+inline std::vector<float> branch_radii(const RadiusOptions& options, const Cluster& cluster,
+                                       const Attributes& attributes) {
+  validate(options, attributes);
+  std::vector<float> radii(attributes.size());
+  for (std::size_t i = 0; i < radii.size(); ++i) radii[i] = branch_radius(options, cluster, attributes, i);
+  return radii;
+}
+
+}  // namespace dla

@@ -1,0 +1,215 @@
+#pragma once
+//! \file tubes.h
+//! The structure as a triangle mesh: one closed tube per strand (strands.h), swept along the
+//! strand with rotation-minimising frames so it does not twist, capped at both ends. A strand
+//! that leaves a branch point starts inside its parent's tube, so branches join without a gap.
+//! The glTF and OBJ writers stream these pieces. See docs/look.md.
+
+#include "dla/look/attributes.h"
+#include "dla/look/strands.h"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace dla {
+
+struct TubeOptions {
+  int sides = 8;           //!< vertices around a tube, in [3, 64]
+  double tolerance = 0.0;  //!< spacings, in [0, 10]: a strand's point is left out where the tube
+                           //!< without it stays within this of its centre and radius; 0 keeps all
+  int min_branch = 1;      //!< a branch (a strand and all that grows from it) of fewer
+                            //!< particles gets no tube: twigs go first, in [1, 1000]; 1 keeps all
+};
+
+inline void validate(const TubeOptions& options) {
+  if (options.sides < 3 || options.sides > 64)
+    throw InvalidInput("tube sides " + std::to_string(options.sides) + " is not in 3-64");
+  detail::require_in("tube tolerance", options.tolerance, 0.0, 10.0);
+  if (options.min_branch < 1 || options.min_branch > 1000)
+    throw InvalidInput("tube min branch " + std::to_string(options.min_branch) + " is not in 1-1000");
+}
+
+//! One strand's tube: vertices with normals, each tied to the particle whose attributes it
+//! carries, and outward-facing triangles of local vertex indices.
+struct TubePiece {
+  std::vector<Eigen::Vector3f> positions;
+  std::vector<Eigen::Vector3f> normals;       //!< unit length
+  std::vector<std::int32_t> particles;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+
+  void clear() {
+    positions.clear();
+    normals.clear();
+    particles.clear();
+    triangles.clear();
+  }
+};
+
+//! A tube with `rings` rings of `sides` vertices, a centre vertex closing its start and a
+//! rounded tip (one more ring and an apex).
+inline std::size_t tube_vertices(std::size_t rings, int sides) { return (rings + 1) * static_cast<std::size_t>(sides) + 2; }
+inline std::size_t tube_triangles(std::size_t rings, int sides) { return 2 * (rings + 1) * static_cast<std::size_t>(sides); }
+
+namespace detail {
+
+//! The strand's points that the tube keeps (positions in `strand`): the ends always; an inner
+//! point only where leaving it out would move the tube's axis or radius by more than `tolerance`.
+inline void kept_points(const Cluster& cluster, const std::vector<float>& radii, const Strand& strand,
+                        double tolerance, std::vector<std::size_t>& kept) {
+  kept.clear();
+  kept.push_back(0);
+  const std::size_t last = strand.size() - 1;
+  if (tolerance <= 0.0) {
+    for (std::size_t k = 1; k <= last; ++k) kept.push_back(k);
+    return;
+  }
+  constexpr std::size_t kWindow = 64;  // the most points one segment may stand for
+  const auto at = [&](std::size_t k) -> const Vec3& { return cluster.particles[static_cast<std::size_t>(strand[k])].position; };
+  const auto radius = [&](std::size_t k) { return radii[static_cast<std::size_t>(strand[k])] * cluster.spacing; };
+  std::size_t anchor = 0;
+  while (anchor < last) {
+    std::size_t reach = anchor + 1;
+    for (std::size_t j = anchor + 2; j <= last && j - anchor <= kWindow; ++j) {
+      const Vec3 axis = at(j) - at(anchor);
+      const double length2 = axis.squaredNorm();
+      bool close = true;
+      for (std::size_t k = anchor + 1; k < j && close; ++k) {
+        const double t = length2 > 0 ? std::clamp((at(k) - at(anchor)).dot(axis) / length2, 0.0, 1.0) : 0.0;
+        const double off = (at(anchor) + t * axis - at(k)).norm();
+        const double r = radius(anchor) + t * (radius(j) - radius(anchor));
+        close = off <= tolerance && std::abs(r - radius(k)) <= tolerance;
+      }
+      if (!close) break;
+      reach = j;
+    }
+    kept.push_back(reach);
+    anchor = reach;
+  }
+}
+
+}  // namespace detail
+
+//! Calls visit(const TubePiece&) for the tube of each strand of two or more particles, in
+//! strand order (strands.h, from the attributes' links); `radii` are the branch radii
+//! (Look::radii) in spacings. A seed with no child has no tube.
+template <class Visit>
+void for_each_tube(const Cluster& cluster, const Attributes& attributes, const std::vector<float>& radii,
+                   const TubeOptions& options, Visit&& visit) {
+  validate(options);
+  const int sides = options.sides;
+  const double tolerance = options.tolerance * cluster.spacing;
+  std::vector<double> cosines(static_cast<std::size_t>(sides)), sines(static_cast<std::size_t>(sides));
+  for (int s = 0; s < sides; ++s) {
+    const double angle = 2.0 * 3.14159265358979323846 * s / sides;
+    cosines[static_cast<std::size_t>(s)] = std::cos(angle);
+    sines[static_cast<std::size_t>(s)] = std::sin(angle);
+  }
+  TubePiece piece;
+  std::vector<std::size_t> kept;
+  std::vector<Vec3> points, tangents;
+  std::vector<double> ring_radii;
+  std::vector<std::int32_t> owners;
+  const auto continues = [&](std::size_t i) { return attributes.continues_strand(i); };
+  for_each_strand(cluster, continues, [&](const Strand& strand) {
+    if (strand.size() < 2) return;
+    detail::kept_points(cluster, radii, strand, tolerance, kept);
+    const std::size_t rings = kept.size();
+    points.resize(rings);
+    ring_radii.resize(rings);
+    owners.resize(rings);
+    for (std::size_t j = 0; j < rings; ++j) {
+      const auto id = static_cast<std::size_t>(strand[kept[j]]);
+      points[j] = cluster.particles[id].position;
+      ring_radii[j] = radii[id] * cluster.spacing;
+      owners[j] = strand[kept[j]];
+    }
+    // A strand leaving a branch point starts there, no thicker than its parent's tube nor its
+    // own next point: it begins inside the parent. Its colour is its own. A seed's own
+    // strand starts at the seed.
+    const bool own_start = starts_at_own_seed(strand, continues);
+    // A branch's particles: its first own particle's subtree; a pruned branch's branches are
+    // smaller still, so nothing is left floating.
+    if (options.min_branch > 1 &&
+        attributes.descendants[static_cast<std::size_t>(strand[own_start ? 0 : 1])] + 1 < options.min_branch)
+      return;
+    if (!own_start) {
+      ring_radii[0] = std::min(ring_radii[0], ring_radii[1]);
+      owners[0] = owners[1];
+    }
+    tangents.resize(rings);
+    for (std::size_t j = 0; j < rings; ++j) {
+      const Vec3 d = points[std::min(j + 1, rings - 1)] - points[j == 0 ? 0 : j - 1];
+      tangents[j] = d.normalized();
+    }
+    piece.clear();
+    // The first frame: the normal across the tangent's smallest component, then carried
+    // along by double reflection (Wang et al. 2008), which does not twist.
+    Vec3 normal;
+    {
+      const Vec3& t = tangents[0];
+      Eigen::Index axis = 0;
+      t.cwiseAbs().minCoeff(&axis);
+      normal = t.cross(Vec3::Unit(axis)).normalized();
+    }
+    const auto ring = [&](const Vec3& center, const Vec3& t, const Vec3& n, double radius, double lean,
+                          std::int32_t owner) {
+      const Vec3 b = t.cross(n);
+      for (int s = 0; s < sides; ++s) {
+        const Vec3 out = cosines[static_cast<std::size_t>(s)] * n + sines[static_cast<std::size_t>(s)] * b;
+        piece.positions.push_back((center + radius * out).cast<float>());
+        piece.normals.push_back((out + lean * t).normalized().cast<float>());
+        piece.particles.push_back(owner);
+      }
+    };
+    const auto k = static_cast<std::uint32_t>(sides);
+    for (std::size_t j = 0; j < rings; ++j) {
+      if (j > 0) {
+        const Vec3 v1 = points[j] - points[j - 1];
+        const double c1 = v1.squaredNorm();
+        Vec3 n = normal, t = tangents[j - 1];
+        if (c1 > 0) {
+          n -= (2.0 / c1) * v1.dot(n) * v1;
+          t -= (2.0 / c1) * v1.dot(t) * v1;
+        }
+        const Vec3 v2 = tangents[j] - t;
+        const double c2 = v2.squaredNorm();
+        if (c2 > 1e-24) n -= (2.0 / c2) * v2.dot(n) * v2;
+        normal = (n - n.dot(tangents[j]) * tangents[j]).normalized();
+      }
+      ring(points[j], tangents[j], normal, ring_radii[j], 0.0, owners[j]);
+    }
+    // The rounded tip: a ring part way round, then the apex.
+    const Vec3& end = points[rings - 1];
+    const Vec3& t_end = tangents[rings - 1];
+    const double r_end = ring_radii[rings - 1];
+    ring(end + 0.7 * r_end * t_end, t_end, normal, 0.7 * r_end, 1.0, owners[rings - 1]);
+    const auto apex = static_cast<std::uint32_t>(piece.positions.size());
+    piece.positions.push_back((end + r_end * t_end).cast<float>());
+    piece.normals.push_back(t_end.cast<float>());
+    piece.particles.push_back(owners[rings - 1]);
+    const auto start = static_cast<std::uint32_t>(piece.positions.size());
+    piece.positions.push_back(points[0].cast<float>());
+    piece.normals.push_back((-tangents[0]).cast<float>());
+    piece.particles.push_back(owners[0]);
+    // Walls between consecutive rings (the tip's ring included), outward by the frame's
+    // handedness: b = t × n turns counter-clockwise seen from ahead.
+    for (std::uint32_t j = 0; j < rings; ++j)
+      for (std::uint32_t s = 0; s < k; ++s) {
+        const std::uint32_t a = j * k + s, b = j * k + (s + 1) % k;
+        const std::uint32_t c = b + k, d = a + k;
+        piece.triangles.push_back({a, b, c});
+        piece.triangles.push_back({a, c, d});
+      }
+    for (std::uint32_t s = 0; s < k; ++s) {
+      piece.triangles.push_back({static_cast<std::uint32_t>(rings) * k + s, static_cast<std::uint32_t>(rings) * k + (s + 1) % k, apex});
+      piece.triangles.push_back({start, (s + 1) % k, s});
+    }
+    visit(static_cast<const TubePiece&>(piece));
+  });
+}
+
+}  // namespace dla

@@ -1,0 +1,122 @@
+#pragma once
+//! \file constraint.h
+//! A triangle mesh that constrains growth (Bourke's constrained DLA): walkers move freely, and
+//! when one is about to stick its new branch is tested against the surface. A branch that
+//! crosses is refused (the walker walks on) or clipped to end just short of the surface.
+//! Walkers on the wrong side of a closed surface, farther than the attach distance, can never
+//! stick and are launched again. See docs/constraints.md.
+
+#include "dla/mesh/inside_test.h"
+#include "dla/mesh/mesh.h"
+#include "dla/mesh/mesh_repair.h"
+#include "dla/core/random.h"
+#include "dla/mesh/surface_intersector.h"
+
+#include <string_view>
+#include <vector>
+
+namespace dla {
+
+//! Which side of the surface the structure grows on (`--side inside|outside|both`).
+enum class Side {
+  inside,   //!< within a closed surface (a vessel, a bust); holes are closed first
+  outside,  //!< around a closed object; holes are closed first
+  both,     //!< the surface is only a wall, open or closed, and is used as it is (an open can)
+};
+
+//! What a branch that crosses the surface does (`--constraint reject|clip`).
+enum class ConstraintMode {
+  reject,  //!< the attachment is refused and the walker walks on
+  clip,    //!< the branch ends just short of the surface: the new particle touches it
+};
+
+std::string_view to_string(Side side);
+std::string_view to_string(ConstraintMode mode);
+Side parse_side(std::string_view word);
+ConstraintMode parse_constraint_mode(std::string_view word);
+
+struct ConstraintOptions {
+  Side side = Side::inside;                      //!< where the structure grows
+  ConstraintMode mode = ConstraintMode::reject;  //!< what a crossing branch does
+};
+
+//! The verdict on a new branch.
+struct BranchCheck {
+  bool accepted = true;  //!< false: the walker walks on
+  bool clipped = false;  //!< the end was moved back to just short of the surface
+  Vec3 end;              //!< where the new particle goes
+};
+
+class MeshConstraint {
+ public:
+  //! Repairs `mesh` (closing holes unless the side is `both`), then builds the inside grid and
+  //! Embree's scene. `spacing` is the growth's spacing: it sets the grid's cell and the band
+  //! of the surface within which walkers may still stick. Throws InvalidInput if a solid is
+  //! asked for and the mesh cannot be closed.
+  MeshConstraint(const TriangleMesh& mesh, const ConstraintOptions& options, double spacing);
+
+  const ConstraintOptions& options() const { return options_; }
+  double spacing() const { return spacing_; }
+  const TriangleMesh& mesh() const { return mesh_; }  //!< the repaired mesh
+  const RepairReport& repair_report() const { return repair_; }
+  const Box& box() const { return box_; }
+  const InsideTest& inside_test() const { return inside_; }
+  //! Centre and radius of a sphere around the mesh: the sphere spawn with a mesh.
+  const Vec3& center() const { return center_; }
+  double radius() const { return radius_; }
+
+  //! Whether p is on the growing side (an exact test; always true for `both`).
+  bool on_growth_side(const Vec3& p) const;
+
+  //! Whether a walker at p can never stick: on the wrong side of a closed surface and farther
+  //! than the spacing from it. A grid look-up, cheap enough for every step.
+  bool lost(const Vec3& p) const {
+    if (options_.side == Side::both) return false;
+    const Region region = inside_.region(p);
+    return region == (options_.side == Side::inside ? Region::outside : Region::inside);
+  }
+
+  //! Tests the branch from a particle to a new one against the surface (Embree).
+  BranchCheck check_branch(const Vec3& from, const Vec3& to) const;
+
+  //! A point uniform in the enclosed volume (`--spawn inside`).
+  Vec3 draw_inside(Rng& rng) const;
+  //! A point on the segment from the volume's centroid to a point of the surface, both
+  //! uniform (`--spawn radial`, Bourke's figure 5): thin features get walkers in proportion to
+  //! their surface, not their tiny volume.
+  Vec3 draw_radial(Rng& rng) const;
+  //! A point half a spacing off the surface on the growing side, uniform by area
+  //! (`--spawn surface`): growth reaches every part of the mesh, thin horns included, as the
+  //! thesis' roots fill a model from its skin.
+  Vec3 draw_near_surface(Rng& rng) const;
+
+  //! `count` seeds on the growing side: inside, deep and far apart; outside, a little off the
+  //! surface and far apart. The same for the same `rng_seed`. Throws InvalidInput if they do
+  //! not fit.
+  std::vector<Vec3> place_seeds(std::size_t count, std::uint64_t rng_seed) const;
+
+  //! Distance from p to the nearest triangle (a scan of every triangle: for set-up and tests).
+  double distance_to_surface(const Vec3& p) const;
+
+ private:
+  Vec3 surface_point(Rng& rng, Vec3* normal) const;
+  bool encloses(const Vec3& p) const;  // inside, by the grid where it can tell
+
+  ConstraintOptions options_;
+  double spacing_;
+  RepairReport repair_;
+  TriangleMesh mesh_;
+  Box box_;
+  Vec3 center_;
+  double radius_ = 0.0;
+  Vec3 centroid_;              // of the enclosed volume, for the radial spawn
+  double gap_ = 0.0;           // how far short of the surface a clipped branch ends
+  std::vector<double> area_prefix_;  // cumulative triangle areas, to sample the surface
+  InsideTest inside_;
+  SurfaceIntersector hits_;
+};
+
+//! Closest distance from p to triangle (a, b, c).
+double distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
+}  // namespace dla

@@ -1,0 +1,503 @@
+#pragma once
+//! \file colonization.h
+//! Space colonization (Runions et al. 2005; the "Hyphae" write-up): attractor points pull the
+//! nearest node of a growing tree, one step at a time, and die when a node comes close. The
+//! result is the Cluster that DLA returns (roots as seeds), so every look and writer applies.
+//! See docs/colonization.md.
+//!
+//! Each iteration:
+//! 1. each live attractor knows its closest node (within the influence radius, if finite);
+//! 2. each node that some attractors chose grows one step along the normalised sum of the
+//!    unit directions to them, plus the tropism, moved by the noise;
+//! 3. attractors within the kill distance of a new node die;
+//! until no attractor is left, no node grows, or a limit is met.
+//!
+//! The closest nodes are kept, not rescanned: each new node updates only the attractors it is
+//! closer to than their current node, found in a k-d tree over the attractors whose every range
+//! knows the largest distance of its live attractors to their nodes, so a range the new node
+//! cannot improve is skipped whole. The sums of directions are kept per node in fixed point,
+//! exact whatever the order of updates: the result is the full rescan's, node for node.
+
+#include "dla/core/cluster.h"
+#include "dla/mesh/constraint.h"
+#include "dla/core/errors.h"
+#include "dla/models/growth.h"
+#include "dla/core/options.h"
+#include "dla/core/random.h"
+#include "dla/mesh/surface_distance.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace dla {
+
+//! Where scattered attractors lie (`--attractors-in`).
+enum class AttractorRegion {
+  sphere,   //!< a ball (a disk in 2D) of `radius` around `center`
+  box,      //!< the box [box_min, box_max] (a rectangle in z = 0 in 2D)
+  mesh,     //!< uniform in a mesh's enclosed volume (3D)
+  surface,  //!< uniform by area on a mesh's surface, half a spacing inside it (3D)
+};
+
+inline std::string_view to_string(AttractorRegion region) {
+  switch (region) {
+    case AttractorRegion::sphere: return "sphere";
+    case AttractorRegion::box: return "box";
+    case AttractorRegion::mesh: return "mesh";
+    case AttractorRegion::surface: return "surface";
+  }
+  return "?";
+}
+
+inline AttractorRegion parse_attractor_region(std::string_view word) {
+  constexpr AttractorRegion values[] = {AttractorRegion::sphere, AttractorRegion::box, AttractorRegion::mesh,
+                                        AttractorRegion::surface};
+  return detail::parse_word(word, values, "attractor region");
+}
+
+//! Attractors scattered at random, seeded.
+struct AttractorOptions {
+  std::size_t count = 10000;                  //!< how many, 1 to 10^8
+  AttractorRegion region = AttractorRegion::sphere;
+  Vec3 center = Vec3::Zero();                 //!< the sphere's centre, scene units
+  double radius = 50.0;                       //!< the sphere's radius, scene units, > 0
+  Vec3 box_min = Vec3::Constant(-50.0);       //!< the box's corners, scene units
+  Vec3 box_max = Vec3::Constant(50.0);
+  //! Grading towards the sphere's centre, >= 0: 0 is uniform; f puts a point at radius
+  //! R u^((1 + f) / d) for u uniform in [0, 1) (d the dimensions), denser towards the centre
+  //! as f grows, so that roots spread out do not run dry (the Hyphae write-up's fourth test).
+  double falloff = 0.0;
+};
+
+inline void validate(const AttractorOptions& o) {
+  if (o.count < 1 || o.count > 100'000'000u)
+    throw InvalidInput("attractors " + std::to_string(o.count) + " is not in [1, 1e8]");
+  // Whether the points fit the tree's spacing is colonize()'s to check.
+  if (!o.center.allFinite() || !o.box_min.allFinite() || !o.box_max.allFinite())
+    throw InvalidInput("the attractors' centre or box is not finite");
+  detail::require_in("attractor radius", o.radius, 1e-300, 1e300);
+  detail::require_in("attractor falloff", o.falloff, 0.0, 100.0);
+  if (o.region == AttractorRegion::box && !(o.box_min.array() < o.box_max.array()).head<2>().all())
+    throw InvalidInput("the attractor box's min corner is not below its max corner");
+}
+
+//! `options.count` points drawn with the generator seeded by `seed`, in z = 0 for 2D. The
+//! `mesh` and `surface` regions draw from `mesh` (a solid one: a vessel or a collision object's),
+//! in 3D only; throws InvalidInput without one.
+inline std::vector<Vec3> scatter_attractors(const AttractorOptions& options, std::uint64_t seed, int dimensions,
+                                            const MeshConstraint* mesh = nullptr) {
+  validate(options);
+  const bool on_mesh = options.region == AttractorRegion::mesh || options.region == AttractorRegion::surface;
+  if (on_mesh && !mesh)
+    throw InvalidInput("attractors in a " + std::string(to_string(options.region)) + " need a mesh: a vessel or a collision mesh");
+  if (on_mesh && dimensions != 3) throw InvalidInput("attractors in a mesh need 3 dimensions");
+  Rng rng(seed, 0x617474726163746fULL);  // a stream of its own: "attracto"
+  std::vector<Vec3> points;
+  points.reserve(options.count);
+  for (std::size_t i = 0; i < options.count; ++i) {
+    switch (options.region) {
+      case AttractorRegion::sphere: {
+        const double r = options.radius * std::pow(rng.uniform(), (1.0 + options.falloff) / dimensions);
+        points.push_back(options.center + r * random_direction(rng, dimensions));
+        break;
+      }
+      case AttractorRegion::box: {
+        Vec3 p;
+        for (int axis = 0; axis < 3; ++axis)
+          p[axis] = options.box_min[axis] + rng.uniform() * (options.box_max[axis] - options.box_min[axis]);
+        if (dimensions == 2) p.z() = 0.0;
+        points.push_back(p);
+        break;
+      }
+      case AttractorRegion::mesh: points.push_back(mesh->draw_inside(rng)); break;
+      case AttractorRegion::surface: points.push_back(mesh->draw_near_surface(rng)); break;
+    }
+  }
+  return points;
+}
+
+//! `count` of `points` (attractors read from a file) chosen at random without repeats, in
+//! their order, with the generator seeded by `seed`. Throws InvalidInput if there are fewer.
+inline std::vector<Vec3> sample_attractors(const std::vector<Vec3>& points, std::size_t count, std::uint64_t seed) {
+  if (count > points.size())
+    throw InvalidInput("a sample of " + std::to_string(count) + " attractors from " + std::to_string(points.size()) +
+                       " points");
+  // Selection sampling (Knuth's algorithm S): each point is kept with the chance that fills
+  // the sample exactly, in one pass.
+  Rng rng(seed, 0x617474726163746fULL);
+  std::vector<Vec3> chosen;
+  chosen.reserve(count);
+  for (std::size_t i = 0; i < points.size() && chosen.size() < count; ++i)
+    if (static_cast<double>(points.size() - i) * rng.uniform() < static_cast<double>(count - chosen.size()))
+      chosen.push_back(points[i]);
+  return chosen;
+}
+
+//! What a collision object does to a new node (`--collision`).
+enum class CollisionMode {
+  push,   //!< a node that would lie inside the object goes to its surface: growth flows around it
+  stick,  //!< every new node goes to the surface: growth crawls over it (veins on an arm)
+};
+
+inline std::string_view to_string(CollisionMode mode) { return mode == CollisionMode::push ? "push" : "stick"; }
+
+inline CollisionMode parse_collision_mode(std::string_view word) {
+  constexpr CollisionMode values[] = {CollisionMode::push, CollisionMode::stick};
+  return detail::parse_word(word, values, "collision");
+}
+
+//! A collision object: a mesh given as a signed distance, negative inside. The distance is the
+//! exact one to the closest point of a triangle (CGAL's AABB tree); the sign is the winding
+//! number of the repaired mesh (inside_test.h), right on open and self-intersecting meshes.
+class CollisionObject {
+ public:
+  //! Repairs `mesh` as a constraint inside it would (closing holes), for `spacing`.
+  CollisionObject(const TriangleMesh& mesh, double spacing, CollisionMode mode)
+      : solid_(mesh, ConstraintOptions{}, spacing), surface_(solid_.mesh()), mode_(mode) {}
+
+  CollisionMode mode() const { return mode_; }
+  const TriangleMesh& mesh() const { return solid_.mesh(); }
+  //! The object as a solid: attractors and roots can be drawn in it or on its surface.
+  const MeshConstraint& solid() const { return solid_; }
+
+  //! The signed distance at p (negative inside), and the surface's closest point.
+  double signed_distance(const Vec3& p, Vec3* closest = nullptr) const {
+    const Vec3 c = surface_.closest_point(p);
+    if (closest) *closest = c;
+    const double d = (p - c).norm();
+    return inside(p) ? -d : d;
+  }
+
+  //! Where a new node stepping from `from` to p goes. With push, onto the surface if p is
+  //! inside. With stick, onto the surface (p - sdf(p) grad(p), the closest point), and then a
+  //! whole `step` along the surface that way: a step into the surface would otherwise shrink to
+  //! nothing, and the veins to a heap of twigs.
+  Vec3 apply(const Vec3& from, const Vec3& p, double step) const {
+    if (mode_ == CollisionMode::push) return inside(p) ? surface_.closest_point(p) : p;
+    const Vec3 closest = surface_.closest_point(p);
+    const Vec3 along = closest - from;
+    if (along.squaredNorm() <= 1e-18 * step * step) return closest;
+    return surface_.closest_point(from + step * along.normalized());
+  }
+
+ private:
+  //! The winding number, asked only where the inside grid cannot tell.
+  bool inside(const Vec3& p) const {
+    const Region region = solid_.inside_test().region(p);
+    return region == Region::surface ? solid_.inside_test().contains(p) : region == Region::inside;
+  }
+
+  MeshConstraint solid_;
+  SurfaceDistance surface_;
+  CollisionMode mode_;
+};
+
+//! How the tree grows among its attractors. Distances are in spacings: the step, the node
+//! spacing, is the tree's spacing.
+struct ColonizationOptions {
+  double spacing = 1.0;          //!< step length, scene units
+  double kill_distance = 2.0;    //!< an attractor dies once a node is this close or closer,
+                                 //!< spacings, in [1, 1e6]: at least a step, so a tip cannot
+                                 //!< step over its attractor and back for ever
+  //! An attractor pulls its closest node only within this distance, spacings, above the kill
+  //! distance; infinity (the default, the Hyphae write-up's version): every attractor pulls.
+  double influence = std::numeric_limits<double>::infinity();
+  std::size_t max_nodes = 100000;       //!< nodes, roots included, at most; 1 to 2e9
+  std::size_t max_iterations = 1000000; //!< growth steps at most, >= 1
+  double noise_amplitude = 0.0;  //!< each new node moves by up to this, spacings, in [0, 10]
+  double noise_scale = 8.0;      //!< the size of the noise's features, spacings, > 0
+  Vec3 tropism = Vec3::Zero();   //!< added to each step's unit direction (gravity, light),
+                                 //!< each coordinate in [-10, 10]
+  int dimensions = 3;            //!< 2: attractors, roots and steps in z = 0 (leaf venation)
+  std::uint64_t rng_seed = 1;    //!< seeds the noise
+  //! A collision object (3D only), not owned: each new node is pushed out of it or stuck to
+  //! it, after the noise. A node that would land within a tenth of a step of its parent does
+  //! not grow.
+  const CollisionObject* collide = nullptr;
+  //! A vessel (3D only), not owned: growth stays on its growing side. A step that would cross
+  //! its surface is refused (the node does not grow; its attractors may pull it again), or with
+  //! ConstraintMode::clip cut short of the surface.
+  const MeshConstraint* vessel = nullptr;
+};
+
+inline void validate(const ColonizationOptions& o) {
+  detail::require_in("spacing", o.spacing, kMinSpacing, kMaxSpacing);
+  detail::require_in("kill distance", o.kill_distance, 1.0, 1e6);
+  if (!(o.influence > o.kill_distance))
+    throw InvalidInput("influence " + detail::format_number(o.influence) + " is not above the kill distance " +
+                       detail::format_number(o.kill_distance));
+  if (o.max_nodes < 1 || o.max_nodes > 2'000'000'000u)
+    throw InvalidInput("max nodes " + std::to_string(o.max_nodes) + " is not in [1, 2e9]");
+  if (o.max_iterations < 1) throw InvalidInput("max iterations is 0: growth needs at least one");
+  detail::require_in("noise amplitude", o.noise_amplitude, 0.0, 10.0);
+  detail::require_in("noise scale", o.noise_scale, 1e-3, 1e6);
+  if (!o.tropism.allFinite() || o.tropism.cwiseAbs().maxCoeff() > 10.0)
+    throw InvalidInput("tropism has a coordinate that is not in [-10, 10]");
+  if (o.dimensions != 2 && o.dimensions != 3)
+    throw InvalidInput("dimensions " + std::to_string(o.dimensions) + " is not 2 or 3");
+  if (o.collide && o.dimensions != 3) throw InvalidInput("a collision mesh needs 3 dimensions");
+  if (o.vessel && o.dimensions != 3) throw InvalidInput("a vessel needs 3 dimensions");
+}
+
+namespace detail {
+
+//! Smooth, seeded vector noise: in each coordinate, values at the integer lattice points
+//! (hashed from the seed) blended with a smoothstep, each in [-1, 1].
+class LatticeNoise {
+ public:
+  explicit LatticeNoise(std::uint64_t seed) : seed_(seed) {}
+
+  Vec3 operator()(const Vec3& p) const {
+    const Vec3 floor = p.array().floor();
+    const Vec3 f = p - floor;
+    const Vec3 w = f.array() * f.array() * (3.0 - 2.0 * f.array());
+    Vec3 sum = Vec3::Zero();
+    for (int corner = 0; corner < 8; ++corner) {
+      double weight = 1.0;
+      std::array<std::int64_t, 3> cell{};
+      for (int axis = 0; axis < 3; ++axis) {
+        const bool high = (corner >> axis) & 1;
+        weight *= high ? w[axis] : 1.0 - w[axis];
+        cell[static_cast<std::size_t>(axis)] = static_cast<std::int64_t>(floor[axis]) + high;
+      }
+      if (weight == 0.0) continue;
+      std::uint64_t h = seed_ ^ (static_cast<std::uint64_t>(cell[0]) * 0x9e3779b97f4a7c15ULL) ^
+                        (static_cast<std::uint64_t>(cell[1]) * 0xc2b2ae3d27d4eb4fULL) ^
+                        (static_cast<std::uint64_t>(cell[2]) * 0x165667b19e3779f9ULL);
+      for (int axis = 0; axis < 3; ++axis)
+        sum[axis] += weight * (static_cast<double>(splitmix64(h) >> 11) * 0x1.0p-52 - 1.0);
+    }
+    return sum;
+  }
+
+ private:
+  std::uint64_t seed_;
+};
+
+//! A unit direction in fixed point (2^-40 steps): sums of them are exact in any order.
+inline std::array<std::int64_t, 3> fixed_direction(const Vec3& from, const Vec3& to) {
+  const Vec3 unit = (to - from).normalized();
+  // Adding and taking away 1.5 * 2^52 rounds to the nearest integer inline (|x| <= 2^40),
+  // where llround is a call.
+  const auto round = [](double x) { return static_cast<std::int64_t>((x * 0x1.0p40 + 0x1.8p52) - 0x1.8p52); };
+  return {round(unit.x()), round(unit.y()), round(unit.z())};
+}
+
+//! The tree before growth: the roots, as seeds, and nothing else.
+inline Cluster roots_only(const ColonizationOptions& o, const std::vector<Vec3>& roots) {
+  Cluster tree;
+  tree.spacing = o.spacing;
+  tree.dimensions = o.dimensions;
+  tree.seed_count = roots.size();
+  for (std::size_t r = 0; r < roots.size(); ++r) {
+    tree.particles.push_back({roots[r], -1, static_cast<std::int32_t>(r)});
+    tree.center += roots[r] / static_cast<double>(roots.size());
+  }
+  return tree;
+}
+
+//! The squared kill distance and influence radius in scene units (infinity: unbounded).
+inline double kill_distance2(const ColonizationOptions& o) { return std::pow(o.kill_distance * o.spacing, 2); }
+inline double reach2(const ColonizationOptions& o) {
+  return std::isfinite(o.influence) ? std::pow(o.influence * o.spacing, 2) : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace detail
+
+//! Where node `v` grows next, given the sum of unit directions to its attractors (fixed
+//! point); false when it does not grow (they cancel out, or the tropism cancels them).
+inline bool colonization_step(const ColonizationOptions& o, const detail::LatticeNoise& noise, const Vec3& from,
+                              const std::array<std::int64_t, 3>& sum, Vec3* to) {
+  Vec3 direction(static_cast<double>(sum[0]), static_cast<double>(sum[1]), static_cast<double>(sum[2]));
+  if (direction.squaredNorm() == 0.0) return false;
+  direction = direction.normalized() + o.tropism;
+  if (o.dimensions == 2) direction.z() = 0.0;
+  if (direction.squaredNorm() < 1e-12) return false;
+  Vec3 next = from + o.spacing * direction.normalized();
+  if (o.noise_amplitude > 0.0) {
+    Vec3 shift = noise(next / (o.noise_scale * o.spacing)) * (o.noise_amplitude * o.spacing);
+    if (o.dimensions == 2) shift.z() = 0.0;
+    next += shift;
+  }
+  if (o.collide) {
+    next = o.collide->apply(from, next, o.spacing);
+    if ((next - from).squaredNorm() < 0.01 * o.spacing * o.spacing) return false;
+  }
+  if (o.vessel) {
+    const BranchCheck check = o.vessel->check_branch(from, next);
+    if (!check.accepted) return false;
+    next = check.end;
+  }
+  *to = next;
+  return true;
+}
+
+//! Grows a tree from `roots` among `attractors` (both in z = 0 for 2D). Validates the options
+//! first; throws InvalidInput for no root, or a root or attractor that is not finite.
+//! `progress` is called after every iteration; returning false, or `stop` set, ends growth
+//! with the tree marked incomplete.
+inline Cluster colonize(const ColonizationOptions& o, std::vector<Vec3> attractors, const std::vector<Vec3>& roots,
+                        const ProgressFn& progress = {}, const StopFlag* stop = nullptr) {
+  validate(o);
+  if (roots.empty()) throw InvalidInput("there is no root");
+  if (roots.size() > o.max_nodes)
+    throw InvalidInput(std::to_string(roots.size()) + " roots are more than the " + std::to_string(o.max_nodes) +
+                       " nodes allowed");
+  for (std::size_t i = 0; i < roots.size(); ++i) {
+    detail::require_representable("root " + std::to_string(i + 1), roots[i], o.spacing);
+    if (o.vessel && !o.vessel->on_growth_side(roots[i]))
+      throw InvalidInput("root " + std::to_string(i + 1) + " is outside the vessel");
+  }
+  for (const Vec3& a : attractors) detail::require_representable("an attractor", a, o.spacing);
+
+  Cluster tree = detail::roots_only(o, roots);
+  const double kill2 = detail::kill_distance2(o), reach2 = detail::reach2(o);
+
+  // The attractors, reordered into an implicit k-d tree (each range's middle splits it, the
+  // axes in turn). Per attractor: its closest node (-1: none within reach, -2: dead) and the
+  // squared distance to it; per range, at its middle, the largest of those over its live
+  // attractors (-1 when all are dead).
+  constexpr std::size_t kLeaf = 8;
+  const std::size_t count = attractors.size();
+  const int axes = o.dimensions;
+  const auto build = [&](auto&& self, std::size_t from, std::size_t to, int depth) -> void {
+    if (to - from <= kLeaf) return;
+    const int axis = depth % axes;
+    const std::size_t middle = from + (to - from) / 2;
+    std::nth_element(attractors.begin() + static_cast<std::ptrdiff_t>(from),
+                     attractors.begin() + static_cast<std::ptrdiff_t>(middle),
+                     attractors.begin() + static_cast<std::ptrdiff_t>(to),
+                     [axis](const Vec3& a, const Vec3& b) { return a[axis] < b[axis]; });
+    self(self, from, middle, depth + 1);
+    self(self, middle + 1, to, depth + 1);
+  };
+  build(build, 0, count, 0);
+  std::vector<std::int32_t> closest(count, -1);
+  std::vector<double> distance2(count, reach2);
+  std::vector<double> bound(count, reach2);  // at a range's middle; a leaf's at its first
+  constexpr std::int32_t kDead = -2;
+
+  // Per node: the fixed-point sum of unit directions to its attractors, how many, and its
+  // last child (a node whose attractors have not changed would grow the same child again).
+  std::vector<std::array<std::int64_t, 3>> sums(roots.size(), {0, 0, 0});
+  std::vector<std::int32_t> pulls(roots.size(), 0), last_child(roots.size(), -1);
+  // Whether a node's attractors changed since it last tried to grow: if not, it would find
+  // what it found then (no step, or the same child), and the collision's queries are skipped.
+  std::vector<std::uint8_t> changed(roots.size(), 0);
+  std::size_t live = count;
+
+  const auto detach = [&](std::size_t a) {
+    const std::int32_t v = closest[a];
+    if (v < 0) return;
+    const auto d = detail::fixed_direction(tree.particles[static_cast<std::size_t>(v)].position, attractors[a]);
+    auto& sum = sums[static_cast<std::size_t>(v)];
+    for (int axis = 0; axis < 3; ++axis) sum[static_cast<std::size_t>(axis)] -= d[static_cast<std::size_t>(axis)];
+    --pulls[static_cast<std::size_t>(v)];
+    changed[static_cast<std::size_t>(v)] = 1;
+  };
+  const auto attach = [&](std::size_t a, std::int32_t v) {
+    closest[a] = v;
+    const auto d = detail::fixed_direction(tree.particles[static_cast<std::size_t>(v)].position, attractors[a]);
+    auto& sum = sums[static_cast<std::size_t>(v)];
+    for (int axis = 0; axis < 3; ++axis) sum[static_cast<std::size_t>(axis)] += d[static_cast<std::size_t>(axis)];
+    ++pulls[static_cast<std::size_t>(v)];
+    changed[static_cast<std::size_t>(v)] = 1;
+  };
+  // Visits the ranges that node v at p may change: it takes attractors it is closer to than
+  // their node (and within reach), and kills those within the kill distance. Returns the
+  // range's new bound. `gap` holds p's distance to the range's box along each axis: only the
+  // split axis changes from a range to its parts.
+  const auto visit = [&](auto&& self, std::size_t from, std::size_t to, int depth, const Vec3& gap,
+                         std::int32_t v, const Vec3& p) -> double {
+    if (from >= to) return -1.0;
+    // Computed as each attractor's distance is, term by term: never above any of theirs.
+    const double gap2 = gap.squaredNorm();
+    const bool leaf = to - from <= kLeaf;
+    const std::size_t key = leaf ? from : from + (to - from) / 2;
+    // All dead; or nothing to take (no live attractor is farther from its node than the box
+    // is from p) and nothing to kill.
+    if (bound[key] < 0.0 || (gap2 >= bound[key] && gap2 > kill2)) return bound[key];
+    double largest = -1.0;
+    const auto consider = [&](std::size_t a) {
+      if (closest[a] == kDead) return;
+      const double d2 = (attractors[a] - p).squaredNorm();
+      if (d2 <= kill2) {
+        detach(a);
+        closest[a] = kDead;
+        --live;
+        return;
+      }
+      if (d2 < distance2[a]) {
+        detach(a);
+        attach(a, v);
+        distance2[a] = d2;
+      }
+      largest = std::max(largest, distance2[a]);
+    };
+    if (leaf) {
+      for (std::size_t a = from; a < to; ++a) consider(a);
+    } else {
+      consider(key);
+      const int axis = depth % axes;
+      const double split = attractors[key][axis];
+      // The part on p's side keeps p's gap; the other's box starts at the split.
+      Vec3 across = gap;
+      across[axis] = std::abs(p[axis] - split);
+      const bool left_near = p[axis] < split;
+      largest = std::max(largest, self(self, from, key, depth + 1, left_near ? gap : across, v, p));
+      largest = std::max(largest, self(self, key + 1, to, depth + 1, left_near ? across : gap, v, p));
+    }
+    bound[key] = largest;
+    return largest;
+  };
+  const auto add_node = [&](std::int32_t v) {
+    visit(visit, 0, count, 0, Vec3::Zero(), v, tree.particles[static_cast<std::size_t>(v)].position);
+  };
+  for (std::size_t r = 0; r < roots.size(); ++r) add_node(static_cast<std::int32_t>(r));
+
+  const detail::LatticeNoise noise(o.rng_seed);
+  std::vector<std::pair<std::int32_t, Vec3>> grown;  // this iteration's new nodes: parent, position
+  for (std::size_t iteration = 0; iteration < o.max_iterations && live > 0 && tree.particles.size() < o.max_nodes;
+       ++iteration) {
+    if (stop && stop->load()) {
+      tree.complete = false;
+      return tree;
+    }
+    grown.clear();
+    for (std::size_t v = 0; v < tree.particles.size(); ++v) {
+      if (pulls[v] == 0 || !changed[v]) continue;
+      changed[v] = 0;
+      Vec3 next;
+      if (!colonization_step(o, noise, tree.particles[v].position, sums[v], &next)) continue;
+      // Its attractors changed but still pull it to where it last grew: the same child again.
+      if (last_child[v] >= 0 && tree.particles[static_cast<std::size_t>(last_child[v])].position == next) continue;
+      grown.emplace_back(static_cast<std::int32_t>(v), next);
+    }
+    if (grown.empty()) break;  // stalled: no node grows
+    const std::size_t first_new = tree.particles.size();
+    for (const auto& [parent, position] : grown) {
+      if (tree.particles.size() >= o.max_nodes) break;
+      const auto v = static_cast<std::int32_t>(tree.particles.size());
+      tree.particles.push_back({position, parent, tree.particles[static_cast<std::size_t>(parent)].seed});
+      sums.push_back({0, 0, 0});
+      pulls.push_back(0);
+      last_child.push_back(-1);
+      changed.push_back(0);
+      last_child[static_cast<std::size_t>(parent)] = v;
+    }
+    for (std::size_t v = first_new; v < tree.particles.size(); ++v) add_node(static_cast<std::int32_t>(v));
+    if (progress && !progress(tree)) {
+      tree.complete = false;
+      return tree;
+    }
+  }
+  return tree;
+}
+
+}  // namespace dla
