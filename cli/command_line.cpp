@@ -165,6 +165,7 @@ std::vector<Vec3> roots_around(const ColonizeCommand& c, const std::vector<Vec3>
   const Vec3 center = sphere ? a.center : Vec3(0.5 * (lo + hi));
   double radius = sphere ? a.radius : 0.5 * (hi - lo).norm();
   if (c.options.dimensions == 2 && !sphere) radius = 0.5 * (hi - lo).head<2>().norm();
+  radius *= c.roots_scale;
   std::vector<Vec3> roots;
   for (std::size_t k = 0; k < c.root_count; ++k) {
     Vec3 root = center + radius * random_direction(rng, c.options.dimensions);
@@ -355,6 +356,9 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   colonize_command->add_option("--roots-in", roots_in, "--roots K: on the sphere around the attractors, in the mesh "
                                                        "(the vessel, else the collision mesh) or on its surface")
       ->capture_default_str()->group(attracting);
+  colonize_command->add_option("--roots-scale", c.roots_scale, "--roots-in sphere: the roots' sphere is this times "
+                                                                "the attractors', [0.01, 100]")
+      ->capture_default_str()->group(attracting);
   std::string collision = std::string(to_string(c.collision));
   const char* colliding = "Vessel and collision";
   colonize_command->add_option("--stl", c.vessel_path, "a vessel (STL, OFF, OBJ or PLY) that growth stays inside: a "
@@ -415,6 +419,9 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     c.roots_in = parse_root_region(roots_in);
     if (colonize_command->count("--roots-in") && root_count == 0)
       throw InvalidInput("--roots-in says where --roots K puts its roots: give --roots");
+    detail::require_in("--roots-scale", c.roots_scale, 0.01, 100.0);
+    if (colonize_command->count("--roots-scale") && (root_count == 0 || c.roots_in != RootRegion::sphere))
+      throw InvalidInput("--roots-scale sizes the sphere of --roots K (--roots-in sphere): give --roots");
     const bool on_mesh = c.attractors.region == AttractorRegion::mesh || c.attractors.region == AttractorRegion::surface;
     if ((on_mesh || c.roots_in != RootRegion::sphere) && c.vessel_path.empty() && c.collide_path.empty())
       throw InvalidInput("attractors or roots in a mesh need one: give --stl or --collide");

@@ -73,6 +73,9 @@ struct ColonizeCommand : FileOptions {
   //! point (-y).
   std::size_t root_count = 0;
   RootRegion roots_in = RootRegion::sphere;
+  //! --roots-scale: the sphere of `RootRegion::sphere` is this times the attractors', in
+  //! [0.01, 100] (the write-up's third test scatters roots on a larger one).
+  double roots_scale = 1.0;
   std::string vessel_path;             //!< --stl: a vessel growth stays inside; empty: none
   std::string collide_path;            //!< --collide: a collision mesh; empty: none
   CollisionMode collision = CollisionMode::push;

@@ -118,6 +118,7 @@ const std::map<std::string, std::vector<std::string>>& colonize_table() {
       {"--root-at", {"0,-20,0", "5,5,0", "0,0,0", "1e300,0,0", "a,b,c"}},
       {"--roots", {"3", "1", "20", "0", "-2"}},
       {"--roots-in", {"sphere", "mesh", "surface", "cube"}},
+      {"--roots-scale", {"1.5", "1", "0.01", "100", "0", "-1", "nan", "1e300"}},
       {"--stl", {"ball.stl", "box.off", "missing.stl", "noise.stl"}},
       {"--collide", {"ball.stl", "box.off", "missing.stl", "noise.stl", "out.csv"}},
       {"--collision", {"push", "stick", "bounce"}},

@@ -441,6 +441,9 @@ TEST(Cli, ColonizeWritesTheSameFilesAsGrowth) {
   const dla::Cluster three = dla::read_csv(dir / "three.csv");
   ASSERT_EQ(three.seed_count, 3u);
   for (std::size_t r = 0; r < 3; ++r) EXPECT_NEAR(three.particles[r].position.norm(), 20.0, 1e-9);
+  ASSERT_EQ(dla3d(dir, "colonize -q -o wide --roots 3 --roots-scale 1.5 --attractors 1500 --attractor-radius 20").exit_code, 0);
+  const dla::Cluster wide = dla::read_csv(dir / "wide.csv");
+  for (std::size_t r = 0; r < 3; ++r) EXPECT_NEAR(wide.particles[r].position.norm(), 30.0, 1e-9);
   ASSERT_EQ(dla3d(dir, "colonize -q -o leaf --dimensions 2 --attractors-in box --attractor-box -20,-20,0,20,20,0 "
                        "--influence 6 --formats svg,csv,json").exit_code, 0);
   for (const dla::Particle& p : dla::read_csv(dir / "leaf.csv").particles) ASSERT_EQ(p.position.z(), 0.0);
@@ -478,7 +481,7 @@ TEST(Cli, ColonizeBadInputIsOneLineAndNoFiles) {
       "--attractors-in cone", "--attractor-radius 0", "--attractor-box 0,0,0,1,1,1", "--root-at 1,2",
       "--roots 0", "--roots 2 --root-at 0,0,0", "-n 0", "--max-iterations 0", "--dimensions 2 --root-at 0,0,1",
       "--spacing 1e-100", "--particles 10", "--radius boundary", "--formats svg", "--attractors-in mesh",
-      "--roots-in mesh", "--attractors-from a.csv --attractors-in box",
+      "--roots-in mesh", "--attractors-from a.csv --attractors-in box", "--roots-scale 2", "--roots 2 --roots-scale 0",
       // Files that cannot be read: exit 1.
       "--attractors-from missing.csv", "--stl missing.stl", "--collide missing.stl --roots 2 --roots-in surface",
   };
