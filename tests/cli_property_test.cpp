@@ -30,6 +30,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <random>
 #include <regex>
@@ -226,7 +227,10 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
       if (parent >= 0) {
         if (parent >= id) return prefix + ".csv has a parent after its child";
         const double length = (p - positions[static_cast<std::size_t>(parent)]).norm();
-        if (!(length > 0.0 && (collided || length <= spacing * (1.0 + std::sqrt(3.0) * noise + 1e-9))))
+        // A step's length is off by the rounding of its ends: relative to their size, not the
+        // spacing's (a tree of spacing 1e-6 rooted 50 away).
+        const double rounding = 8 * std::numeric_limits<double>::epsilon() * p.cwiseAbs().maxCoeff();
+        if (!(length > 0.0 && (collided || length <= spacing * (1.0 + std::sqrt(3.0) * noise + 1e-9) + rounding)))
           return prefix + ".csv has a branch of length " + std::to_string(length) + " for spacing " + std::to_string(spacing);
       }
       positions.push_back(p);
