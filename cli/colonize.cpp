@@ -1,5 +1,5 @@
-// `dla3d colonize [options]`: grows a tree by space colonization (dla/models/colonization.h) among
-// scattered attractors and writes the same files as DLA does.
+// `dla3d colonize [options]`: grows a tree by space colonization (dla/models/colonization.h)
+// among attractors scattered or read from a file, and writes the same files as DLA does.
 
 #include "commands.h"
 #include "run_files.h"
@@ -29,7 +29,8 @@ int colonize(const ColonizeCommand& command, const std::vector<std::string>& arg
   std::unique_ptr<MeshConstraint> vessel;
   if (!command.vessel_path.empty()) {
     vessel = read_solid(command.vessel_path, [&](const TriangleMesh& mesh) {
-      return std::make_unique<MeshConstraint>(mesh, ConstraintOptions{Side::inside, ConstraintMode::reject}, options.spacing);
+      const ConstraintOptions inside{Side::inside, ConstraintMode::reject};
+      return std::make_unique<MeshConstraint>(mesh, inside, options.spacing);
     });
     grown_with.vessel = vessel.get();
   }
@@ -48,12 +49,14 @@ int colonize(const ColonizeCommand& command, const std::vector<std::string>& arg
     attractors = scatter_attractors(command.attractors, options.rng_seed, options.dimensions, mesh);
   } else {
     attractors = read_points(command.attractors_path);
-    if (command.sample_attractors) attractors = sample_attractors(attractors, command.attractors.count, options.rng_seed);
+    if (command.sample_attractors)
+      attractors = sample_attractors(attractors, command.attractors.count, options.rng_seed);
     if (attractors.size() > 100'000'000u)
       throw InvalidInput(command.attractors_path + ": more than 1e8 attractors");
-    for (const Vec3& a : attractors)
-      if (options.dimensions == 2 && a.z() != 0.0)
-        throw InvalidInput(command.attractors_path + ": --dimensions 2 grows in z = 0, and an attractor is not");
+    if (options.dimensions == 2)
+      for (const Vec3& a : attractors)
+        if (a.z() != 0.0)
+          throw InvalidInput(command.attractors_path + ": --dimensions 2 grows in z = 0, and an attractor is not");
   }
   const std::vector<Vec3> roots = colonize_roots(command, attractors, mesh);
   for (std::size_t i = 0; i < roots.size(); ++i)

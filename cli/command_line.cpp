@@ -155,7 +155,8 @@ void check_resume_company(const std::vector<std::string>& args) {
 //! around the box they lie in.
 std::vector<Vec3> roots_around(const ColonizeCommand& c, const std::vector<Vec3>& attractors, Rng& rng) {
   const AttractorOptions& a = c.attractors;
-  const bool scattered = c.attractors_path.empty() && (a.region == AttractorRegion::sphere || a.region == AttractorRegion::box);
+  const bool scattered =
+      c.attractors_path.empty() && (a.region == AttractorRegion::sphere || a.region == AttractorRegion::box);
   Vec3 lo = a.box_min, hi = a.box_max;
   if (!scattered) {
     lo = hi = attractors.front();
@@ -207,7 +208,8 @@ std::vector<Vec3> colonize_roots(const ColonizeCommand& command, const std::vect
   }
   Rng rng(command.options.rng_seed, 0x726f6f7473ULL);  // a stream of its own: "roots"
   if (command.roots_in == RootRegion::sphere) return roots_around(command, attractors, rng);
-  if (!mesh) throw InvalidInput("--roots-in " + std::string(to_string(command.roots_in)) + " needs a mesh: --stl or --collide");
+  if (!mesh)
+    throw InvalidInput("--roots-in " + std::string(to_string(command.roots_in)) + " needs a mesh: --stl or --collide");
   std::vector<Vec3> roots;
   for (std::size_t k = 0; k < command.root_count; ++k)
     roots.push_back(command.roots_in == RootRegion::mesh ? mesh->draw_inside(rng) : mesh->draw_near_surface(rng));
@@ -422,7 +424,8 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     detail::require_in("--roots-scale", c.roots_scale, 0.01, 100.0);
     if (colonize_command->count("--roots-scale") && (root_count == 0 || c.roots_in != RootRegion::sphere))
       throw InvalidInput("--roots-scale sizes the sphere of --roots K (--roots-in sphere): give --roots");
-    const bool on_mesh = c.attractors.region == AttractorRegion::mesh || c.attractors.region == AttractorRegion::surface;
+    const bool on_mesh =
+        c.attractors.region == AttractorRegion::mesh || c.attractors.region == AttractorRegion::surface;
     if ((on_mesh || c.roots_in != RootRegion::sphere) && c.vessel_path.empty() && c.collide_path.empty())
       throw InvalidInput("attractors or roots in a mesh need one: give --stl or --collide");
     if (!c.vessel_path.empty() && c.options.dimensions != 3) throw InvalidInput("--stl needs 3 dimensions");

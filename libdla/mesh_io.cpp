@@ -508,10 +508,11 @@ std::vector<Vec3> parse_point_rows(std::string_view text, const std::string& nam
     first = false;
     const std::string where = "line " + std::to_string(line_number);
     Vec3 p;
-    for (std::size_t axis = 0; axis < 3; ++axis) {
-      if (column[axis] >= fields.size()) malformed(name, where + " has fewer than " + std::to_string(column[axis] + 1) + " fields");
-      if (!parse_double(fields[column[axis]], p[static_cast<Eigen::Index>(axis)]) || !std::isfinite(p[static_cast<Eigen::Index>(axis)]))
-        malformed(name, where + ": '" + std::string(fields[column[axis]].substr(0, 40)) + "' is not a finite number");
+    for (int axis = 0; axis < 3; ++axis) {
+      const std::size_t f = column[static_cast<std::size_t>(axis)];
+      if (f >= fields.size()) malformed(name, where + " has fewer than " + std::to_string(f + 1) + " fields");
+      if (!parse_double(fields[f], p[axis]) || !std::isfinite(p[axis]))
+        malformed(name, where + ": '" + std::string(fields[f].substr(0, 40)) + "' is not a finite number");
     }
     points.push_back(p);
   }
@@ -567,7 +568,9 @@ std::vector<Vec3> parse_points(std::string_view bytes, std::string_view extensio
   return points;
 }
 
-std::vector<Vec3> read_points(const std::string& path) { return parse_points(read_bytes(path), extension_of(path), path); }
+std::vector<Vec3> read_points(const std::string& path) {
+  return parse_points(read_bytes(path), extension_of(path), path);
+}
 
 void write_stl(const TriangleMesh& mesh, const std::string& path) {
   detail::OutputFile out(path);

@@ -56,7 +56,7 @@ class Text {
     const long long units = std::llround(value * scales[decimals]);
     char* at = room(kNumberBytes);
     if (units < 0) *at++ = '-';
-    const auto magnitude = units < 0 ? 0 - static_cast<unsigned long long>(units) : static_cast<unsigned long long>(units);
+    const auto magnitude = static_cast<unsigned long long>(units < 0 ? -units : units);
     // A division by a constant is a multiplication; by a variable it took a fifth of the time.
     switch (decimals) {
       case 0: return advance_to(std::to_chars(at, at + 20, magnitude).ptr);

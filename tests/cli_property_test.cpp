@@ -363,7 +363,8 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
     ScratchDir dir;
     make_inputs(dir);
     std::filesystem::create_directory(dir.path() / "dir");
-    const std::set<std::string> inputs = {"ball.stl", "box.off", "noise.stl", "out.csv", "points.csv", "points.ply", "saved.ck", "dir"};
+    const std::set<std::string> inputs = {"ball.stl",   "box.off",    "noise.stl", "out.csv",
+                                          "points.csv", "points.ply", "saved.ck",  "dir"};
     // The bound: far above what any of these takes (under the sanitizers too); `timeout`
     // kills a hang with 137 and the assertion below names the command.
     const testing::CliRun result = testing::dla3d(dir, command, "timeout -s KILL 120");

@@ -94,8 +94,7 @@ inline std::vector<Vec3> scatter_attractors(const AttractorOptions& options, std
                                             const MeshConstraint* mesh = nullptr) {
   validate(options);
   const bool on_mesh = options.region == AttractorRegion::mesh || options.region == AttractorRegion::surface;
-  if (on_mesh && !mesh)
-    throw InvalidInput("attractors in a " + std::string(to_string(options.region)) + " need a mesh: a vessel or a collision mesh");
+  if (on_mesh && !mesh) throw InvalidInput("attractors in or on a mesh need one: a vessel or a collision mesh");
   if (on_mesh && dimensions != 3) throw InvalidInput("attractors in a mesh need 3 dimensions");
   Rng rng(seed, 0x617474726163746fULL);  // a stream of its own: "attracto"
   std::vector<Vec3> points;
