@@ -15,6 +15,10 @@
 
 #include <cstring>
 #include <fstream>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace dla {
 namespace {
@@ -32,6 +36,25 @@ std::string message_of(const std::function<void()>& f) {
     return e.what();
   }
   return "";
+}
+
+//! A malformed file: its extension, its bytes, and what the message must say.
+struct Fault {
+  const char* ext;
+  std::string bytes;
+  const char* says;
+};
+
+//! Each fault read by parse(bytes, ext, name) is refused with a message that starts with the
+//! file's name and says what is wrong.
+template <class Parse>
+void expect_named_faults(const std::vector<Fault>& faults, Parse&& parse) {
+  for (const Fault& c : faults) {
+    const std::string name = std::string("bad.") + c.ext;
+    const std::string what = message_of([&] { parse(c.bytes, c.ext, name); });
+    EXPECT_EQ(what.rfind(name + ": ", 0), 0u) << what;
+    EXPECT_NE(what.find(c.says), std::string::npos) << what;
+  }
 }
 
 TEST(MeshFiles, BinaryStlRoundTrips) {
@@ -92,11 +115,7 @@ TEST(MeshFiles, OffObjAndPlyPolygonsBecomeFans) {
 }
 
 TEST(MeshFiles, MalformedFilesNameTheFileAndTheFault) {
-  const struct {
-    const char* ext;
-    std::string bytes;
-    const char* says;
-  } cases[] = {
+  expect_named_faults({
       {"stl", "", "is empty"},
       {"stl", std::string(84, '\0'), "has no triangles"},
       {"stl", std::string(80, 'x') + std::string("\x02\0\0\0", 4) + std::string(50, '\0'), "not a valid binary STL"},
@@ -110,13 +129,7 @@ TEST(MeshFiles, MalformedFilesNameTheFileAndTheFault) {
       {"ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n", "more than its 0 data bytes"},
       {"xyz", "1 2 3", "unknown mesh format"},
       {"off", "hello, world\n", "does not begin with OFF"},
-  };
-  for (const auto& c : cases) {
-    const std::string name = std::string("bad.") + c.ext;
-    const std::string what = message_of([&] { parse_mesh(c.bytes, c.ext, name); });
-    EXPECT_EQ(what.rfind(name + ": ", 0), 0u) << what;
-    EXPECT_NE(what.find(c.says), std::string::npos) << what;
-  }
+  }, [](std::string_view bytes, std::string_view ext, const std::string& name) { parse_mesh(bytes, ext, name); });
 }
 
 TEST(PointFiles, CsvRowsHeadersAndPlyVertices) {
@@ -146,11 +159,7 @@ TEST(PointFiles, CsvRowsHeadersAndPlyVertices) {
 }
 
 TEST(PointFiles, MalformedFilesNameTheFileAndTheFault) {
-  const struct {
-    const char* ext;
-    std::string bytes;
-    const char* says;
-  } cases[] = {
+  expect_named_faults({
       {"csv", "", "is empty"},
       {"csv", "# nothing\n\n", "holds no points"},
       {"csv", "1,2\n", "line 1 has fewer than 3 fields"},
@@ -162,13 +171,7 @@ TEST(PointFiles, MalformedFilesNameTheFileAndTheFault) {
        "holds no points"},
       {"ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n0\n", "without x, y and z"},
       {"json", "[1, 2, 3]", "unknown point file format"},
-  };
-  for (const auto& c : cases) {
-    const std::string name = std::string("bad.") + c.ext;
-    const std::string what = message_of([&] { parse_points(c.bytes, c.ext, name); });
-    EXPECT_EQ(what.rfind(name + ": ", 0), 0u) << what;
-    EXPECT_NE(what.find(c.says), std::string::npos) << what;
-  }
+  }, [](std::string_view bytes, std::string_view ext, const std::string& name) { parse_points(bytes, ext, name); });
 }
 
 TEST(MeshRepair, MergesDropsAndClosesAHole) {
