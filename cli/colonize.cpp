@@ -59,8 +59,6 @@ int colonize(const ColonizeCommand& command, const std::vector<std::string>& arg
           throw InvalidInput(command.attractors_path + ": --dimensions 2 grows in z = 0, and an attractor is not");
   }
   const std::vector<Vec3> roots = colonize_roots(command, attractors, mesh);
-  for (std::size_t i = 0; i < roots.size(); ++i)
-    detail::require_representable("root " + std::to_string(i + 1), roots[i], options.spacing);
   ColonizationInputs inputs{command.attractors_path, attractors.size(), command.vessel_path, command.collide_path,
                             command.collision};
 
