@@ -49,11 +49,21 @@ class Text {
                                 : std::to_chars(at, at + kNumberBytes, value);
     return advance_to(end.ptr);
   }
+  //! A float in the shortest form that reads back as the same float: what a binary file holds,
+  //! in about half the characters and time of number(value, 9).
+  Text& float_number(float value) {
+    char* at = room(kNumberBytes);
+    return advance_to(std::to_chars(at, at + kNumberBytes, value).ptr);
+  }
   //! `value` rounded to `decimals` (0-9) places, trailing zeros dropped: "-12.5", "3"; for
   //! |value| below 9e18 / 10^decimals. Integer arithmetic only: much cheaper than number().
   Text& fixed(double value, int decimals) {
     static constexpr double scales[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
-    const long long units = std::llround(value * scales[decimals]);
+    // std::llround, without its call into libm: x minus its truncation is exact in a double.
+    const double scaled = value * scales[decimals];
+    const auto truncated = static_cast<long long>(scaled);
+    const double fraction = scaled - static_cast<double>(truncated);
+    const long long units = truncated + (fraction >= 0.5) - (fraction <= -0.5);
     char* at = room(kNumberBytes);
     if (units < 0) *at++ = '-';
     const auto magnitude = static_cast<unsigned long long>(units < 0 ? -units : units);
