@@ -64,7 +64,7 @@ void csv_look(benchmark::State& state) {
   write_file(state, [&](const dla::Cluster& c, const std::string& p) { dla::write_csv(c, look, p + ".csv"); });
 }
 void ply_ascii(benchmark::State& state) {
-  write_file(state, [](const dla::Cluster& c, const std::string& p) { dla::write_ply(c, p + ".ply"); });
+  write_file(state, [](const dla::Cluster& c, const std::string& p) { dla::write_ply(c, p + ".ply", dla::PlyEncoding::ascii); });
 }
 void ply_binary(benchmark::State& state) {
   write_file(state, [](const dla::Cluster& c, const std::string& p) {

@@ -56,7 +56,7 @@ Vec3 parse_vec3(const std::string& flag, const std::string& text) {
 
 //! The Output and Look options' words, and the options whose defaults depend on a mesh.
 struct FileWords {
-  std::string up, radius_model, color_by, instance_set, pov_style, formats = "pov,csv,ply,json";
+  std::string up, radius_model, color_by, instance_set, pov_style, ply_format, formats = "pov,csv,ply,json";
   CLI::Option* radius = nullptr;
   CLI::Option* base_radius = nullptr;
   CLI::Option* tip_radius = nullptr;
@@ -71,10 +71,11 @@ void add_file_options(CLI::App& app, FileOptions& f, FileWords& w) {
   w.color_by = std::string(to_string(f.look.color_by));
   w.instance_set = std::string(to_string(f.instances.set));
   w.pov_style = std::string(to_string(f.pov.style));
+  w.ply_format = std::string(to_string(f.ply_encoding));
   const char* outputs = "Output";
   app.add_option("-o,--output", f.output, "prefix of the files written")->capture_default_str()->group(outputs);
-  app.add_flag("--binary", f.binary_ply, "write the PLYs as binary (little-endian): half the size, "
-                                         "ten times faster")->group(outputs);
+  app.add_option("--ply-format", w.ply_format, "the PLYs as binary (little-endian) or ascii (text: twice the size, "
+                                             "three times slower to write)")->capture_default_str()->group(outputs);
   app.add_option("--formats", w.formats, "files to write, a comma list of pov, csv, ply, json, glb, obj, tips "
                                         "(PREFIX_tips.ply) and svg (2D)")->capture_default_str()->group(outputs);
 
@@ -117,6 +118,7 @@ void add_file_options(CLI::App& app, FileOptions& f, FileWords& w) {
 void parse_file_words(FileOptions& f, const FileWords& w) {
   f.pov.up = parse_axis(w.up);
   f.pov.style = parse_pov_style(w.pov_style);
+  f.ply_encoding = parse_ply_encoding(w.ply_format);
   f.look.radius.model = parse_radius_model(w.radius_model);
   f.look.color_by = parse_color_by(w.color_by);
   f.instances.set = parse_instance_set(w.instance_set);

@@ -7,6 +7,7 @@
 #include "dla/look/instances.h"
 #include "dla/look/look.h"
 #include "dla/core/options.h"
+#include "dla/io/ply_writer.h"
 #include "dla/io/pov_writer.h"
 
 #include <cstddef>
@@ -33,7 +34,7 @@ struct FileOptions {
   Formats formats;
   std::string output = "dla";          //!< prefix of the files written
   bool quiet = false;
-  bool binary_ply = false;             //!< PLY as binary_little_endian rather than ASCII
+  PlyEncoding ply_encoding = PlyEncoding::binary;  //!< --ply-format
 };
 
 //! `dla3d [options]`: grow a structure by DLA and write its files.

@@ -71,7 +71,7 @@ void write_files(const Cluster& cluster, const FileOptions& files, const PovOpti
   mallopt(M_MMAP_THRESHOLD, 128 * 1024);
   const Formats& formats = files.formats;
   const std::string& output = files.output;
-  const PlyEncoding encoding = files.binary_ply ? PlyEncoding::binary : PlyEncoding::ascii;
+  const PlyEncoding encoding = files.ply_encoding;
   const Look look = [&] {
     // The distance to the mesh feeds the boundary model and the scene's switch to it.
     const std::unique_ptr<SurfaceDistance> surface =

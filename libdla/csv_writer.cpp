@@ -22,8 +22,9 @@ void write(const Cluster& cluster, const Look* look, const std::string& path) {
       if (look) {
         const Attributes& a = look->attributes;
         text << ',';
-        text.number(look->radius(cluster, i), 7) << ',';
-        text.number(a.age(i), 7) << ',';
+        // Floats, as in the PLY: the shortest text that reads back as the same float.
+        text.float_number(static_cast<float>(look->radius(cluster, i))) << ',';
+        text.float_number(a.age(i)) << ',';
         text.integer(a.depth[i]) << ',';
         text.integer(a.descendants[i]) << ',';
         text.integer(a.strahler(i)) << ',';

@@ -32,35 +32,45 @@ void write_ply(const Cluster& cluster, const Look& look, const std::string& path
   out << "element edge ";
   out.integer(static_cast<long long>(ps.size() - cluster.seed_count));
   out << "\nproperty int vertex1\nproperty int vertex2\nend_header\n";
-  for (std::size_t i = 0; i < ps.size(); ++i) {
+  const auto vertex = [&](detail::Text& text, std::size_t i) {
     const Particle& p = ps[i];
     const auto order = static_cast<std::uint8_t>(a.strahler(i));
     const std::uint8_t tip = a.tip(i) ? 1 : 0;
+    const auto radius = static_cast<float>(look.radius(cluster, i));
     if (binary) {
-      for (int axis = 0; axis < 3; ++axis) out.raw(static_cast<float>(p.position[axis]));
-      out.raw(static_cast<float>(look.radius(cluster, i))).raw(a.age(i)).raw(a.depth[i]).raw(a.descendants[i]);
-      out.raw(order).raw(tip).raw(p.seed).raw(p.parent);
-      continue;
+      for (int axis = 0; axis < 3; ++axis) text.raw(static_cast<float>(p.position[axis]));
+      text.raw(radius).raw(a.age(i)).raw(a.depth[i]).raw(a.descendants[i]);
+      text.raw(order).raw(tip).raw(p.seed).raw(p.parent);
+      return;
     }
-    for (int axis = 0; axis < 3; ++axis) out.number(p.position[axis], 9) << ' ';
-    out.number(look.radius(cluster, i), 7) << ' ';
-    out.number(a.age(i), 7) << ' ';
-    out.integer(a.depth[i]) << ' ';
-    out.integer(a.descendants[i]) << ' ';
-    out.integer(order) << ' ';
-    out.integer(tip) << ' ';
-    out.integer(p.seed) << ' ';
-    out.integer(p.parent) << '\n';
-  }
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    if (ps[i].parent < 0) continue;
+    // The floats the properties declare, each as the shortest text that reads back as it.
+    for (int axis = 0; axis < 3; ++axis) text.float_number(static_cast<float>(p.position[axis])) << ' ';
+    text.float_number(radius) << ' ';
+    text.float_number(a.age(i)) << ' ';
+    text.integer(a.depth[i]) << ' ';
+    text.integer(a.descendants[i]) << ' ';
+    text.integer(order) << ' ';
+    text.integer(tip) << ' ';
+    text.integer(p.seed) << ' ';
+    text.integer(p.parent) << '\n';
+  };
+  const auto edge = [&](detail::Text& text, std::size_t i) {
+    if (ps[i].parent < 0) return;
     if (binary) {
-      out.raw(ps[i].parent).raw(static_cast<std::int32_t>(i));
-      continue;
+      text.raw(ps[i].parent).raw(static_cast<std::int32_t>(i));
+      return;
     }
-    out.integer(ps[i].parent) << ' ';
-    out.integer(static_cast<long long>(i)) << '\n';
-  }
+    text.integer(ps[i].parent) << ' ';
+    text.integer(static_cast<long long>(i)) << '\n';
+  };
+  // Ranges of 4,096 particles formatted at once and appended in order.
+  const auto each = [&](auto&& write) {
+    write_in_order(out, ps.size(), 1 << 12, detail::format_threads(), [&](detail::Text& text, std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) write(text, i);
+    });
+  };
+  each(vertex);
+  each(edge);
   out.commit();
 }
 
@@ -88,10 +98,10 @@ void write_instances_ply(const Cluster& cluster, const Attributes& attributes, c
       out.raw(static_cast<float>(instance.scale)).raw(age).raw(instance.particle);
       return;
     }
-    for (int axis = 0; axis < 3; ++axis) out.number(instance.position[axis], 9) << ' ';
+    for (int axis = 0; axis < 3; ++axis) out.float_number(static_cast<float>(instance.position[axis])) << ' ';
     for (int axis = 0; axis < 3; ++axis) out.fixed(instance.direction[axis], 6) << ' ';
-    out.number(instance.scale, 7) << ' ';
-    out.number(age, 7) << ' ';
+    out.float_number(static_cast<float>(instance.scale)) << ' ';
+    out.float_number(age) << ' ';
     out.integer(instance.particle) << '\n';
   });
   out.commit();

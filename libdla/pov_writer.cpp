@@ -277,7 +277,7 @@ void write_geometry(const Cluster& cluster, const TriangleMesh* mesh, const Scen
         text.fixed(tip.direction.x(), 5) << ", ";
         text.fixed(tip.direction.y(), 5) << ", ";
         text.fixed(tip.direction.z(), 5) << ">, ";
-        text.number(tip.scale * frame.scale, 6) << ")\n";
+        text.float_number(static_cast<float>(tip.scale * frame.scale)) << ")\n";
       }
     });
     out << "}\n";

@@ -72,7 +72,7 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--box", {"-40,-40,-40,40,40,40", "-3,-3,-3,3,3,3", "1,1,1,0,0,0", "0,0,0,1", "-1e300,0,0,1,1,1"}},
       {"--drift", {"0,0,0", "0,-0.3,0", "0.2,0,0", "0,0.9,0", "0,0,2", "nan,0,0", "0,0,0.5"}},
       {"--output", {"out", "'with space'", "'we\"ird'", "'back\\slash'", "sub/out", "''", "dir/"}},
-      {"--binary", {}},
+      {"--ply-format", {"binary", "ascii", "text"}},
       {"--formats", {"pov,csv,ply,json", "glb,obj,tips,json", "csv,svg,json", "json", "''", "pov,png", "glb,,obj"}},
       {"--radius", {"taper", "pipe", "boundary", "seed-distance", "uniform", "wavy"}},
       {"--base-radius", {"0.5", "0.001", "1000", "0", "-1", "1e300"}},
@@ -317,7 +317,7 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
   // What colonize shares with DLA: the Output and Look options (and help).
   std::vector<std::string> colonize_flags;
   for (const auto& [flag, values] : colonize_table()) colonize_flags.push_back(flag);
-  for (const char* flag : {"--output", "--binary", "--formats", "--radius", "--base-radius", "--tip-radius",
+  for (const char* flag : {"--output", "--ply-format", "--formats", "--radius", "--base-radius", "--tip-radius",
                                   "--pipe-exponent", "--color-by", "--look", "--tube-sides", "--tube-tolerance",
                                   "--tube-min-branch", "--instances", "--tips-within", "--up", "--quiet", "--help"})
     colonize_flags.push_back(flag);

@@ -248,7 +248,7 @@ TEST(Cli, AnErrorDuringGrowthKeepsWhatGrew) {
 // 2D DLA of 10^6 particles stopped at 3 x 10^5 with "beyond 512 grid cells" and wrote nothing.
 TEST(Cli, TheGridHoldsAMillionParticlesIn2D) {
   ScratchDir dir;
-  const CliRun run = dla3d(dir, "-n 1000000 --dimensions 2 -q -o flat --binary --threads 2");
+  const CliRun run = dla3d(dir, "-n 1000000 --dimensions 2 -q -o flat --threads 2");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(read_file(dir / "flat.json").find("\"attached\": 1000000"), std::string::npos);
 }

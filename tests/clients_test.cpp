@@ -100,6 +100,7 @@ TEST(Blender, ImportsTheTubeMeshesAndThePly) {
   write_glb(c, look, dir / "tree.glb");
   write_obj(c, look, dir / "tree.obj");
   write_ply(c, look, dir / "tree.ply");
+  write_ply(c, look, dir / "tree_text.ply", PlyEncoding::ascii);
   const Tubes t = tubes_of(c, look);
   // glTF and OBJ are y-up and Blender z-up: its importers turn (x, y, z) into (x, -z, y).
   const std::array<double, 3> min = {t.min.x(), -t.max.z(), t.min.y()}, max = {t.max.x(), -t.min.z(), t.max.y()};
@@ -118,18 +119,21 @@ TEST(Blender, ImportsTheTubeMeshesAndThePly) {
   const Imported glb = blender_import(dir, "tree.glb");
   EXPECT_NE(glb.attributes.find("Col"), std::string::npos) << "the vertex colours: " << glb.attributes;
 
-  const Imported ply = blender_import(dir, "tree.ply");
-  EXPECT_EQ(ply.vertices, static_cast<long>(c.particles.size()));
-  EXPECT_EQ(ply.edges, static_cast<long>(c.particles.size() - c.seed_count));
-  EXPECT_EQ(ply.faces, 0);
   Vec3 lo = Vec3::Constant(1e300), hi = -lo;
   for (const Particle& p : c.particles) {
     lo = lo.cwiseMin(p.position);
     hi = hi.cwiseMax(p.position);
   }
-  for (std::size_t a = 0; a < 3; ++a) {
-    EXPECT_NEAR(ply.min[a], lo[static_cast<int>(a)], 1e-4);
-    EXPECT_NEAR(ply.max[a], hi[static_cast<int>(a)], 1e-4);
+  for (const char* file : {"tree.ply", "tree_text.ply"}) {
+    SCOPED_TRACE(file);
+    const Imported ply = blender_import(dir, file);
+    EXPECT_EQ(ply.vertices, static_cast<long>(c.particles.size()));
+    EXPECT_EQ(ply.edges, static_cast<long>(c.particles.size() - c.seed_count));
+    EXPECT_EQ(ply.faces, 0);
+    for (std::size_t a = 0; a < 3; ++a) {
+      EXPECT_NEAR(ply.min[a], lo[static_cast<int>(a)], 1e-4);
+      EXPECT_NEAR(ply.max[a], hi[static_cast<int>(a)], 1e-4);
+    }
   }
 }
 

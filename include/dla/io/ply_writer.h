@@ -5,32 +5,41 @@
 //! `vertex1 vertex2`), which Blender, Houdini and MeshLab import; and instancing points as
 //! PREFIX_tips.ply. See docs/formats.md.
 
+#include "dla/core/options.h"
 #include "dla/look/instances.h"
 #include "dla/look/look.h"
 
 #include <string>
+#include <string_view>
 
 namespace dla {
 
-//! How the PLY's elements are written (`--binary` on the CLI).
+//! How the PLY's elements are written (`--ply-format` on the CLI).
 enum class PlyEncoding {
-  ascii,   //!< text: readable, about 90 bytes a particle
-  binary,  //!< binary_little_endian: 42 bytes a particle, and about ten times faster to write
+  binary,  //!< binary_little_endian: 46 bytes a particle, what Blender and Houdini write
+  ascii,   //!< text: readable, about 80 bytes a particle, and three times slower to write
 };
+
+inline std::string_view to_string(PlyEncoding encoding) { return encoding == PlyEncoding::binary ? "binary" : "ascii"; }
+
+inline PlyEncoding parse_ply_encoding(std::string_view word) {
+  constexpr PlyEncoding values[] = {PlyEncoding::binary, PlyEncoding::ascii};
+  return detail::parse_word(word, values, "ply-format");
+}
 
 //! Throws IOError if the file cannot be written; a file that fails part way is removed, and a
 //! file of that name already there is left as it was.
 void write_ply(const Cluster& cluster, const Look& look, const std::string& path,
-               PlyEncoding encoding = PlyEncoding::ascii);
+               PlyEncoding encoding = PlyEncoding::binary);
 
 //! The same with the default look (the taper radius model).
-void write_ply(const Cluster& cluster, const std::string& path, PlyEncoding encoding = PlyEncoding::ascii);
+void write_ply(const Cluster& cluster, const std::string& path, PlyEncoding encoding = PlyEncoding::binary);
 
 //! Instancing points (instances.h) as a PLY of vertices `x y z nx ny nz pscale age id`: N is
 //! the direction, pscale the scale, id the particle's index; Houdini and Blender read these
 //! names as they are. Streamed: about 10 bytes a point beside the structure. Throws
 //! InvalidInput for bad options and IOError.
 void write_instances_ply(const Cluster& cluster, const Attributes& attributes, const InstanceOptions& options,
-                         const std::string& path, PlyEncoding encoding = PlyEncoding::ascii);
+                         const std::string& path, PlyEncoding encoding = PlyEncoding::binary);
 
 }  // namespace dla
