@@ -77,7 +77,7 @@ void add_file_options(CLI::App& app, FileOptions& f, FileWords& w) {
   app.add_option("--ply-format", w.ply_format, "the PLYs as binary (little-endian) or ascii (text: twice the size, "
                                              "three times slower to write)")->capture_default_str()->group(outputs);
   app.add_option("--formats", w.formats, "files to write, a comma list of pov, csv, ply, json, glb, obj, tips "
-                                        "(PREFIX_tips.ply) and svg (2D)")->capture_default_str()->group(outputs);
+                                        "(PREFIX_tips.ply, and with pov PREFIX_tips.inc) and svg (2D)")->capture_default_str()->group(outputs);
 
   const char* looks = "Look";
   w.radius = app.add_option("--radius", w.radius_model, "branch thickness: taper, pipe, boundary (needs a mesh), "
@@ -123,6 +123,7 @@ void parse_file_words(FileOptions& f, const FileWords& w) {
   f.look.color_by = parse_color_by(w.color_by);
   f.instances.set = parse_instance_set(w.instance_set);
   f.formats = parse_formats(w.formats);
+  f.pov.tips = f.formats.tips;  // the scene reads its tips from PREFIX_tips.inc
 }
 
 //! Checks the Output and Look options, once their mesh defaults are in.

@@ -76,8 +76,8 @@ void write_files(const Cluster& cluster, const FileOptions& files, const PovOpti
     // The distance to the mesh feeds the boundary model and the scene's switch to it.
     const std::unique_ptr<SurfaceDistance> surface =
         constraint ? std::make_unique<SurfaceDistance>(constraint->mesh()) : nullptr;
-    // The tips' gaps only for the files with instancing points: the PLY and CSV alone go faster.
-    return make_look(cluster, files.look, {surface.get(), nullptr, threads, formats.pov || formats.tips});
+    // The tips' gaps only for the files with instancing points: PREFIX_tips.ply and .inc.
+    return make_look(cluster, files.look, {surface.get(), nullptr, threads, formats.tips});
   }();
   std::vector<std::future<void>> writers;
   const auto write = [&](bool wanted, auto&& writer) {

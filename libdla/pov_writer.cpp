@@ -176,9 +176,9 @@ void write_geometry(const Cluster& cluster, const TriangleMesh* mesh, const Scen
   out << "// dla3d " << version << " geometry: ";
   out.integer(static_cast<long long>(ps.size())) << " particles in ";
   out.integer(static_cast<long long>(count_strands(cluster)))
-      << " strands.\n// Declares DLA_Structure, DLA_Tips" << (mesh ? " and DLA_Mesh" : "")
+      << " strands.\n// Declares DLA_Structure" << (mesh ? " and DLA_Mesh" : "")
       << "; uses DLA_R" << (options.style == PovStyle::blob ? ", DLA_BlobRadius" : "")
-      << (colored ? ", DLA_Paint" : "") << " and DLA_Tip from the .pov.\n"
+      << (colored ? " and DLA_Paint" : "") << " from the .pov.\n"
       << "// DLA_R(F, P, B, S): F the place along the strand (1 at its start, 0 at its tip), P the particles\n"
          "// in the subtree, B and S the distances to the mesh and to the seeds (1: the largest).\n";
   if (mesh) write_mesh(out, *mesh, frame);
@@ -248,8 +248,16 @@ void write_geometry(const Cluster& cluster, const TriangleMesh* mesh, const Scen
     });
     out << "}\n";
   }
-  // The tips, with the largest scale at which copies do not overlap (instances.h), go last.
-  // Each range of particles starts at its first tip's gap.
+  out.commit();
+}
+
+//! PREFIX_tips.inc: DLA_TipCount, and DLA_Tips, a DLA_Tip call at every tip with the largest
+//! scale at which copies do not overlap (instances.h). Each range of particles starts at its
+//! first tip's gap.
+void write_tips(const Cluster& cluster, const SceneFrame& frame, const Look& look, const std::string& path) {
+  const auto& ps = cluster.particles;
+  detail::OutputFile out(path);
+  out << "// dla3d " << version << " tips: DLA_Tip at every tip, shown by DLA_ShowTips in the .pov.\n";
   const Attributes& a = look.attributes;
   const std::vector<float> measured =
       a.tip_gaps.empty() ? half_gaps(cluster, tip_flags(cluster), detail::format_threads()) : std::vector<float>{};
@@ -298,13 +306,15 @@ void validate_pov_prefix(const std::string& prefix) {
 void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptions& options,
                const TriangleMesh* mesh, const Look* given_look) {
   validate_pov_prefix(prefix);
-  const Look look = given_look ? Look{} : make_look(cluster, {});
+  const Look look = given_look ? Look{} : make_look(cluster, {}, {nullptr, nullptr, 1, options.tips});
   const Look& used = given_look ? *given_look : look;
   const RadiusOptions& radius = used.options.radius;
   const std::string include = prefix + ".inc";
   const auto [center, extent] = bounding_sphere(cluster, mesh);
   const SceneFrame frame = scene_frame(cluster.spacing, center);
   write_geometry(cluster, mesh, frame, used, options, include);
+  const std::string tips = prefix + "_tips.inc";
+  if (options.tips) write_tips(cluster, frame, used, tips);
 
   const double unit = cluster.spacing * frame.scale;  // a spacing in scene units
   const bool colored = used.options.color_by != ColorBy::none;
@@ -338,7 +348,8 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
          "  finish { DLA_Finish }\n"
          "}\n"
          "#declare DLA_Background = rgb <0.04, 0.05, 0.07>;\n"
-         "#declare DLA_ShowTips = off;  // on: show DLA_Tip at every tip (a small sphere, or your leaf)\n"
+         "#declare DLA_ShowTips = off;  // on: show DLA_Tip at every tip (a small sphere, or your leaf)"
+      << (options.tips ? "" : "; needs tips in dla3d's --formats") << "\n"
          "#declare DLA_TipTexture = DLA_Texture;\n";
   if (options.style == PovStyle::blob)
     out << "#declare DLA_BlobThreshold = 0.5;  // metaballs: lower merges more\n"
@@ -419,8 +430,14 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
          "light_source { DLA_Center + 3 * DLA_Distance * <-0.6, 1.0, -0.8> color rgb 1.0 }\n"
          "light_source { DLA_Center + 3 * DLA_Distance * <0.8, 0.3, -0.4> color rgb 0.3 shadowless }\n\n"
          "#include \""
-      << file_name(include) << "\"\nobject { DLA_Structure texture { DLA_Texture } }\n"
-      << "#if (DLA_ShowTips & (DLA_TipCount > 0)) object { DLA_Tips texture { DLA_TipTexture } } #end\n";
+      << file_name(include) << "\"\nobject { DLA_Structure texture { DLA_Texture } }\n";
+  // POV-Ray skips what #if leaves out: the tips are read only when shown.
+  if (options.tips)
+    out << "#if (DLA_ShowTips)\n  #include \"" << file_name(tips) << "\"\n"
+        << "  #if (DLA_TipCount > 0) object { DLA_Tips texture { DLA_TipTexture } } #end\n#end\n";
+  else
+    out << "#if (DLA_ShowTips) #error \"DLA_ShowTips needs " << file_name(tips)
+        << ": grow again with tips in dla3d's --formats\" #end\n";
   if (mesh) out << "#if (DLA_ShowMesh) object { DLA_Mesh texture { DLA_MeshTexture } no_shadow } #end\n";
   out.commit();
 }

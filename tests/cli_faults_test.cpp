@@ -63,9 +63,9 @@ TEST(Faults, AFullDiskIsAClearErrorAndKeepsTheCheckpoint) {
 
 // SIGKILL at moments spread over the writing of every file: any file under a final name is
 // whole, the same bytes as an uninterrupted run's (the JSON up to its timings). Every file the
-// run writes is checked, so writers added later are covered too.
+// run writes is checked, with every 3D format asked for, so writers added later are covered too.
 TEST(Faults, AKillWhileWritingNeverLeavesATruncatedFile) {
-  const std::string args = "-n 60000 --threads 2 -q -o out --rng-seed 4";
+  const std::string args = "-n 60000 --threads 2 -q -o out --rng-seed 4 --formats pov,csv,ply,json,glb,obj,tips";
   ScratchDir reference;
   ASSERT_EQ(dla3d(reference, args).exit_code, 0);
   const std::set<std::string> finals = files_in(reference.path());

@@ -295,6 +295,13 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
   const std::string pov = read_file(dir / (prefix + ".pov")), inc = read_file(dir / (prefix + ".inc"));
   const std::string name = std::filesystem::path(prefix).filename().string();
   if (pov.find("#include \"" + name + ".inc\"") == std::string::npos) return prefix + ".pov does not include its .inc";
+  if (wants("tips") != (pov.find("#include \"" + name + "_tips.inc\"") != std::string::npos))
+    return prefix + ".pov includes its tips without tips in --formats, or the other way round";
+  if (wants("tips")) {
+    const std::string tips = read_file(dir / (prefix + "_tips.inc"));
+    if (tips.find("#declare DLA_TipCount = ") == std::string::npos || !balanced(tips, '{', '}'))
+      return prefix + "_tips.inc does not declare its tips";
+  }
   if (!balanced(inc, '{', '}') || !balanced(pov, '{', '}')) return "the POV-Ray files' braces do not pair";
   // POV-Ray's command line does not take every file name: the scene is copied to a plain one.
   const std::filesystem::path folder = dir.path() / std::filesystem::path(prefix).parent_path();

@@ -393,10 +393,12 @@ TEST(Instances, TheSameWhetherTheAttributesHoldTheTipsGapsOrNot) {
     ASSERT_EQ(measured[k].particle, stored[k].particle);
     ASSERT_EQ(measured[k].scale, stored[k].scale);
   }
-  write_pov(c, dir / "with", {}, nullptr, &with);
-  write_pov(c, dir / "without", {}, nullptr, &without);
-  const std::string inc = read_file(dir / "with.inc");
-  ASSERT_EQ(inc, read_file(dir / "without.inc"));
+  PovOptions tips;
+  tips.tips = true;
+  write_pov(c, dir / "with", tips, nullptr, &with);
+  write_pov(c, dir / "without", tips, nullptr, &without);
+  const std::string inc = read_file(dir / "with_tips.inc");
+  ASSERT_EQ(inc, read_file(dir / "without_tips.inc"));
   // Each DLA_Tip line, in order, is the k-th tip's instance.
   std::istringstream lines(inc.substr(inc.find("#declare DLA_Tips")));
   std::string line;

@@ -155,9 +155,11 @@ TEST(Render, BlobLookAndTipsRender) {
     ScratchDir dir;
     plain = expect_framed_render(c, dir);
   }
+  PovOptions tips;
+  tips.tips = true;
   {
     ScratchDir dir;
-    leaves = expect_framed_render(c, dir, nullptr, {}, nullptr, [](std::string& pov) {
+    leaves = expect_framed_render(c, dir, nullptr, tips, nullptr, [](std::string& pov) {
       set("DLA_ShowTips", "on")(pov);
       const std::size_t at = pov.find("  sphere { Position, min(Scale, 1.5 * DLA_TipRadius) }");
       ASSERT_NE(at, std::string::npos);
@@ -165,6 +167,17 @@ TEST(Render, BlobLookAndTipsRender) {
     });
   }
   EXPECT_GT(leaves, plain + plain / 10);
+  // Without PREFIX_tips.inc, showing the tips stops POV-Ray with a message that says why.
+  ScratchDir dir;
+  write_pov(c, dir / "scene");
+  std::string pov = read_file(dir / "scene.pov");
+  set("DLA_ShowTips", "on")(pov);
+  std::ofstream(dir / "scene.pov") << pov;
+  const std::string command = "cd '" + dir.path().string() + "' && '" + std::string(POVRAY_PATH) +
+                              "' +Iscene.pov +Oscene.ppm +FP +W16 +H12 -D -V > povray.log 2>&1";
+  EXPECT_NE(std::system(command.c_str()), 0);
+  EXPECT_NE(read_file(dir / "povray.log").find("DLA_ShowTips needs scene_tips.inc"), std::string::npos)
+      << read_file(dir / "povray.log");
 }
 
 TEST(Render, PovRayShowsTheStructure3D) {
