@@ -243,7 +243,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
                                                   "default 30000")->capture_default_str()->group(growth);
   CLI::Option* spacing = app.add_option(
       "--spacing", options.spacing,
-      "distance between a particle and its parent; also the contact distance, in [1e-100, 1e100]; "
+      "distance between a particle and its parent; also the contact distance, in [1e-25, 1e25]; "
       "with a mesh, default: its longest side / 100")->capture_default_str()->group(growth);
   app.add_option("--stickiness", options.stickiness, "probability of sticking at a contact, in [1e-4, 1]")
       ->capture_default_str()->group(growth);
@@ -315,7 +315,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   colonize_command->add_option("--max-iterations", max_iterations, "growth steps at most")
       ->capture_default_str()->group(colonizing);
   colonize_command->add_option("--spacing", c.options.spacing, "the step: distance between a node and its parent, "
-                                                                "[1e-100, 1e100]")->capture_default_str()->group(colonizing);
+                                                                "[1e-25, 1e25]")->capture_default_str()->group(colonizing);
   colonize_command->add_option("--kill-distance", c.options.kill_distance, "an attractor dies once a node is this close, "
                                                                             "in spacings, [1, 1e6]")
       ->capture_default_str()->group(colonizing);

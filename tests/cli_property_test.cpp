@@ -50,7 +50,7 @@ using testing::read_file;
 const std::map<std::string, std::vector<std::string>>& option_table() {
   static const std::map<std::string, std::vector<std::string>> table = {
       {"--particles", {"0", "1", "40", "150", "-1", "abc", "1e3", "99999999999999999999", "''"}},
-      {"--spacing", {"1", "0.5", "1e-6", "1e6", "1e-100", "1e100", "0", "-1", "inf", "nan", "1e-300", "1e300",
+      {"--spacing", {"1", "0.5", "1e-6", "1e6", "1e-25", "1e25", "1e-100", "1e100", "0", "-1", "inf", "nan", "1e-300", "1e300",
                      "4.9e-324", "x"}},
       {"--stickiness", {"1", "0.3", "1e-4", "0", "1.5", "nan", "1e-300", "-0"}},
       {"--dimensions", {"2", "3", "1", "4", "-3", "x"}},
@@ -102,7 +102,7 @@ const std::map<std::string, std::vector<std::string>>& colonize_table() {
   static const std::map<std::string, std::vector<std::string>> table = {
       {"--max-nodes", {"30", "200", "1", "0", "-5", "3e9", "x"}},
       {"--max-iterations", {"50", "1000", "1", "0", "-1"}},
-      {"--spacing", {"1", "0.5", "1e-6", "1e6", "0", "-1", "nan", "1e-300"}},
+      {"--spacing", {"1", "0.5", "1e-6", "1e6", "1e-25", "1e25", "0", "-1", "nan", "1e-300", "1e100"}},
       {"--kill-distance", {"2", "1.5", "1", "0.5", "1e7", "nan"}},
       {"--influence", {"8", "3", "inf", "1", "-1", "nan"}},
       {"--noise", {"0.3,4", "1,1", "0,8", "11,1", "1,0", "1", "nan,1"}},
@@ -244,12 +244,31 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
     if (header.find("element vertex " + std::to_string(particles) + "\n") == std::string::npos)
       return prefix + ".ply counts another number of vertices";
     const std::string ply = read_file(dir / (prefix + ".ply"));
+    // Each vertex's floats (x, y, z, radius, age) are finite floats.
+    std::vector<double> floats;
     if (header.find("format binary_little_endian") != std::string::npos) {
       if (body != 38 * particles + 8 * edges) return prefix + ".ply's body is not its header's size";
+      for (std::size_t v = 0; v < particles; ++v)
+        for (std::size_t k = 0; k < 5; ++k) {
+          float value;
+          std::memcpy(&value, ply.data() + header.size() + 38 * v + 4 * k, 4);
+          floats.push_back(value);
+        }
     } else if (static_cast<std::size_t>(std::count(ply.begin() + static_cast<std::ptrdiff_t>(header.size()), ply.end(), '\n')) !=
                particles + edges) {
       return prefix + ".ply's body has another number of lines than its header says";
+    } else {
+      std::istringstream lines(ply.substr(header.size()));
+      std::string line;
+      for (std::size_t v = 0; v < particles && std::getline(lines, line); ++v) {
+        std::istringstream values(line);
+        std::string value;
+        for (std::size_t k = 0; k < 5 && values >> value; ++k) floats.push_back(std::strtod(value.c_str(), nullptr));
+      }
     }
+    for (const double value : floats)
+      if (!(std::abs(value) <= std::numeric_limits<float>::max()))
+        return prefix + ".ply holds " + std::to_string(value) + ", which is not a finite float";
   }
 
   if (wants("tips")) {

@@ -171,8 +171,8 @@ TEST(Cli, ExtremeNumbersAreOneLineErrors) {
     const char* args;
     const char* says;
   } cases[] = {
-      {"--spacing 1e300", "spacing 1e+300 is not in [1e-100, 1e+100]"},
-      {"--spacing 1e-300", "spacing 1e-300 is not in [1e-100, 1e+100]"},
+      {"--spacing 1e300", "spacing 1e+300 is not in [1e-25, 1e+25]"},
+      {"--spacing 1e-300", "spacing 1e-300 is not in [1e-25, 1e+25]"},
       {"--spacing 4.9e-324", "spacing 4.94066e-324 is not in"},
       {"--spacing inf", "spacing inf is not in"},
       {"--spacing nan", "spacing nan is not in"},

@@ -400,8 +400,8 @@ TEST(Options, BadValuesAreRefusedWithAClearMessage) {
   };
   EXPECT_EQ(message([](GrowthOptions& o) { o.stickiness = 1.7; }), "stickiness 1.7 is not in [0.0001, 1]");
   EXPECT_EQ(message([](GrowthOptions& o) { o.stickiness = 0; }), "stickiness 0 is not in [0.0001, 1]");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = -1; }), "spacing -1 is not in [1e-100, 1e+100]");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = NAN; }), "spacing nan is not in [1e-100, 1e+100]");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = -1; }), "spacing -1 is not in [1e-25, 1e+25]");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = NAN; }), "spacing nan is not in [1e-25, 1e+25]");
   EXPECT_EQ(message([](GrowthOptions& o) { o.dimensions = 4; }), "dimensions 4 is not 2 or 3");
   EXPECT_EQ(message([](GrowthOptions& o) { o.seeds.clear(); }), "there is no seed");
   EXPECT_EQ(message([](GrowthOptions& o) { o.seeds.push_back(Vec3(0.5, 0, 0)); }),
@@ -416,8 +416,8 @@ TEST(Options, BadValuesAreRefusedWithAClearMessage) {
             "the disk spawn axis must be x or y in 2 dimensions");
   EXPECT_EQ(message([](GrowthOptions& o) { o.threads = 0; }), "threads 0 is not in 1-256");
   // Where the walk's arithmetic breaks down or a walker would practically never stick.
-  EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = 1e300; }), "spacing 1e+300 is not in [1e-100, 1e+100]");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = 1e-300; }), "spacing 1e-300 is not in [1e-100, 1e+100]");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = 1e300; }), "spacing 1e+300 is not in [1e-25, 1e+25]");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = 1e-300; }), "spacing 1e-300 is not in [1e-25, 1e+25]");
   EXPECT_EQ(message([](GrowthOptions& o) { o.stickiness = 1e-9; }), "stickiness 1e-09 is not in [0.0001, 1]");
   EXPECT_EQ(message([](GrowthOptions& o) { o.min_step = 1e-300; }), "min step 1e-300 is not in [0.01, 1]");
   EXPECT_EQ(message([](GrowthOptions& o) { o.disk_radius = INFINITY; }), "disk radius inf is not in (0, 1000]");

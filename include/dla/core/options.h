@@ -48,7 +48,7 @@ struct GrowthOptions {
   std::size_t particles = 10000;     //!< particles to attach, seeds not counted
   double spacing = 1.0;              //!< distance between a particle and its parent, and the
                                      //!< contact distance: no two particles come closer;
-                                     //!< in [1e-100, 1e100]
+                                     //!< in [1e-25, 1e25]
   double stickiness = 1.0;           //!< probability of sticking at a contact, in [1e-4, 1]
   std::uint64_t rng_seed = 1;        //!< seeds every random choice of the run
   int dimensions = 3;                //!< 3, or 2 for growth in the plane z = 0
@@ -72,8 +72,9 @@ struct GrowthOptions {
 
 //! The limits validate() holds options to. Beyond them the arithmetic of the walk breaks down
 //! (squared distances overflow or underflow, steps vanish in the rounding of a coordinate) or
-//! a walker would take practically for ever to stick.
-inline constexpr double kMinSpacing = 1e-100, kMaxSpacing = 1e100;
+//! a walker would take practically for ever to stick. The spacing's also keep every position
+//! (up to kMaxCoordinate spacings out) a normal float, as the PLY and glTF files hold them.
+inline constexpr double kMinSpacing = 1e-25, kMaxSpacing = 1e25;
 inline constexpr double kMinStickiness = 1e-4;  //!< ~10^4 contacts a particle at the least
 inline constexpr double kMinMinStep = 0.01;     //!< ~10^4 near steps a spacing at the most
 inline constexpr double kMaxDiskRadius = 1000.0;
