@@ -76,6 +76,9 @@ void add_file_options(CLI::App& app, FileOptions& f, FileWords& w) {
   app.add_option("-o,--output", f.output, "prefix of the files written")->capture_default_str()->group(outputs);
   app.add_option("--ply-format", w.ply_format, "the PLYs as binary (little-endian) or ascii (text: twice the size, "
                                              "three times slower to write)")->capture_default_str()->group(outputs);
+  // Binary became the default on 2026-11-24; the old flag still runs the scripts and resumes
+  // the checkpoints that name it. Not in --help.
+  app.add_flag_callback("--binary", [&w] { w.ply_format = "binary"; })->group("");
   app.add_option("--formats", w.formats, "files to write, a comma list of pov, csv, ply, json, glb, obj, tips "
                                         "(PREFIX_tips.ply, and with pov PREFIX_tips.inc) and svg (2D)")->capture_default_str()->group(outputs);
 

@@ -73,6 +73,7 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--drift", {"0,0,0", "0,-0.3,0", "0.2,0,0", "0,0.9,0", "0,0,2", "nan,0,0", "0,0,0.5"}},
       {"--output", {"out", "'with space'", "'we\"ird'", "'back\\slash'", "sub/out", "''", "dir/"}},
       {"--ply-format", {"binary", "ascii", "text"}},
+      {"--binary", {}},
       {"--formats", {"pov,csv,ply,json", "glb,obj,tips,json", "csv,svg,json", "json", "''", "pov,png", "glb,,obj"}},
       {"--radius", {"taper", "pipe", "boundary", "seed-distance", "uniform", "wavy"}},
       {"--base-radius", {"0.5", "0.001", "1000", "0", "-1", "1e300"}},

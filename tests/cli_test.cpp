@@ -36,6 +36,23 @@ TEST(Cli, WritesEveryFile) {
   EXPECT_NE(read_file(dir / "out.pov").find("// dla3d -n 2000 -o out --rng-seed 5"), std::string::npos);
 }
 
+// The PLY is binary unless asked for as text; the flag from before --ply-format still works.
+TEST(Cli, PlyFormat) {
+  ScratchDir dir;
+  const auto format_of = [&](const std::string& args) {
+    const CliRun run = dla3d(dir, "-n 300 -q --formats ply -o out " + args);
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    const std::string ply = read_file(dir / "out.ply");
+    return ply.substr(0, ply.find(" 1.0\n"));
+  };
+  EXPECT_EQ(format_of(""), "ply\nformat binary_little_endian");
+  EXPECT_EQ(format_of("--ply-format ascii"), "ply\nformat ascii");
+  EXPECT_EQ(format_of("--binary"), "ply\nformat binary_little_endian");
+  const CliRun bad = dla3d(dir, "-n 300 -q --ply-format text -o bad");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(bad.err, "dla3d: error: ply-format 'text' is not one of binary, ascii\n");
+}
+
 TEST(Cli, SameSeedSameFiles) {
   ScratchDir dir;
   ASSERT_EQ(dla3d(dir, "-n 1000 -o a -q --seed-at=-5,0,0 --seed-at 5,0,0").exit_code, 0);
