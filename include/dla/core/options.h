@@ -72,8 +72,8 @@ struct GrowthOptions {
 
 //! The limits validate() holds options to. Beyond them the arithmetic of the walk breaks down
 //! (squared distances overflow or underflow, steps vanish in the rounding of a coordinate) or
-//! a walker would take practically for ever to stick. The spacing's also keep every position
-//! (up to kMaxCoordinate spacings out) a normal float, as the PLY and glTF files hold them.
+//! a walker would take practically for ever to stick. The spacing's limits also keep every
+//! position (up to kMaxCoordinate spacings out) a normal float, as the PLY and glTF hold them.
 inline constexpr double kMinSpacing = 1e-25, kMaxSpacing = 1e25;
 inline constexpr double kMinStickiness = 1e-4;  //!< ~10^4 contacts a particle at the least
 inline constexpr double kMinMinStep = 0.01;     //!< ~10^4 near steps a spacing at the most

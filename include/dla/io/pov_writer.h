@@ -41,12 +41,12 @@ struct PovOptions {
 void validate_pov_prefix(const std::string& prefix);
 
 //! Writes PREFIX.pov and PREFIX.inc (and PREFIX_tips.inc with `options.tips`); the .pov
-//! includes them by their file names, so they stay side by side. The look gives the radius model and range (switchable in the .pov: the
-//! .inc carries what every model needs) and the colour; without one, the default look. With
-//! a `mesh` (the constraint), the .inc also holds it as a smooth mesh2, shown as glass and
-//! framed with the structure. A structure whose spacing is far from 1, or that lies far from
-//! the origin, is written scaled and shifted (the .pov says so). Throws IOError if a file
-//! cannot be written.
+//! includes them by their file names, so they stay side by side. The look gives the radius
+//! model and range (switchable in the .pov: the .inc carries what every model needs) and the
+//! colour; without one, the default look. With a `mesh` (the constraint), the .inc also holds
+//! it as a smooth mesh2, shown as glass and framed with the structure. A structure whose
+//! spacing is far from 1, or that lies far from the origin, is written scaled and shifted (the
+//! .pov says so). Throws IOError if a file cannot be written.
 void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptions& options = {},
                const TriangleMesh* mesh = nullptr, const Look* look = nullptr);
 
