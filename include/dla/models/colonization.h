@@ -362,7 +362,7 @@ inline Cluster colonize(const ColonizationOptions& o, std::vector<Vec3> attracto
   // axes in turn). Per attractor: its closest node (-1: none within reach, -2: dead) and the
   // squared distance to it; per range, at its middle, the largest of those over its live
   // attractors (-1 when all are dead).
-  constexpr std::size_t kLeaf = 8;
+  constexpr std::size_t kLeaf = 32;
   const std::size_t count = attractors.size();
   const int axes = o.dimensions;
   const auto build = [&](auto&& self, std::size_t from, std::size_t to, int depth) -> void {
