@@ -51,7 +51,7 @@ int colonize(const ColonizeCommand& command, const std::vector<std::string>& arg
     attractors = read_points(command.attractors_path);
     if (command.sample_attractors)
       attractors = sample_attractors(attractors, command.attractors.count, options.rng_seed);
-    if (attractors.size() > 100'000'000u)
+    if (attractors.size() > kMaxAttractors)
       throw InvalidInput(command.attractors_path + ": more than 1e8 attractors");
     if (options.dimensions == 2)
       for (const Vec3& a : attractors)

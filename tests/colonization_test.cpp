@@ -36,6 +36,7 @@ TEST(Colonization, KeptClosestNodesGiveTheFullRescansTree) {
     ColonizationOptions options;
     AttractorOptions attractors;
     std::vector<Vec3> roots;
+    int copies = 1;  // of every attractor: ties between equally close nodes
   };
   std::vector<Case> cases;
   {
@@ -73,9 +74,18 @@ TEST(Colonization, KeptClosestNodesGiveTheFullRescansTree) {
     c.attractors.box_max = Vec3(20, 20, 0);
     cases.push_back(c);
   }
+  {
+    Case c{"unbounded among steeply graded attractors, each twice, two roots", {}, {}, {Vec3(0, 0, -25), Vec3(0, 0, 25)}};
+    c.attractors.count = 1500;
+    c.attractors.radius = 25;
+    c.attractors.falloff = 3;
+    c.copies = 2;
+    cases.push_back(c);
+  }
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
-    const std::vector<Vec3> attractors = scatter_attractors(c.attractors, 5, c.options.dimensions);
+    std::vector<Vec3> attractors;
+    for (const Vec3& a : scatter_attractors(c.attractors, 5, c.options.dimensions)) attractors.insert(attractors.end(), c.copies, a);
     const Cluster kept = colonize(c.options, attractors, c.roots);
     ASSERT_GT(kept.particles.size(), c.roots.size() + 20) << "it grew";
     expect_same_tree(kept, colonize_by_rescan(c.options, attractors, c.roots));

@@ -12,11 +12,11 @@
 //! 3. attractors within the kill distance of a new node die;
 //! until no attractor is left, no node grows, or a limit is met.
 //!
-//! The closest nodes are kept, not rescanned: each new node updates only the attractors it is
-//! closer to than their current node, found in a k-d tree over the attractors whose every range
-//! knows the largest distance of its live attractors to their nodes, so a range the new node
-//! cannot improve is skipped whole. The sums of directions are kept per node in fixed point,
-//! exact whatever the order of updates: the result is the full rescan's, node for node.
+//! The closest nodes are kept, not rescanned: each iteration's new nodes update only the
+//! attractors they come closer to than their current node, found in an index over the
+//! attractors that skips whole ranges no new node can change (attractor_tree.h). The sums of
+//! directions are kept per node in fixed point, exact whatever the order of updates: the result
+//! is the full rescan's, node for node.
 
 #include "dla/core/cluster.h"
 #include "dla/mesh/constraint.h"
@@ -24,6 +24,7 @@
 #include "dla/models/growth.h"
 #include "dla/core/options.h"
 #include "dla/core/random.h"
+#include "dla/index/attractor_tree.h"
 #include "dla/mesh/surface_distance.h"
 
 #include <algorithm>
@@ -61,9 +62,12 @@ inline AttractorRegion parse_attractor_region(std::string_view word) {
   return detail::parse_word(word, values, "attractor region");
 }
 
+//! The most attractors a tree grows among.
+constexpr std::size_t kMaxAttractors = 100'000'000;
+
 //! Attractors scattered at random, seeded.
 struct AttractorOptions {
-  std::size_t count = 10000;                  //!< how many, 1 to 10^8
+  std::size_t count = 10000;                  //!< how many, 1 to kMaxAttractors (10^8)
   AttractorRegion region = AttractorRegion::sphere;
   Vec3 center = Vec3::Zero();                 //!< the sphere's centre, scene units
   double radius = 50.0;                       //!< the sphere's radius, scene units, > 0
@@ -76,7 +80,7 @@ struct AttractorOptions {
 };
 
 inline void validate(const AttractorOptions& o) {
-  if (o.count < 1 || o.count > 100'000'000u)
+  if (o.count < 1 || o.count > kMaxAttractors)
     throw InvalidInput("attractors " + std::to_string(o.count) + " is not in [1, 1e8]");
   // Whether the points fit the tree's spacing is colonize()'s to check.
   if (!o.center.allFinite() || !o.box_min.allFinite() || !o.box_max.allFinite())
@@ -353,34 +357,15 @@ inline Cluster colonize(const ColonizationOptions& o, std::vector<Vec3> attracto
     if (o.vessel && !o.vessel->on_growth_side(roots[i]))
       throw InvalidInput("root " + std::to_string(i + 1) + " is outside the vessel");
   }
+  if (attractors.size() > kMaxAttractors)
+    throw InvalidInput(std::to_string(attractors.size()) + " attractors are more than " +
+                       std::to_string(kMaxAttractors));
   for (const Vec3& a : attractors) detail::require_representable("an attractor", a, o.spacing);
 
   Cluster tree = detail::roots_only(o, roots);
   const double kill2 = detail::kill_distance2(o), reach2 = detail::reach2(o);
 
-  // The attractors, reordered into an implicit k-d tree (each range's middle splits it, the
-  // axes in turn). Per attractor: its closest node (-1: none within reach, -2: dead) and the
-  // squared distance to it; per range, at its middle, the largest of those over its live
-  // attractors (-1 when all are dead).
-  constexpr std::size_t kLeaf = 32;
-  const std::size_t count = attractors.size();
-  const int axes = o.dimensions;
-  const auto build = [&](auto&& self, std::size_t from, std::size_t to, int depth) -> void {
-    if (to - from <= kLeaf) return;
-    const int axis = depth % axes;
-    const std::size_t middle = from + (to - from) / 2;
-    std::nth_element(attractors.begin() + static_cast<std::ptrdiff_t>(from),
-                     attractors.begin() + static_cast<std::ptrdiff_t>(middle),
-                     attractors.begin() + static_cast<std::ptrdiff_t>(to),
-                     [axis](const Vec3& a, const Vec3& b) { return a[axis] < b[axis]; });
-    self(self, from, middle, depth + 1);
-    self(self, middle + 1, to, depth + 1);
-  };
-  build(build, 0, count, 0);
-  std::vector<std::int32_t> closest(count, -1);
-  std::vector<double> distance2(count, reach2);
-  std::vector<double> bound(count, reach2);  // at a range's middle; a leaf's at its first
-  constexpr std::int32_t kDead = -2;
+  AttractorTree index(std::move(attractors), reach2, kill2);
 
   // Per node: the fixed-point sum of unit directions to its attractors, how many, and its
   // last child (a node whose attractors have not changed would grow the same child again).
@@ -389,80 +374,25 @@ inline Cluster colonize(const ColonizationOptions& o, std::vector<Vec3> attracto
   // Whether a node's attractors changed since it last tried to grow: if not, it would find
   // what it found then (no step, or the same child), and the collision's queries are skipped.
   std::vector<std::uint8_t> changed(roots.size(), 0);
-  std::size_t live = count;
 
-  const auto detach = [&](std::size_t a) {
-    const std::int32_t v = closest[a];
-    if (v < 0) return;
-    const auto d = detail::fixed_direction(tree.particles[static_cast<std::size_t>(v)].position, attractors[a]);
-    auto& sum = sums[static_cast<std::size_t>(v)];
-    for (int axis = 0; axis < 3; ++axis) sum[static_cast<std::size_t>(axis)] -= d[static_cast<std::size_t>(axis)];
-    --pulls[static_cast<std::size_t>(v)];
-    changed[static_cast<std::size_t>(v)] = 1;
+  const auto pull = [&](const Vec3& attractor, std::int32_t v, std::int64_t sign) {
+    const auto node = static_cast<std::size_t>(v);
+    const auto d = detail::fixed_direction(tree.particles[node].position, attractor);
+    for (std::size_t axis = 0; axis < 3; ++axis) sums[node][axis] += sign * d[axis];
+    pulls[node] += static_cast<std::int32_t>(sign);
+    changed[node] = 1;
   };
-  const auto attach = [&](std::size_t a, std::int32_t v) {
-    closest[a] = v;
-    const auto d = detail::fixed_direction(tree.particles[static_cast<std::size_t>(v)].position, attractors[a]);
-    auto& sum = sums[static_cast<std::size_t>(v)];
-    for (int axis = 0; axis < 3; ++axis) sum[static_cast<std::size_t>(axis)] += d[static_cast<std::size_t>(axis)];
-    ++pulls[static_cast<std::size_t>(v)];
-    changed[static_cast<std::size_t>(v)] = 1;
+  const auto moved = [&](std::size_t a, std::int32_t from, std::int32_t to) {
+    const Vec3 attractor = index.position(a);
+    if (from != AttractorTree::kNone) pull(attractor, from, -1);
+    if (to != AttractorTree::kDied) pull(attractor, to, 1);
   };
-  // Visits the ranges that node v at p may change: it takes attractors it is closer to than
-  // their node (and within reach), and kills those within the kill distance. Returns the
-  // range's new bound. `gap` holds p's distance to the range's box along each axis: only the
-  // split axis changes from a range to its parts.
-  const auto visit = [&](auto&& self, std::size_t from, std::size_t to, int depth, const Vec3& gap,
-                         std::int32_t v, const Vec3& p) -> double {
-    if (from >= to) return -1.0;
-    // Computed as each attractor's distance is, term by term: never above any of theirs.
-    const double gap2 = gap.squaredNorm();
-    const bool leaf = to - from <= kLeaf;
-    const std::size_t key = leaf ? from : from + (to - from) / 2;
-    // All dead; or nothing to take (no live attractor is farther from its node than the box
-    // is from p) and nothing to kill.
-    if (bound[key] < 0.0 || (gap2 >= bound[key] && gap2 > kill2)) return bound[key];
-    double largest = -1.0;
-    const auto consider = [&](std::size_t a) {
-      if (closest[a] == kDead) return;
-      const double d2 = (attractors[a] - p).squaredNorm();
-      if (d2 <= kill2) {
-        detach(a);
-        closest[a] = kDead;
-        --live;
-        return;
-      }
-      if (d2 < distance2[a]) {
-        detach(a);
-        attach(a, v);
-        distance2[a] = d2;
-      }
-      largest = std::max(largest, distance2[a]);
-    };
-    if (leaf) {
-      for (std::size_t a = from; a < to; ++a) consider(a);
-    } else {
-      consider(key);
-      const int axis = depth % axes;
-      const double split = attractors[key][axis];
-      // The part on p's side keeps p's gap; the other's box starts at the split.
-      Vec3 across = gap;
-      across[axis] = std::abs(p[axis] - split);
-      const bool left_near = p[axis] < split;
-      largest = std::max(largest, self(self, from, key, depth + 1, left_near ? gap : across, v, p));
-      largest = std::max(largest, self(self, key + 1, to, depth + 1, left_near ? across : gap, v, p));
-    }
-    bound[key] = largest;
-    return largest;
-  };
-  const auto add_node = [&](std::int32_t v) {
-    visit(visit, 0, count, 0, Vec3::Zero(), v, tree.particles[static_cast<std::size_t>(v)].position);
-  };
-  for (std::size_t r = 0; r < roots.size(); ++r) add_node(static_cast<std::int32_t>(r));
+  std::vector<Vec3> new_positions(roots);
+  index.add_nodes(0, new_positions, moved);
 
   const detail::LatticeNoise noise(o.rng_seed);
   std::vector<std::pair<std::int32_t, Vec3>> grown;  // this iteration's new nodes: parent, position
-  for (std::size_t iteration = 0; iteration < o.max_iterations && live > 0 && tree.particles.size() < o.max_nodes;
+  for (std::size_t iteration = 0; iteration < o.max_iterations && index.live() > 0 && tree.particles.size() < o.max_nodes;
        ++iteration) {
     if (stop && stop->load()) {
       tree.complete = false;
@@ -490,7 +420,9 @@ inline Cluster colonize(const ColonizationOptions& o, std::vector<Vec3> attracto
       changed.push_back(0);
       last_child[static_cast<std::size_t>(parent)] = v;
     }
-    for (std::size_t v = first_new; v < tree.particles.size(); ++v) add_node(static_cast<std::int32_t>(v));
+    new_positions.clear();
+    for (std::size_t v = first_new; v < tree.particles.size(); ++v) new_positions.push_back(tree.particles[v].position);
+    index.add_nodes(static_cast<std::int32_t>(first_new), new_positions, moved);
     if (progress && !progress(tree)) {
       tree.complete = false;
       return tree;
