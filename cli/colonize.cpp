@@ -7,7 +7,6 @@
 #include "dla/mesh/mesh.h"
 #include "dla/io/run_report.h"
 
-#include <unistd.h>
 
 #include <cstdio>
 #include <memory>
@@ -62,50 +61,27 @@ int colonize(const ColonizeCommand& command, const std::vector<std::string>& arg
   ColonizationInputs inputs{command.attractors_path, attractors.size(), command.vessel_path, command.collide_path,
                             command.collision};
 
-  ProgressBar bar(options.max_nodes, !command.quiet && isatty(STDERR_FILENO));
-  const Clock::time_point start = Clock::now();
-  const Cluster tree = dla::colonize(
-      grown_with, std::move(attractors), roots,
-      [&](const Cluster& so_far) {
-        bar.update(so_far.particles.size());
-        return !stop.load();
-      },
-      &stop);
-  bar.clear();
-  RunRecord record;
-  record.grow_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  record.command = command_line(args);
-  const int signal = stop_signal;
-  if (!tree.complete) record.stopped_by = signal_name(signal);
-
-  PovOptions pov = command.pov;
-  pov.comment = record.command;
-  const Clock::time_point write_start = Clock::now();
+  ModelRun run;
+  run.total = options.max_nodes;
+  run.unit = "nodes";
   // The vessel, else the collision mesh, shows in the scene as glass, as a constraint mesh does.
-  write_files(tree, command, pov, 1, vessel.get(), mesh ? &mesh->mesh() : nullptr);
-  record.write_seconds = std::chrono::duration<double>(Clock::now() - write_start).count();
-  if (command.formats.json)
-    write_colonization_report(tree, options, command.attractors, command.look, pov, record, command.output + ".json",
-                              inputs);
-
-  const std::string nodes = with_commas(static_cast<double>(tree.particles.size()));
-  if (!command.quiet) {
-    std::string written;
-    for (const std::string& name : file_names(command)) written += (written.empty() ? "" : " ") + name;
-    const std::string render =
-        command.formats.pov ? "; render: povray +W1280 +H960 +A " + command.output + ".pov" : "";
-    std::fprintf(stderr, "dla3d: grew %s nodes from %s root%s in %.2f s; bounding radius %.1f\n"
-                         "dla3d: wrote %s%s\n",
-                 nodes.c_str(), with_commas(static_cast<double>(tree.seed_count)).c_str(),
-                 tree.seed_count == 1 ? "" : "s", record.grow_seconds, bounding_radius(tree), written.c_str(),
-                 render.c_str());
-  }
-  if (!tree.complete) {
-    std::fprintf(stderr, "dla3d: stopped by %s after %s nodes; the files hold them\n", signal_name(signal),
-                 nodes.c_str());
-    return 128 + signal;
-  }
-  return 0;
+  run.constraint = vessel.get();
+  run.scene_mesh = mesh ? &mesh->mesh() : nullptr;
+  return run_model(
+      command, args, run, stop, stop_signal,
+      [&](const ProgressFn& progress) { return dla::colonize(grown_with, std::move(attractors), roots, progress, &stop); },
+      [&](const Cluster& tree, const PovOptions& pov, const RunRecord& record) {
+        write_colonization_report(tree, options, command.attractors, command.look, pov, record,
+                                  command.output + ".json", inputs);
+      },
+      [&](const Cluster& tree, const RunRecord& record) {
+        char line[256];
+        std::snprintf(line, sizeof line, "grew %s nodes from %s root%s in %.2f s; bounding radius %.1f",
+                      with_commas(static_cast<double>(tree.particles.size())).c_str(),
+                      with_commas(static_cast<double>(tree.seed_count)).c_str(), tree.seed_count == 1 ? "" : "s",
+                      record.grow_seconds, bounding_radius(tree));
+        return std::string(line);
+      });
 }
 
 }  // namespace dla::cli

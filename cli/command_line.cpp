@@ -381,6 +381,41 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   FileWords colonize_words;
   add_file_options(*colonize_command, c, colonize_words);
 
+  EdenCommand& e = line.eden;
+  CLI::App* eden_command = app.add_subcommand(
+      "eden", "grow an Eden cluster on a lattice: sites join at random on its edge, or where a mask counts "
+              "enough of it (docs/eden.md)");
+  eden_command->get_formatter()->column_width(34);
+  const char* eden_group = "Eden";
+  long long sites = static_cast<long long>(e.options.sites);
+  int eden_dimensions = 2;
+  std::string lattice, eden_mode = std::string(to_string(e.options.mode)), mask;
+  eden_command->add_option("-n,--sites", sites, "sites at most, the seed included")->capture_default_str()->group(eden_group);
+  CLI::Option* dimensions_option =
+      eden_command->add_option("--dimensions", eden_dimensions, "2, or 3 for a cubic lattice")
+          ->capture_default_str()->group(eden_group);
+  eden_command->add_option("--lattice", lattice, "square4, square8 or hex in 2D; cubic6, cubic18 or cubic26 in 3D "
+                                                 "(the number: neighbours); default square4, in 3D cubic6")
+      ->group(eden_group);
+  eden_command->add_option("--mode", eden_mode, "perimeter (a random empty neighbour joins) or drop (a random site "
+                                                "joins where the mask counts enough of the cluster)")
+      ->capture_default_str()->group(eden_group);
+  eden_command->add_option("--mask", mask, "drop: A, B, C or D (the paper's masks: 4, 8, 12 and 24 sites around), "
+                                           "or a file drawing one; default A")->group(eden_group);
+  eden_command->add_option("--mask-threshold", e.options.mask_threshold, "drop: occupied mask sites a site needs, "
+                                                                         "1 to the mask's size")
+      ->capture_default_str()->group(eden_group);
+  eden_command->add_option("--seed-radius", e.options.seed_radius, "the cluster starts as every site within this "
+                                                                   "many spacings of the seed, [0, 100]")
+      ->capture_default_str()->group(eden_group);
+  eden_command->add_option("--spacing", e.options.spacing, "distance between neighbouring sites, [1e-25, 1e25]")
+      ->capture_default_str()->group(eden_group);
+  eden_command->add_option("--rng-seed", e.options.rng_seed, "seed of the random generator: the same seed gives "
+                                                             "the same files")
+      ->capture_default_str()->group(eden_group);
+  FileWords eden_words;
+  add_file_options(*eden_command, e, eden_words);
+
   CLI::App* convert_command =
       app.add_subcommand("convert", "read a mesh (STL, OFF, OBJ, PLY) and write it as binary STL, then stop");
   convert_command->add_option("in", line.convert_in, "the mesh to read")->required();
@@ -407,6 +442,30 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     return line;
   } catch (const CLI::ParseError& e) {
     throw InvalidInput(std::string(e.what()) + " (see dla3d --help)");
+  }
+
+  if (eden_command->parsed()) {
+    line.kind = CommandLine::Kind::eden;
+    if (sites < 1) throw InvalidInput("--sites " + std::to_string(sites) + " is not at least 1");
+    e.options.sites = static_cast<std::size_t>(sites);
+    if (eden_dimensions != 2 && eden_dimensions != 3)
+      throw InvalidInput("--dimensions " + std::to_string(eden_dimensions) + " is not 2 or 3");
+    e.options.lattice = lattice.empty() ? (eden_dimensions == 3 ? Lattice::cubic6 : Lattice::square4) : parse_lattice(lattice);
+    if (!lattice.empty() && dimensions_option->count() && dimensions_of(e.options.lattice) != eden_dimensions)
+      throw InvalidInput("--lattice " + lattice + " is not a lattice in " + std::to_string(eden_dimensions) + "D");
+    e.options.mode = parse_eden_mode(eden_mode);
+    if (e.options.mode == EdenMode::perimeter) {
+      if (!mask.empty() || eden_command->count("--mask-threshold"))
+        throw InvalidInput("--mask and --mask-threshold are for --mode drop");
+    } else if (mask.size() == 1 && mask.find_first_of("ABCD") == 0) {
+      e.options.mask = parse_eden_mask(mask);
+    } else {
+      e.mask_path = mask;  // read, and checked, before growth
+    }
+    parse_file_words(e, eden_words);
+    check_file_options(e, eden_words, dimensions_of(e.options.lattice), false);
+    if (e.mask_path.empty()) validate(e.options);
+    return line;
   }
 
   if (colonize_command->parsed()) {

@@ -3,6 +3,7 @@
 // and the CLI fuzzer (tests/fuzz/cli_fuzz.cpp) drives it with arbitrary words.
 
 #include "dla/models/colonization.h"
+#include "dla/models/eden.h"
 #include "dla/mesh/constraint.h"
 #include "dla/look/instances.h"
 #include "dla/look/look.h"
@@ -82,11 +83,18 @@ struct ColonizeCommand : FileOptions {
   CollisionMode collision = CollisionMode::push;
 };
 
+//! `dla3d eden [options]`: grow an Eden cluster on a lattice and write its files.
+struct EdenCommand : FileOptions {
+  EdenOptions options;
+  std::string mask_path;  //!< --mask FILE: the mask drawn in a file; empty: a preset or none
+};
+
 //! What the command line asks for.
 struct CommandLine {
   enum class Kind {
     grow,      //!< `grow` holds the options
     colonize,  //!< dla3d colonize: `colonize` holds the options
+    eden,      //!< dla3d eden: `eden` holds the options
     resume,    //!< --resume FILE, with only -q and --threads beside it
     convert,   //!< dla3d convert IN OUT.stl
     analyze,   //!< dla3d analyze PREFIX.csv
@@ -95,6 +103,7 @@ struct CommandLine {
   Kind kind = Kind::grow;
   GrowCommand grow;
   ColonizeCommand colonize;
+  EdenCommand eden;
   std::string resume_path;
   bool threads_given = false;  //!< with --resume: grow.options.threads replaces the checkpoint's
   std::string convert_in, convert_out;

@@ -26,6 +26,11 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
 int colonize(const ColonizeCommand& command, const std::vector<std::string>& args, const StopFlag& stop,
              const volatile std::sig_atomic_t& stop_signal);
 
+//! `dla3d eden`: grows an Eden cluster and writes the files, as colonize() does. Returns 0, or
+//! 128 + the signal when stopped.
+int eden(const EdenCommand& command, const std::vector<std::string>& args, const StopFlag& stop,
+         const volatile std::sig_atomic_t& stop_signal);
+
 //! `dla3d convert IN OUT.stl`: the project's own mesh reading, to make bust.stl at setup.
 int convert(const std::string& in, const std::string& out, bool quiet);
 

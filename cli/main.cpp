@@ -1,5 +1,5 @@
-// dla3d: grows a DLA structure (or, with `colonize`, a space colonization tree) and writes it
-// as a POV-Ray scene, CSV, PLY and a JSON sidecar.
+// dla3d: grows a DLA structure (or, with `colonize`, a space colonization tree; with `eden`, an
+// Eden cluster) and writes it as a POV-Ray scene, CSV, PLY and a JSON sidecar.
 // This file parses the command line (command_line.cpp) and runs the subcommand it names, one
 // file each; every error ends here as one line on stderr.
 
@@ -40,6 +40,10 @@ int run(const std::vector<std::string>& args) {
       std::signal(SIGINT, on_stop_signal);
       std::signal(SIGTERM, on_stop_signal);
       return dla::cli::colonize(line.colonize, args, stop_requested, stop_signal);
+    case Kind::eden:
+      std::signal(SIGINT, on_stop_signal);
+      std::signal(SIGTERM, on_stop_signal);
+      return dla::cli::eden(line.eden, args, stop_requested, stop_signal);
     case Kind::resume: {
       // The checkpoint's own command, with this thread count and -q: the count changes how
       // fast it goes on, never what it grows.

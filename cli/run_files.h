@@ -5,9 +5,13 @@
 #include "command_line.h"
 
 #include "dla/core/cluster.h"
+#include "dla/io/run_report.h"
 #include "dla/mesh/constraint.h"
 
+#include <unistd.h>
+
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -74,5 +78,56 @@ const char* signal_name(int signal);
 //! one. With `scene_mesh`, the POV-Ray scene shows it.
 void write_files(const Cluster& cluster, const FileOptions& files, const PovOptions& pov, int threads,
                  const MeshConstraint* constraint, const TriangleMesh* scene_mesh);
+
+//! What a model's run (colonize, eden) tells run_model() beyond its files.
+struct ModelRun {
+  std::size_t total = 0;                       //!< particles at most, for the progress bar
+  const char* unit = "particles";              //!< what they are called in the stop line
+  const MeshConstraint* constraint = nullptr;  //!< measured by the look, as in write_files()
+  const TriangleMesh* scene_mesh = nullptr;    //!< shown in the POV-Ray scene
+};
+
+//! A growth subcommand but DLA's (which has checkpoints): grows with grow(progress) under the
+//! progress bar, writes the files, then the JSON with report(cluster, pov, record), and prints
+//! the summary, whose first line is summary(cluster, record). Returns 0, or 128 + the signal
+//! when `stop` ended growth (the files hold what grew).
+template <class Grow, class Report, class Summary>
+int run_model(const FileOptions& files, const std::vector<std::string>& args, const ModelRun& run,
+              const StopFlag& stop, const volatile std::sig_atomic_t& stop_signal, Grow&& grow, Report&& report,
+              Summary&& summary) {
+  ProgressBar bar(run.total, !files.quiet && isatty(STDERR_FILENO));
+  const Clock::time_point start = Clock::now();
+  const Cluster cluster = grow([&](const Cluster& so_far) {
+    bar.update(so_far.particles.size());
+    return !stop.load();
+  });
+  bar.clear();
+  RunRecord record;
+  record.grow_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  record.command = command_line(args);
+  const int signal = stop_signal;
+  if (!cluster.complete) record.stopped_by = signal_name(signal);
+
+  PovOptions pov = files.pov;
+  pov.comment = record.command;
+  const Clock::time_point write_start = Clock::now();
+  write_files(cluster, files, pov, 1, run.constraint, run.scene_mesh);
+  record.write_seconds = std::chrono::duration<double>(Clock::now() - write_start).count();
+  if (files.formats.json) report(cluster, pov, record);
+
+  if (!files.quiet) {
+    std::string written;
+    for (const std::string& name : file_names(files)) written += (written.empty() ? "" : " ") + name;
+    const std::string render = files.formats.pov ? "; render: povray +W1280 +H960 +A " + files.output + ".pov" : "";
+    std::fprintf(stderr, "dla3d: %s\ndla3d: wrote %s%s\n", summary(cluster, record).c_str(), written.c_str(),
+                 render.c_str());
+  }
+  if (!cluster.complete) {
+    std::fprintf(stderr, "dla3d: stopped by %s after %s %s; the files hold them\n", signal_name(signal),
+                 with_commas(static_cast<double>(cluster.particles.size())).c_str(), run.unit);
+    return 128 + signal;
+  }
+  return 0;
+}
 
 }  // namespace dla::cli

@@ -62,6 +62,18 @@ void timings(detail::OutputFile& out, const Cluster& cluster, const RunRecord& r
   out.number(record.grow_seconds > 0 ? static_cast<double>(attached(cluster)) / record.grow_seconds : 0.0, 6);
 }
 
+//! The end of a model's sidecar but DLA's (which has walk statistics): the look, counts,
+//! measures and timings; then the file goes into place.
+void finish_model_report(detail::OutputFile& out, const Cluster& cluster, const LookOptions& look, const PovOptions& pov,
+                         const RunRecord& record) {
+  look_section(out, look, pov);
+  counts(out, cluster);
+  measures(out, cluster);
+  timings(out, cluster, record);
+  out << "\n  }\n}\n";
+  out.commit();
+}
+
 }  // namespace
 
 void write_run_report(const Cluster& cluster, const GrowthOptions& o, const LookOptions& look,
@@ -175,12 +187,37 @@ void write_colonization_report(const Cluster& cluster, const ColonizationOptions
     out << ",\n    \"collide\": " << json::string(inputs.collide_file) << ",\n    \"collision\": \""
         << to_string(inputs.collision) << '"';
   out << "\n  },\n";
-  look_section(out, look, pov);
-  counts(out, cluster);
-  measures(out, cluster);
-  timings(out, cluster, record);
-  out << "\n  }\n}\n";
-  out.commit();
+  finish_model_report(out, cluster, look, pov, record);
+}
+
+void write_eden_report(const Cluster& cluster, const EdenOptions& o, const std::string& mask_file,
+                       const LookOptions& look, const PovOptions& pov, const RunRecord& record,
+                       const std::string& path) {
+  detail::OutputFile out(path);
+  begin(out, cluster, record);
+  out << "  \"model\": \"eden\",\n  \"rng_seed\": ";
+  out.integer(static_cast<long long>(o.rng_seed)) << ",\n  \"options\": {\n    \"sites\": ";
+  out.integer(static_cast<long long>(o.sites)) << ",\n    \"lattice\": \"" << to_string(o.lattice)
+                                                << "\",\n    \"dimensions\": ";
+  out.integer(dimensions_of(o.lattice)) << ",\n    \"mode\": \"" << to_string(o.mode) << '"';
+  if (o.mode == EdenMode::drop) {
+    if (mask_file.empty()) out << ",\n    \"mask\": \"" << to_string(o.mask) << '"';
+    else out << ",\n    \"mask_from\": " << json::string(mask_file);
+    out << ",\n    \"mask_sites\": [";
+    const std::vector<std::array<int, 3>> sites = eden_mask(o);
+    for (std::size_t i = 0; i < sites.size(); ++i) {
+      out << (i ? ", [" : "[");
+      out.integer(sites[i][0]) << ", ";
+      out.integer(sites[i][1]) << ", ";
+      out.integer(sites[i][2]) << ']';
+    }
+    out << "],\n    \"mask_threshold\": ";
+    out.integer(o.mask_threshold);
+  }
+  out << ",\n    \"seed_radius\": ";
+  out.number(o.seed_radius) << ",\n    \"spacing\": ";
+  out.number(o.spacing) << "\n  },\n";
+  finish_model_report(out, cluster, look, pov, record);
 }
 
 }  // namespace dla

@@ -8,8 +8,8 @@
 //   - exit 2 (bad input) prints one line and writes no file;
 //   - exit 1 (growth or I/O failed) ends with one error line, and any files are marked
 //     incomplete.
-// A quarter of the command lines are `dla3d colonize` ones, drawn from its own table and the
-// Output and Look options.
+// A quarter of the command lines are `dla3d colonize` ones and an eighth `dla3d eden` ones,
+// each drawn from its own table and the Output and Look options.
 // DLA_PROPERTY_RUNS sets the number of command lines (default 150, about a minute; the `slow`
 // ctest entry runs 1,000) and DLA_PROPERTY_SEED the generator's seed. Every option added to
 // dla3d must join the table below: the test fails on an option of --help it does not know.
@@ -128,6 +128,23 @@ const std::map<std::string, std::vector<std::string>>& colonize_table() {
   return table;
 }
 
+//! `dla3d eden`'s own options, drawn as the table's; its Output and Look options are the
+//! table's.
+const std::map<std::string, std::vector<std::string>>& eden_table() {
+  static const std::map<std::string, std::vector<std::string>> table = {
+      {"--sites", {"40", "300", "1", "0", "-5", "3e9", "x"}},
+      {"--dimensions", {"2", "3", "1", "x"}},
+      {"--lattice", {"square4", "hex", "square8", "cubic6", "cubic18", "cubic26", "square5"}},
+      {"--mode", {"drop", "perimeter", "random"}},
+      {"--mask", {"B", "mask.txt", "A", "C", "D", "missing.txt", "noise.stl", "E", "''"}},
+      {"--mask-threshold", {"1", "2", "3", "0", "-1", "200", "x"}},
+      {"--seed-radius", {"2", "0", "100", "-1", "101", "nan", "inf"}},
+      {"--spacing", {"1", "0.5", "1e-6", "1e6", "1e-25", "1e25", "0", "-1", "nan", "1e-300", "1e100"}},
+      {"--rng-seed", {"1", "7", "18446744073709551615", "-1"}},
+  };
+  return table;
+}
+
 //! The long option names `dla3d [colonize] --help` lists.
 std::set<std::string> options_of_help(const ScratchDir& dir, const std::string& subcommand = "") {
   const std::string command = "cd '" + dir.path().string() + "' && '" DLA3D_PATH "' " + subcommand + " --help > help.txt";
@@ -150,6 +167,7 @@ void make_inputs(const ScratchDir& dir) {
   std::ofstream(dir / "noise.stl", std::ios::binary) << noise;
   std::ofstream(dir / "out.csv") << "id,x,y,z,parent,seed\n0,0,0,0,-1,0\n";
   std::ofstream(dir / "points.csv") << "1,2,3\n-4,5,0\n6,-7,8\n0,-9,0\n3,3,3\n";
+  std::ofstream(dir / "mask.txt") << "; the 3x3 block\nxxx\nxox\nxxx\n";
   std::ofstream(dir / "points.ply") << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                                        "property float z\nend_header\n1 2 0\n-4 5 0\n0 -9 0\n";
   GrowthOptions o;
@@ -208,6 +226,9 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
   // a collision mesh moves it as far as its surface.
   const double noise = std::max(0.0, json_value(json, "noise_amplitude"));
   const bool collided = json.find("\"collide\": ") != std::string::npos;
+  // An Eden site hangs from the nearest occupied site of its mask, up to 8 sites away along
+  // each axis.
+  const double reach = json.find("\"model\": \"eden\"") != std::string::npos ? 8 * std::sqrt(3.0) : 1.0;
 
   if (wants("csv")) {
     std::istringstream csv(read_file(dir / (prefix + ".csv")));
@@ -231,7 +252,7 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
         // A step's length is off by the rounding of its ends: relative to their size, not the
         // spacing's (a tree of spacing 1e-6 rooted 50 away).
         const double rounding = 8 * std::numeric_limits<double>::epsilon() * p.cwiseAbs().maxCoeff();
-        if (!(length > 0.0 && (collided || length <= spacing * (1.0 + std::sqrt(3.0) * noise + 1e-9) + rounding)))
+        if (!(length > 0.0 && (collided || length <= spacing * (reach + std::sqrt(3.0) * noise + 1e-9) + rounding)))
           return prefix + ".csv has a branch of length " + std::to_string(length) + " for spacing " + std::to_string(spacing);
       }
       positions.push_back(p);
@@ -341,14 +362,21 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
   for (const std::string& name : options_of_help(root, "colonize"))
     EXPECT_TRUE(colonize_table().count(name) || option_table().count(name))
         << name << " is in dla3d colonize --help but not in the property test's tables";
-  // What colonize shares with DLA: the Output and Look options (and help).
   std::vector<std::string> colonize_flags;
   for (const auto& [flag, values] : colonize_table()) colonize_flags.push_back(flag);
-  for (const char* flag : {"--output", "--ply-format", "--formats", "--radius", "--base-radius", "--tip-radius",
-                                  "--pipe-exponent", "--color-by", "--look", "--tube-sides", "--tube-tolerance",
-                                  "--tube-min-branch", "--instances", "--tips-within", "--up", "--quiet", "--help"})
-    colonize_flags.push_back(flag);
-  const auto values_of = [&](const std::string& flag) -> const std::vector<std::string>& {
+  for (const std::string& name : options_of_help(root, "eden"))
+    EXPECT_TRUE(eden_table().count(name) || option_table().count(name))
+        << name << " is in dla3d eden --help but not in the property test's tables";
+  // What colonize and eden share with DLA: the Output and Look options (and help).
+  const std::vector<const char*> shared = {"--output", "--ply-format", "--formats", "--radius", "--base-radius",
+                                           "--tip-radius", "--pipe-exponent", "--color-by", "--look", "--tube-sides",
+                                           "--tube-tolerance", "--tube-min-branch", "--instances", "--tips-within",
+                                           "--up", "--quiet", "--help"};
+  std::vector<std::string> eden_flags(shared.begin(), shared.end());
+  for (const auto& [flag, values] : eden_table()) eden_flags.push_back(flag);
+  colonize_flags.insert(colonize_flags.end(), shared.begin(), shared.end());
+  const auto values_of = [&](const std::string& flag, bool eden) -> const std::vector<std::string>& {
+    if (eden && eden_table().count(flag)) return eden_table().at(flag);
     return colonize_table().count(flag) ? colonize_table().at(flag) : option_table().at(flag);
   };
 
@@ -363,20 +391,23 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
   std::map<int, int> exits;
   for (int run = 0; run < runs; ++run) {
     // A few options, mostly valid values: an invalid one ends most runs at once. One run in
-    // four is space colonization.
-    const bool colonizing = pick(4) == 0;
+    // four is space colonization, one in eight Eden growth.
+    const std::size_t model = pick(8);
+    const bool colonizing = model < 2, eden = model == 2;
     std::string args;
     bool particles_given = false, output_given = false;
     const std::size_t count = pick(7);
     for (std::size_t i = 0; i < count; ++i) {
-      const std::string& flag = colonizing ? colonize_flags[pick(colonize_flags.size())] : flags[pick(flags.size())];
-      const std::vector<std::string>& values = colonizing ? values_of(flag) : option_table().at(flag);
+      const std::string& flag = colonizing ? colonize_flags[pick(colonize_flags.size())]
+                                : eden     ? eden_flags[pick(eden_flags.size())]
+                                           : flags[pick(flags.size())];
+      const std::vector<std::string>& values = colonizing || eden ? values_of(flag, eden) : option_table().at(flag);
       if (flag == "--help" || flag == "--version") {
         if (pick(8) != 0) continue;  // rare: they end every run with a print
       }
       args += " " + flag;
       if (!values.empty()) args += " " + values[pick(3) == 0 ? pick(values.size()) : pick(std::min<std::size_t>(2, values.size()))];
-      particles_given = particles_given || flag == "--particles" || flag == "--max-nodes";
+      particles_given = particles_given || flag == "--particles" || flag == "--max-nodes" || flag == "--sites";
       output_given = output_given || flag == "--output";
     }
     // A resume takes no -n: leave it alone so that some resumes are valid.
@@ -385,13 +416,14 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
       if (args.find("--attractors ") == std::string::npos) args = " --attractors " + std::to_string(50 + pick(1000)) + args;
       args = " colonize" + args;
     }
+    if (eden) args = " eden" + args;
     const std::string command = args.substr(1);
 
     ScratchDir dir;
     make_inputs(dir);
     std::filesystem::create_directory(dir.path() / "dir");
-    const std::set<std::string> inputs = {"ball.stl",   "box.off",    "noise.stl", "out.csv",
-                                          "points.csv", "points.ply", "saved.ck",  "dir"};
+    const std::set<std::string> inputs = {"ball.stl",   "box.off",  "noise.stl", "out.csv", "points.csv",
+                                          "points.ply", "saved.ck", "mask.txt",  "dir"};
     // The bound: far above what any of these takes (under the sanitizers too); `timeout`
     // kills a hang with 137 and the assertion below names the command.
     const testing::CliRun result = testing::dla3d(dir, command, "timeout -s KILL 120");

@@ -492,6 +492,69 @@ TEST(Cli, ColonizeGrowsInAVesselAndReadsItsAttractorsFromAFile) {
                           [&](const dla::Particle& p) { return p.position == root; }));
 }
 
+TEST(Cli, EdenWritesTheSameFilesAsGrowth) {
+  ScratchDir dir;
+  const CliRun run = dla3d(dir, "eden -o sq -n 3000 --rng-seed 4");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("dla3d: grew 3,000 sites on a square4 lattice"), std::string::npos) << run.err;
+  for (const char* name : {"sq.pov", "sq.inc", "sq.csv", "sq.ply", "sq.json"})
+    EXPECT_TRUE(std::filesystem::exists(dir / name)) << name;
+  const dla::Cluster square = dla::read_csv(dir / "sq.csv");
+  ASSERT_EQ(square.particles.size(), 3000u);
+  for (const dla::Particle& p : square.particles) ASSERT_EQ(p.position.z(), 0.0);
+  const std::string json = read_file(dir / "sq.json");
+  EXPECT_NE(json.find("\"model\": \"eden\""), std::string::npos);
+  EXPECT_NE(json.find("\"lattice\": \"square4\""), std::string::npos);
+  ASSERT_EQ(dla3d(dir, "eden -q -o again -n 3000 --rng-seed 4").exit_code, 0);
+  for (const char* ext : {".csv", ".ply", ".inc"})
+    EXPECT_EQ(read_file(dir / (std::string("sq") + ext)), read_file(dir / (std::string("again") + ext))) << ext;
+
+  // 3D, and a mask drawn in a file: the two sites to the left and the one above them.
+  ASSERT_EQ(dla3d(dir, "eden -q -o cube --dimensions 3 -n 2000 --formats csv,json").exit_code, 0);
+  EXPECT_NE(read_file(dir / "cube.json").find("\"lattice\": \"cubic6\""), std::string::npos);
+  std::ofstream(dir / "lean.txt") << "; leans right\n.x.\nxxo\n";
+  ASSERT_EQ(dla3d(dir, "eden -q -o lean --mode drop --mask lean.txt -n 500 --formats csv,json,svg").exit_code, 0);
+  const std::string lean = read_file(dir / "lean.json");
+  EXPECT_NE(lean.find("\"mask_sites\": [[-1, 1, 0], [-2, 0, 0], [-1, 0, 0]]"), std::string::npos) << lean;
+  EXPECT_NE(lean.find("\"mask_from\": \"lean.txt\""), std::string::npos) << lean;
+  for (const dla::Particle& p : dla::read_csv(dir / "lean.csv").particles) ASSERT_GE(p.position.x(), 0.0);
+
+  // A threshold no site can meet: growth ends early, and says so.
+  const CliRun stalled = dla3d(dir, "eden -o alone --mode drop --mask B --mask-threshold 2 -n 50 --formats json");
+  ASSERT_EQ(stalled.exit_code, 0) << stalled.err;
+  EXPECT_NE(stalled.err.find("grew 1 sites on a square4 lattice in "), std::string::npos) << stalled.err;
+  EXPECT_NE(stalled.err.find("(then no site could stick)"), std::string::npos) << stalled.err;
+}
+
+TEST(Cli, EdenStopsOnSigintWithTheClusterSoFar) {
+  ScratchDir dir;
+  const int code = interrupted(dir, "eden -n 1000000000 -q -o part --formats ply,json", "INT", 0.7);
+  if (code == 0) GTEST_SKIP() << "the run ended before the signal: this machine is too fast for the test";
+  ASSERT_EQ(code, 130) << read_file(dir / "err.txt");
+  EXPECT_NE(read_file(dir / "err.txt").find("stopped by SIGINT after "), std::string::npos);
+  const std::string json = read_file(dir / "part.json");
+  EXPECT_NE(json.find("\"complete\": false"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"stopped_by\": \"SIGINT\""), std::string::npos) << json;
+}
+
+TEST(Cli, EdenBadInputIsOneLineAndNoFiles) {
+  const char* cases[] = {
+      "-n 0", "--dimensions 4", "--lattice square5", "--lattice cubic6 --dimensions 2", "--mode random",
+      "--mask B", "--mask-threshold 2", "--mode drop --mask-threshold 0", "--mode drop --mask D --mask-threshold 25",
+      "--seed-radius 101", "--spacing 0", "--formats svg --dimensions 3", "--radius boundary", "--attractors 5",
+      // A mask that cannot be read: exit 1.
+      "--mode drop --mask missing.txt",
+  };
+  for (const char* args : cases) {
+    ScratchDir dir;
+    const CliRun run = dla3d(dir, std::string("eden -q -o out ") + args);
+    EXPECT_EQ(run.exit_code, std::string(args).find("missing") != std::string::npos ? 1 : 2) << args;
+    EXPECT_EQ(run.err.rfind("dla3d: error: ", 0), 0u) << args << ": " << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << args << ": " << run.err;
+    EXPECT_TRUE(std::filesystem::is_empty(dir.path())) << args << " left files";
+  }
+}
+
 TEST(Cli, ColonizeBadInputIsOneLineAndNoFiles) {
   const char* cases[] = {
       "--kill-distance 0.5", "--influence 1", "--noise 1", "--noise 11,1", "--tropism 0,0,20", "--attractors 0",

@@ -1,6 +1,7 @@
 // POV-Ray renders the emitted scene as it is: the image is not blank and the structure is
 // framed, in 3D and in the plane.
 
+#include "dla/models/eden.h"
 #include "dla/models/growth.h"
 #include "dla/io/pov_writer.h"
 #include "dla/mesh/shapes.h"
@@ -232,6 +233,18 @@ TEST(Render, PovRayShowsTheStructurePlanar) {
   o.dimensions = 2;
   o.seeds = {Vec3(10, -5, 0)};
   expect_framed_render(grow(o), dir);
+}
+
+// The Eden model's clusters, on a plane lattice and a cubic one, render framed.
+TEST(Render, PovRayShowsEdenClusters) {
+  for (const Lattice lattice : {Lattice::hex, Lattice::cubic26}) {
+    SCOPED_TRACE(std::string(to_string(lattice)));
+    ScratchDir dir;
+    EdenOptions o;
+    o.lattice = lattice;
+    o.sites = 3000;
+    expect_framed_render(eden(o), dir);
+  }
 }
 
 }  // namespace

@@ -4,12 +4,13 @@
 // as Ctrl-C would), and given the look it asks for. Any words must either be refused with
 // InvalidInput, or parse into options that grow a valid tree with positive radii, tubes and
 // instancing points: never crash, hang, overflow or read out of bounds. A colonize command is
-// grown with at most 64 nodes among at most 300 attractors.
+// grown with at most 64 nodes among at most 300 attractors, an eden command to 200 sites.
 // Build with -DDLA_FUZZ=ON (clang); see docs/testing.md.
 
 #include "../../cli/command_line.h"
 
 #include "dla/models/colonization.h"
+#include "dla/models/eden.h"
 #include "dla/models/growth.h"
 #include "dla/look/instances.h"
 #include "dla/look/look.h"
@@ -57,6 +58,22 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       }
       const dla::Look look = dla::make_look(tree, c.look);
       for (const float radius : look.radii(tree))
+        if (!(radius > 0.0f) || !std::isfinite(radius)) std::abort();
+      return 0;
+    }
+    if (line.kind == dla::cli::CommandLine::Kind::eden) {
+      // Eden growth, small: sites on the lattice, each hanging from an earlier one.
+      dla::EdenOptions o = line.eden.options;
+      if (!line.eden.mask_path.empty()) return 0;  // mask files are the property test's
+      o.sites = std::min<std::size_t>(o.sites, 200);
+      const dla::Cluster cluster = dla::eden(o);
+      if (cluster.particles.size() > o.sites) std::abort();
+      for (std::size_t i = 1; i < cluster.particles.size(); ++i) {
+        const dla::Particle& p = cluster.particles[i];
+        if (p.parent < 0 || static_cast<std::size_t>(p.parent) >= i || !p.position.allFinite()) std::abort();
+      }
+      const dla::Look look = dla::make_look(cluster, line.eden.look);
+      for (const float radius : look.radii(cluster))
         if (!(radius > 0.0f) || !std::isfinite(radius)) std::abort();
       return 0;
     }

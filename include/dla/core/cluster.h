@@ -8,8 +8,10 @@
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace dla {
@@ -46,6 +48,15 @@ struct Cluster {
   std::uint64_t replays = 0;        //!< walkers run again because a particle attached by an
                                     //!< earlier walker on another thread changed their path
 };
+
+//! Called as growth goes on (each model says how often) and at the end, with the structure so
+//! far; returning false stops growth early and the cluster comes back marked incomplete.
+using ProgressFn = std::function<bool(const Cluster& so_far)>;
+
+//! Set from another thread or a signal handler (a lock-free atomic store is async-signal-safe)
+//! to stop growth within milliseconds. The cluster comes back marked incomplete, as when the
+//! ProgressFn returns false.
+using StopFlag = std::atomic<bool>;
 
 //! Particles attached so far, seeds not counted.
 inline std::size_t attached(const Cluster& cluster) { return cluster.particles.size() - cluster.seed_count; }

@@ -5,6 +5,7 @@
 
 #include "dla/core/cluster.h"
 #include "dla/models/colonization.h"
+#include "dla/models/eden.h"
 #include "dla/mesh/constraint.h"
 #include "dla/look/look.h"
 #include "dla/core/options.h"
@@ -43,5 +44,11 @@ struct ColonizationInputs {
 void write_colonization_report(const Cluster& cluster, const ColonizationOptions& options,
                                const AttractorOptions& attractors, const LookOptions& look, const PovOptions& pov,
                                const RunRecord& record, const std::string& path, const ColonizationInputs& inputs);
+
+//! The sidecar of an Eden run (eden.h): "model": "eden", its options (the mask as its sites,
+//! and the file it came from if any); no walk statistics. Throws IOError.
+void write_eden_report(const Cluster& cluster, const EdenOptions& options, const std::string& mask_file,
+                       const LookOptions& look, const PovOptions& pov, const RunRecord& record,
+                       const std::string& path);
 
 }  // namespace dla

@@ -27,16 +27,9 @@
 
 namespace dla {
 
-//! Called as growth goes on, every 256 particles and at the end, with the structure so far;
-//! returning false stops growth early and the cluster comes back marked incomplete (it can be
-//! saved and grown on with resume()).
-using ProgressFn = std::function<bool(const Cluster& so_far)>;
-
-//! Set from another thread or a signal handler (a lock-free atomic store is async-signal-safe)
-//! to stop growth: walkers look at it every few thousand steps, so growth stops within
-//! milliseconds wherever it is, even in a walk that would never end. The cluster comes back
-//! marked incomplete, as when `progress` returns false.
-using StopFlag = std::atomic<bool>;
+// DLA calls its ProgressFn (cluster.h) every 256 particles and at the end; an incomplete
+// cluster can be saved and grown on with resume(). Walkers look at the StopFlag every few
+// thousand steps, so growth stops within milliseconds, even in a walk that would never end.
 
 //! Growth that failed part way (a walker that cannot stick, a structure beyond the index's
 //! reach, memory run out), with what had grown before the failure, marked incomplete: it can
