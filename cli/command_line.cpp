@@ -40,12 +40,12 @@ Formats parse_formats(const std::string& text) {
   while (std::getline(in, word, ',')) {
     bool* format = word == "pov" ? &formats.pov : word == "csv" ? &formats.csv : word == "ply" ? &formats.ply
                  : word == "json" ? &formats.json : word == "glb" ? &formats.glb : word == "obj" ? &formats.obj
-                 : word == "tips" ? &formats.tips : word == "svg" ? &formats.svg : nullptr;
+                 : word == "tips" ? &formats.tips : word == "svg" ? &formats.svg : word == "png" ? &formats.png : nullptr;
     if (!format)
-      throw InvalidInput("--formats '" + text + "': '" + word + "' is not one of pov, csv, ply, json, glb, obj, tips, svg");
+      throw InvalidInput("--formats '" + text + "': '" + word + "' is not one of pov, csv, ply, json, glb, obj, tips, svg, png");
     *format = any = true;
   }
-  if (!any) throw InvalidInput("--formats is empty: name at least one of pov, csv, ply, json, glb, obj, tips, svg");
+  if (!any) throw InvalidInput("--formats is empty: name at least one of pov, csv, ply, json, glb, obj, tips, svg, png");
   return formats;
 }
 
@@ -80,7 +80,11 @@ void add_file_options(CLI::App& app, FileOptions& f, FileWords& w) {
   // the checkpoints that name it. Not in --help.
   app.add_flag_callback("--binary", [&w] { w.ply_format = "binary"; })->group("");
   app.add_option("--formats", w.formats, "files to write, a comma list of pov, csv, ply, json, glb, obj, tips "
-                                        "(PREFIX_tips.ply, and with pov PREFIX_tips.inc) and svg (2D)")->capture_default_str()->group(outputs);
+                                        "(PREFIX_tips.ply, and with pov PREFIX_tips.inc), svg and png (2D)")->capture_default_str()->group(outputs);
+  app.add_option("--png-scale", f.png.pixels_per_spacing, "png: pixels a spacing, [1e-6, 64]")
+      ->capture_default_str()->group(outputs);
+  app.add_option("--png-bands", f.png.bands, "png: times the white, grey, black bands cycle over the attach "
+                                             "order, 1 to 1e6")->capture_default_str()->group(outputs);
 
   const char* looks = "Look";
   w.radius = app.add_option("--radius", w.radius_model, "branch thickness: taper, pipe, boundary (needs a mesh), "
@@ -135,6 +139,9 @@ void check_file_options(const FileOptions& f, const FileWords& w, int dimensions
   validate(f.instances);
   if (f.formats.svg && dimensions != 2)
     throw InvalidInput("--formats svg draws 2D growth: add --dimensions 2, or leave svg out");
+  if (f.formats.png && dimensions != 2)
+    throw InvalidInput("--formats png draws 2D growth: add --dimensions 2, or leave png out");
+  validate(f.png);
   if (!with_mesh) {
     if (f.look.radius.model == RadiusModel::boundary)
       throw InvalidInput("--radius boundary measures to a constraint mesh: give one with --stl");

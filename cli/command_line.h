@@ -9,6 +9,7 @@
 #include "dla/look/look.h"
 #include "dla/core/options.h"
 #include "dla/io/ply_writer.h"
+#include "dla/io/png_writer.h"
 #include "dla/io/pov_writer.h"
 
 #include <cstddef>
@@ -24,7 +25,7 @@ inline constexpr double kMeshBaseRadius = 3.0, kMeshTipRadius = 0.05;
 //! The files a run writes (`--formats`), each as PREFIX.EXT (tips: PREFIX_tips.ply).
 struct Formats {
   bool pov = true, csv = true, ply = true, json = true;
-  bool glb = false, obj = false, tips = false, svg = false;
+  bool glb = false, obj = false, tips = false, svg = false, png = false;
 };
 
 //! What every growth model's files are and look like: the Output and Look options.
@@ -36,6 +37,7 @@ struct FileOptions {
   std::string output = "dla";          //!< prefix of the files written
   bool quiet = false;
   PlyEncoding ply_encoding = PlyEncoding::binary;  //!< --ply-format
+  PngOptions png;                      //!< --png-scale, --png-bands
 };
 
 //! `dla3d [options]`: grow a structure by DLA and write its files.

@@ -5,6 +5,7 @@
 #include "dla/io/ply_writer.h"
 #include "dla/io/pov_writer.h"
 #include "dla/mesh/surface_distance.h"
+#include "dla/io/png_writer.h"
 #include "dla/io/svg_writer.h"
 
 #include <malloc.h>
@@ -56,6 +57,7 @@ std::vector<std::string> file_names(const FileOptions& files) {
   if (f.obj) names.push_back(o + ".obj");
   if (f.tips) names.push_back(o + "_tips.ply");
   if (f.svg) names.push_back(o + ".svg");
+  if (f.png) names.push_back(o + ".png");
   if (f.json) names.push_back(o + ".json");
   return names;
 }
@@ -91,6 +93,7 @@ void write_files(const Cluster& cluster, const FileOptions& files, const PovOpti
     write_instances_ply(cluster, look.attributes, files.instances, output + "_tips.ply", encoding);
   });
   write(formats.svg, [&] { write_svg(cluster, look, output + ".svg"); });
+  write(formats.png, [&] { write_png(cluster, output + ".png", files.png); });
   if (formats.pov) write_pov(cluster, output, pov, scene_mesh, &look);
   for (std::future<void>& writer : writers) writer.get();
 }

@@ -74,7 +74,10 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--output", {"out", "'with space'", "'we\"ird'", "'back\\slash'", "sub/out", "''", "dir/"}},
       {"--ply-format", {"binary", "ascii", "text"}},
       {"--binary", {}},
-      {"--formats", {"pov,csv,ply,json", "glb,obj,tips,json", "csv,svg,json", "json", "''", "pov,png", "glb,,obj"}},
+      {"--formats", {"pov,csv,ply,json", "glb,obj,tips,json", "csv,svg,json", "png,csv,json", "json", "''", "pov,jpg",
+                     "glb,,obj"}},
+      {"--png-scale", {"2", "0.5", "64", "1e-6", "0", "65", "nan", "-1"}},
+      {"--png-bands", {"8", "1", "1000000", "0", "-1", "x"}},
       {"--radius", {"taper", "pipe", "boundary", "seed-distance", "uniform", "wavy"}},
       {"--base-radius", {"0.5", "0.001", "1000", "0", "-1", "1e300"}},
       {"--tip-radius", {"0.25", "0.001", "1000", "0", "-1", "nan"}},
@@ -323,6 +326,15 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
     if (obj.rfind("# dla3d ", 0) != 0 || obj.back() != '\n') return prefix + ".obj is not whole";
   }
 
+  if (wants("png")) {
+    const std::string png = read_file(dir / (prefix + ".png"));
+    std::uint32_t size[2] = {0, 0};
+    if (png.size() >= 45) std::memcpy(size, png.data() + 16, 8);
+    if (png.size() < 45 || png.compare(0, 8, "\x89PNG\r\n\x1a\n") != 0 || png.compare(12, 4, "IHDR") != 0 ||
+        size[0] == 0 || size[1] == 0 || png.compare(png.size() - 8, 4, "IEND") != 0)
+      return prefix + ".png is not a whole PNG";
+  }
+
   if (wants("svg")) {
     const std::string svg = read_file(dir / (prefix + ".svg"));
     std::size_t lines = 0;
@@ -368,7 +380,7 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
     EXPECT_TRUE(eden_table().count(name) || option_table().count(name))
         << name << " is in dla3d eden --help but not in the property test's tables";
   // What colonize and eden share with DLA: the Output and Look options (and help).
-  const std::vector<const char*> shared = {"--output", "--ply-format", "--formats", "--radius", "--base-radius",
+  const std::vector<const char*> shared = {"--output", "--ply-format", "--formats", "--png-scale", "--png-bands", "--radius", "--base-radius",
                                            "--tip-radius", "--pipe-exponent", "--color-by", "--look", "--tube-sides",
                                            "--tube-tolerance", "--tube-min-branch", "--instances", "--tips-within",
                                            "--up", "--quiet", "--help"};

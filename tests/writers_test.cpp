@@ -4,15 +4,18 @@
 #include "dla/io/csv_writer.h"
 #include "dla/models/growth.h"
 #include "dla/io/ply_writer.h"
+#include "dla/io/png_writer.h"
 #include "dla/io/pov_writer.h"
 #include "dla/io/run_report.h"
 #include "test_util.h"
 
 #include <gtest/gtest.h>
+#include <png.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 
 #include <sstream>
 
@@ -193,6 +196,82 @@ TEST(RunReport, RecordsOptionsSeedAndCounts) {
                                "\"complete\": true", "\"grow_seconds\": 1", "\"particles_per_second\": 500",
                                "\"fractal_dimension_gyration\": "})
     EXPECT_NE(json.find(expected), std::string::npos) << expected;
+}
+
+struct Picture {
+  std::size_t width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;
+};
+
+// Reads an 8-bit RGB PNG back with libpng.
+Picture read_png(const std::string& path) {
+  Picture picture;
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&image, path.c_str())) return picture;
+  image.format = PNG_FORMAT_RGB;
+  picture.width = image.width;
+  picture.height = image.height;
+  picture.rgb.resize(PNG_IMAGE_SIZE(image));
+  if (!png_image_finish_read(&image, nullptr, picture.rgb.data(), 0, nullptr)) return {};
+  return picture;
+}
+
+TEST(Png, EveryParticleIsADotInItsBandOnTheBackground) {
+  GrowthOptions o;
+  o.particles = 800;
+  o.dimensions = 2;
+  o.spacing = 0.5;
+  const Cluster cluster = grow(o);
+  ScratchDir dir;
+  PngOptions options;
+  options.pixels_per_spacing = 3;
+  options.bands = 2;
+  write_png(cluster, dir / "dla.png", options);
+  const Picture picture = read_png(dir / "dla.png");
+  const auto [width, height] = png_size(cluster, options);
+  ASSERT_EQ(picture.width, static_cast<std::size_t>(width));
+  ASSERT_EQ(picture.height, static_cast<std::size_t>(height));
+  // The corner is background; each particle's centre pixel holds a band's colour (white,
+  // grey or black).
+  const auto pixel = [&](std::size_t x, std::size_t y) {
+    const std::uint8_t* p = &picture.rgb[(y * picture.width + x) * 3];
+    return std::array<int, 3>{p[0], p[1], p[2]};
+  };
+  EXPECT_EQ(pixel(0, 0), (std::array<int, 3>{0x38, 0x40, 0x4c}));
+  Vec3 min = cluster.particles[0].position;
+  for (const Particle& p : cluster.particles) min = min.cwiseMin(p.position);
+  const double scale = options.pixels_per_spacing / cluster.spacing;
+  std::size_t lit = 0;
+  for (std::size_t y = 0; y < picture.height; ++y)
+    for (std::size_t x = 0; x < picture.width; ++x) lit += pixel(x, y) != pixel(0, 0);
+  EXPECT_GT(lit, cluster.particles.size()) << "each dot is several pixels";
+  for (std::size_t i = 0; i < cluster.particles.size(); ++i) {
+    const Vec3& p = cluster.particles[i].position;
+    const auto x = static_cast<std::size_t>(options.margin + 1.5 + (p.x() - min.x()) * scale);
+    const auto y = picture.height - 1 - static_cast<std::size_t>(options.margin + 1.5 + (p.y() - min.y()) * scale);
+    const std::array<int, 3> c = pixel(x, y);
+    ASSERT_TRUE(c == (std::array<int, 3>{255, 255, 255}) || c == (std::array<int, 3>{0x90, 0x90, 0x90}) ||
+                c == (std::array<int, 3>{0, 0, 0}))
+        << "particle " << i;
+  }
+  // The same structure, the same bytes; 3D is refused; a structure too wide for the scale
+  // is drawn smaller, within 8,192 pixels.
+  write_png(cluster, dir / "again.png", options);
+  EXPECT_EQ(read_file(dir / "dla.png"), read_file(dir / "again.png"));
+  Cluster solid = cluster;
+  solid.dimensions = 3;
+  EXPECT_THROW(write_png(solid, dir / "solid.png"), InvalidInput);
+  EXPECT_FALSE(std::filesystem::exists(dir / "solid.png"));
+  options.pixels_per_spacing = 64;
+  Cluster wide = cluster;
+  for (Particle& p : wide.particles) p.position *= 100.0;
+  write_png(wide, dir / "wide.png", options);
+  const Picture fitted = read_png(dir / "wide.png");
+  EXPECT_LE(std::max(fitted.width, fitted.height), 8192u);
+  EXPECT_GT(std::max(fitted.width, fitted.height), 8000u);
+  options.bands = 0;
+  EXPECT_THROW(write_png(cluster, dir / "none.png", options), InvalidInput);
 }
 
 }  // namespace
