@@ -311,11 +311,13 @@ inline Cluster eden(const EdenOptions& o, const ProgressFn& progress = {}, const
   validate(o);
   const int dimensions = dimensions_of(o.lattice);
   const std::vector<std::array<int, 3>> mask = eden_mask(o);
-  // The mask nearest first, to find a new site's parent: groups of equally near sites.
-  std::vector<std::array<int, 3>> by_distance = mask;
+  // Offsets nearest first, to find a new site's parent: groups of equally near sites.
   const auto length = [&](const std::array<int, 3>& c) { return eden_position(o.lattice, c, 1.0).squaredNorm(); };
-  std::stable_sort(by_distance.begin(), by_distance.end(),
-                   [&](const auto& a, const auto& b) { return length(a) < length(b) - 1e-9; });
+  const auto nearest_first = [&](std::vector<std::array<int, 3>> offsets) {
+    std::stable_sort(offsets.begin(), offsets.end(), [&](const auto& a, const auto& b) { return length(a) < length(b) - 1e-9; });
+    return offsets;
+  };
+  const std::vector<std::array<int, 3>> by_distance = nearest_first(mask);
   int reach = 1;
   for (const auto& offset : mask)
     for (const int c : offset) reach = std::max(reach, std::abs(c));
@@ -337,11 +339,12 @@ inline Cluster eden(const EdenOptions& o, const ProgressFn& progress = {}, const
   const auto at = [&](const std::array<int, 3>& site, const std::array<int, 3>& offset) -> std::int32_t& {
     return lattice.at({site[0] + offset[0], site[1] + offset[1], site[2] + offset[2]});
   };
-  // The nearest occupied site of the mask laid over `site`, the oldest among equally near.
-  const auto parent_of = [&](const std::array<int, 3>& site) {
+  // The nearest occupied site at `offsets` (nearest first) from `site`, the oldest among
+  // equally near.
+  const auto parent_of = [&](const std::array<int, 3>& site, const std::vector<std::array<int, 3>>& offsets) {
     std::int32_t parent = -1;
     double nearest = 0.0;
-    for (const auto& offset : by_distance) {
+    for (const auto& offset : offsets) {
       if (parent >= 0 && length(offset) > nearest + 1e-9) break;
       const std::int32_t value = at(site, offset);
       if (value >= 0 && (parent < 0 || value < parent)) parent = value, nearest = length(offset);
@@ -381,27 +384,19 @@ inline Cluster eden(const EdenOptions& o, const ProgressFn& progress = {}, const
     // Only the nearest o.sites sites of the disk are needed: they lie within the radius that
     // holds that many (a site per unit of area or volume, or more), with a margin.
     constexpr double kPi = 3.141592653589793;
-    const double needed = dimensions == 3 ? std::cbrt(static_cast<double>(o.sites) * 3.0 / (4.0 * kPi))
+    const double enough = dimensions == 3 ? std::cbrt(static_cast<double>(o.sites) * 3.0 / (4.0 * kPi))
                                           : std::sqrt(static_cast<double>(o.sites) / kPi);
-    const int r = static_cast<int>(std::ceil(std::min(o.seed_radius, needed + 3.0))) + 1;
+    const int r = static_cast<int>(std::ceil(std::min(o.seed_radius, enough + 3.0))) + 1;
     std::vector<std::array<int, 3>> disk;
     for (int z = dimensions == 3 ? -r : 0; z <= (dimensions == 3 ? r : 0); ++z)
       for (int y = -r; y <= r; ++y)
         for (int x = -r; x <= r; ++x)
           if ((x || y || z) && length({x, y, z}) <= o.seed_radius * o.seed_radius) disk.push_back({x, y, z});
     std::stable_sort(disk.begin(), disk.end(), [&](const auto& a, const auto& b) { return length(a) < length(b) - 1e-9; });
-    const auto neighbours = lattice_neighbours(o.lattice);
+    const std::vector<std::array<int, 3>> neighbours = nearest_first(lattice_neighbours(o.lattice));
     for (const auto& site : disk) {
       if (cluster.particles.size() >= o.sites) break;
-      std::int32_t parent = -1;
-      double nearest = 0.0;
-      for (const auto& offset : neighbours) {
-        const std::int32_t value = at(site, offset);
-        if (value >= 0 && (parent < 0 || length(offset) < nearest - 1e-9 ||
-                           (length(offset) <= nearest + 1e-9 && value < parent)))
-          parent = value, nearest = length(offset);
-      }
-      occupy(site, parent);  // a step towards the seed is a nearer site of the disk
+      occupy(site, parent_of(site, neighbours));  // a step towards the seed is a nearer site of the disk
     }
   }
 
@@ -416,7 +411,7 @@ inline Cluster eden(const EdenOptions& o, const ProgressFn& progress = {}, const
     const std::size_t pick =
         std::min(candidates.size() - 1, static_cast<std::size_t>(rng.uniform() * static_cast<double>(candidates.size())));
     const std::array<int, 3> site = candidates[pick];
-    occupy(site, parent_of(site));
+    occupy(site, parent_of(site, by_distance));
   }
   if (progress) progress(cluster);
   return cluster;
