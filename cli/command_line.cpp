@@ -423,6 +423,88 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   FileWords eden_words;
   add_file_options(*eden_command, e, eden_words);
 
+  // What drop and ballistic share with DLA: the count, the plane, the scale, the seeds.
+  struct SeededWords {
+    long long particles = 10000;
+    std::vector<std::string> seed_at;
+  };
+  const auto add_seeded_options = [](CLI::App& command, const char* group, SeededWords& w, int& dimensions,
+                                     double& spacing, std::uint64_t& rng_seed, const std::string& spacing_help) {
+    command.add_option("-n,--particles", w.particles, "particles to attach, seeds not counted")
+        ->capture_default_str()->group(group);
+    command.add_option("--dimensions", dimensions, "3, or 2 for growth in the plane z = 0")->capture_default_str()->group(group);
+    command.add_option("--spacing", spacing, "distance between a particle and its parent; no two come closer; "
+                                             "[1e-25, 1e25]" + spacing_help)->capture_default_str()->group(group);
+    command.add_option("--seed-at", w.seed_at, "a seed at x,y,z (repeat for several); default: one at the origin "
+                                                "(with a mesh, one on its growing side)")
+        ->type_name("X,Y,Z")->allow_extra_args(false)->group(group);
+    command.add_option("--rng-seed", rng_seed, "seed of the random generator: the same seed gives the same files")
+        ->capture_default_str()->group(group);
+  };
+  const auto parse_seeded = [](const SeededWords& w, std::size_t& particles, std::vector<Vec3>& seeds) {
+    if (w.particles < 0) throw InvalidInput("--particles " + std::to_string(w.particles) + " is negative");
+    particles = static_cast<std::size_t>(w.particles);
+    if (!w.seed_at.empty()) {
+      seeds.clear();
+      for (const std::string& at : w.seed_at) seeds.push_back(parse_vec3("--seed-at", at));
+    }
+  };
+
+  DropCommand& d = line.drop;
+  CLI::App* drop_command = app.add_subcommand(
+      "drop", "grow by random-drop ballistic aggregation: particles dropped at random join the closest particle "
+              "(docs/drop.md)");
+  drop_command->get_formatter()->column_width(34);
+  const char* dropping = "Random drops";
+  SeededWords drop_words;
+  std::string zone = std::string(to_string(d.options.zone)), zone_box, drop_bias = "uniform";
+  std::string drop_side = std::string(to_string(d.constraint.side)), drop_constraint = std::string(to_string(d.constraint.mode));
+  add_seeded_options(*drop_command, dropping, drop_words, d.options.dimensions, d.options.spacing, d.options.rng_seed,
+                     "; with a mesh, default: its longest side / 100");
+  drop_command->add_option("--stickiness", d.options.stickiness, "chance of sticking on reaching the structure, "
+                                                                 "[1e-4, 1]; else a random step and again")
+      ->capture_default_str()->group(dropping);
+  drop_command->add_option("--zone", zone, "where particles drop: ball (a disk in 2D), box, or mesh (inside --stl)")
+      ->capture_default_str()->group(dropping);
+  drop_command->add_option("--zone-radius", d.options.zone_radius, "ball: a fixed radius about the seeds' centre, "
+                                                                   "scene units; default: growing, see --zone-margin")
+      ->group(dropping);
+  drop_command->add_option("--zone-margin", d.options.zone_margin, "growing ball: spacings beyond the farthest "
+                                                                   "particle, [0.5, 1e6]")
+      ->capture_default_str()->group(dropping);
+  drop_command->add_option("--zone-box", zone_box, "box: a fixed box; default: the square or cube around the ball")
+      ->type_name("X0,Y0,Z0,X1,Y1,Z1")->group(dropping);
+  drop_command->add_option("--drop", drop_bias, "uniform; circle (on the zone's edge); same:N (N drops at one "
+                                                "point); offset:N,R (N more, each within R of the last)")
+      ->capture_default_str()->group(dropping);
+  const char* drop_meshes = "Mesh constraint";
+  drop_command->add_option("--stl,--mesh", d.mesh_path, "grow constrained by this mesh: STL, OFF, OBJ or PLY")
+      ->type_name("FILE")->group(drop_meshes);
+  drop_command->add_option("--side", drop_side, "inside, outside or both (the mesh is only a wall)")
+      ->capture_default_str()->group(drop_meshes);
+  drop_command->add_option("--constraint", drop_constraint, "a branch crossing the mesh: reject (drop again) or clip "
+                                                            "(end at it)")->capture_default_str()->group(drop_meshes);
+  drop_command->add_flag("--scene-mesh,!--no-scene-mesh", d.scene_mesh, "show the mesh, as glass, in the POV-Ray scene")
+      ->capture_default_str()->group(drop_meshes);
+  FileWords drop_file_words;
+  add_file_options(*drop_command, d, drop_file_words);
+
+  BallisticCommand& b = line.ballistic;
+  CLI::App* ballistic_command = app.add_subcommand(
+      "ballistic", "grow by ballistic aggregation: particles fly in straight lines and stick where they first touch "
+                   "(docs/ballistic.md)");
+  ballistic_command->get_formatter()->column_width(34);
+  const char* flying = "Ballistic";
+  SeededWords ballistic_words;
+  std::string direction;
+  add_seeded_options(*ballistic_command, flying, ballistic_words, b.options.dimensions, b.options.spacing,
+                     b.options.rng_seed, "");
+  ballistic_command->add_option("--direction", direction, "deposition: every particle flies along x,y,z; "
+                                                          "default: each from a random direction")
+      ->type_name("X,Y,Z")->group(flying);
+  FileWords ballistic_file_words;
+  add_file_options(*ballistic_command, b, ballistic_file_words);
+
   CLI::App* convert_command =
       app.add_subcommand("convert", "read a mesh (STL, OFF, OBJ, PLY) and write it as binary STL, then stop");
   convert_command->add_option("in", line.convert_in, "the mesh to read")->required();
@@ -449,6 +531,44 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     return line;
   } catch (const CLI::ParseError& e) {
     throw InvalidInput(std::string(e.what()) + " (see dla3d --help)");
+  }
+
+  if (drop_command->parsed()) {
+    line.kind = CommandLine::Kind::drop;
+    parse_seeded(drop_words, d.options.particles, d.options.seeds);
+    d.options.zone = parse_drop_zone(zone);
+    d.options.bias = parse_drop_bias(drop_bias);
+    if (!zone_box.empty()) {
+      const std::vector<double> v = parse_numbers("--zone-box", zone_box, 6);
+      d.options.zone_box = Box{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}};
+    }
+    d.spacing_given = drop_command->count("--spacing") > 0;
+    d.seeds_given = !drop_words.seed_at.empty();
+    d.up_given = drop_command->count("--up") > 0;
+    d.constraint.side = parse_side(drop_side);
+    d.constraint.mode = parse_constraint_mode(drop_constraint);
+    const bool with_mesh = !d.mesh_path.empty();
+    if (!with_mesh && (drop_command->count("--side") || drop_command->count("--constraint")))
+      throw InvalidInput("--side and --constraint say how --stl's mesh constrains growth: give one");
+    if (d.options.zone == DropZone::mesh && !with_mesh)
+      throw InvalidInput("--zone mesh drops inside a mesh: give one with --stl");
+    if (!with_mesh || d.spacing_given) validate(d.options);  // else once the mesh sets the spacing
+    parse_file_words(d, drop_file_words);
+    check_file_options(d, drop_file_words, d.options.dimensions, with_mesh);
+    return line;
+  }
+
+  if (ballistic_command->parsed()) {
+    line.kind = CommandLine::Kind::ballistic;
+    parse_seeded(ballistic_words, b.options.particles, b.options.seeds);
+    if (!direction.empty()) {
+      b.options.direction = parse_vec3("--direction", direction);
+      if (b.options.direction.squaredNorm() == 0.0) throw InvalidInput("--direction 0,0,0 has no direction");
+    }
+    validate(b.options);
+    parse_file_words(b, ballistic_file_words);
+    check_file_options(b, ballistic_file_words, b.options.dimensions, false);
+    return line;
   }
 
   if (eden_command->parsed()) {

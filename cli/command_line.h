@@ -2,7 +2,9 @@
 // dla3d's command line, parsed and checked without touching a file: main.cpp runs what it says,
 // and the CLI fuzzer (tests/fuzz/cli_fuzz.cpp) drives it with arbitrary words.
 
+#include "dla/models/ballistic.h"
 #include "dla/models/colonization.h"
+#include "dla/models/drop.h"
 #include "dla/models/eden.h"
 #include "dla/mesh/constraint.h"
 #include "dla/look/instances.h"
@@ -91,12 +93,29 @@ struct EdenCommand : FileOptions {
   std::string mask_path;  //!< --mask FILE: the mask drawn in a file; empty: a preset or none
 };
 
+//! `dla3d drop [options]`: grow by random-drop ballistic aggregation and write its files.
+struct DropCommand : FileOptions {
+  DropOptions options;
+  std::string mesh_path;          //!< --stl: a constraint mesh; empty: none
+  ConstraintOptions constraint;
+  bool scene_mesh = true;
+  // Options whose default comes from the mesh when they are not given, as for DLA.
+  bool spacing_given = false, seeds_given = false, up_given = false;
+};
+
+//! `dla3d ballistic [options]`: grow by ballistic aggregation and write its files.
+struct BallisticCommand : FileOptions {
+  BallisticOptions options;
+};
+
 //! What the command line asks for.
 struct CommandLine {
   enum class Kind {
     grow,      //!< `grow` holds the options
     colonize,  //!< dla3d colonize: `colonize` holds the options
     eden,      //!< dla3d eden: `eden` holds the options
+    drop,      //!< dla3d drop: `drop` holds the options
+    ballistic, //!< dla3d ballistic: `ballistic` holds the options
     resume,    //!< --resume FILE, with only -q and --threads beside it
     convert,   //!< dla3d convert IN OUT.stl
     analyze,   //!< dla3d analyze PREFIX.csv
@@ -106,6 +125,8 @@ struct CommandLine {
   GrowCommand grow;
   ColonizeCommand colonize;
   EdenCommand eden;
+  DropCommand drop;
+  BallisticCommand ballistic;
   std::string resume_path;
   bool threads_given = false;  //!< with --resume: grow.options.threads replaces the checkpoint's
   std::string convert_in, convert_out;

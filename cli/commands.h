@@ -31,6 +31,16 @@ int colonize(const ColonizeCommand& command, const std::vector<std::string>& arg
 int eden(const EdenCommand& command, const std::vector<std::string>& args, const StopFlag& stop,
          const volatile std::sig_atomic_t& stop_signal);
 
+//! `dla3d drop`: grows by random-drop ballistic aggregation and writes the files, as colonize()
+//! does. Returns 0, 1 when the structure outgrew the index (the files hold what grew), or
+//! 128 + the signal when stopped.
+int drop(const DropCommand& command, const std::vector<std::string>& args, const StopFlag& stop,
+         const volatile std::sig_atomic_t& stop_signal);
+
+//! `dla3d ballistic`: grows by ballistic aggregation and writes the files, as drop() does.
+int ballistic(const BallisticCommand& command, const std::vector<std::string>& args, const StopFlag& stop,
+              const volatile std::sig_atomic_t& stop_signal);
+
 //! `dla3d convert IN OUT.stl`: the project's own mesh reading, to make bust.stl at setup.
 int convert(const std::string& in, const std::string& out, bool quiet);
 

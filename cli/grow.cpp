@@ -32,22 +32,6 @@ void check_memory(std::size_t particles) {
                        detail::format_number(memory / 1e9) + " GB");
 }
 
-//! A spacing of about a hundredth of the mesh box's longest side, rounded to two digits.
-double default_spacing(const Box& box) {
-  const double raw = (box.max - box.min).maxCoeff() / 100.0;
-  const double unit = std::pow(10.0, std::floor(std::log10(raw)) - 1.0);
-  return std::round(raw / unit) * unit;
-}
-
-//! The axis of the mesh box's longest side, y on a tie: standing figures and vessels come out
-//! upright.
-Axis longest_axis(const Box& box) {
-  const Vec3 size = box.max - box.min;
-  if (size.z() > size.y() && size.z() > size.x()) return Axis::z;
-  if (size.x() > size.y()) return Axis::x;
-  return Axis::y;
-}
-
 }  // namespace
 
 int grow(const GrowCommand& command, const std::vector<std::string>& args, const Checkpoint* resumed,

@@ -1,5 +1,6 @@
 // dla3d: grows a DLA structure (or, with `colonize`, a space colonization tree; with `eden`, an
-// Eden cluster) and writes it as a POV-Ray scene, CSV, PLY and a JSON sidecar.
+// Eden cluster; with `drop` and `ballistic`, a random-drop or ballistic aggregate) and writes it
+// as a POV-Ray scene, CSV, PLY and a JSON sidecar.
 // This file parses the command line (command_line.cpp) and runs the subcommand it names, one
 // file each; every error ends here as one line on stderr.
 
@@ -44,6 +45,14 @@ int run(const std::vector<std::string>& args) {
       std::signal(SIGINT, on_stop_signal);
       std::signal(SIGTERM, on_stop_signal);
       return dla::cli::eden(line.eden, args, stop_requested, stop_signal);
+    case Kind::drop:
+      std::signal(SIGINT, on_stop_signal);
+      std::signal(SIGTERM, on_stop_signal);
+      return dla::cli::drop(line.drop, args, stop_requested, stop_signal);
+    case Kind::ballistic:
+      std::signal(SIGINT, on_stop_signal);
+      std::signal(SIGTERM, on_stop_signal);
+      return dla::cli::ballistic(line.ballistic, args, stop_requested, stop_signal);
     case Kind::resume: {
       // The checkpoint's own command, with this thread count and -q: the count changes how
       // fast it goes on, never what it grows.

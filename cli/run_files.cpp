@@ -11,6 +11,7 @@
 #include <malloc.h>
 
 #include <cerrno>
+#include <cmath>
 #include <csignal>
 #include <cstring>
 #include <fstream>
@@ -60,6 +61,22 @@ std::vector<std::string> file_names(const FileOptions& files) {
   if (f.png) names.push_back(o + ".png");
   if (f.json) names.push_back(o + ".json");
   return names;
+}
+
+// A spacing of about a hundredth of the mesh box's longest side, rounded to two digits.
+double default_spacing(const Box& box) {
+  const double raw = (box.max - box.min).maxCoeff() / 100.0;
+  const double unit = std::pow(10.0, std::floor(std::log10(raw)) - 1.0);
+  return std::round(raw / unit) * unit;
+}
+
+// The axis of the mesh box's longest side, y on a tie: standing figures and vessels come out
+// upright.
+Axis longest_axis(const Box& box) {
+  const Vec3 size = box.max - box.min;
+  if (size.z() > size.y() && size.z() > size.x()) return Axis::z;
+  if (size.x() > size.y()) return Axis::x;
+  return Axis::y;
 }
 
 const char* signal_name(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal"; }

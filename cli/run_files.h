@@ -73,6 +73,12 @@ std::vector<std::string> file_names(const FileOptions& files);
 
 const char* signal_name(int signal);
 
+//! With a mesh: a spacing of about a hundredth of its box's longest side, rounded to two digits.
+double default_spacing(const Box& box);
+//! With a mesh: the axis of its box's longest side, y on a tie, so that standing figures and
+//! vessels come out upright.
+Axis longest_axis(const Box& box);
+
 //! Makes the look (the distance to `constraint`'s mesh feeds it, when there is one) and writes
 //! every file of `files` but the JSON, each on a thread of its own: the same bytes as one by
 //! one. With `scene_mesh`, the POV-Ray scene shows it.
@@ -89,24 +95,33 @@ struct ModelRun {
 
 //! A growth subcommand but DLA's (which has checkpoints): grows with grow(progress) under the
 //! progress bar, writes the files, then the JSON with report(cluster, pov, record), and prints
-//! the summary, whose first line is summary(cluster, record). Returns 0, or 128 + the signal
-//! when `stop` ended growth (the files hold what grew).
+//! the summary, whose first line is summary(cluster, record). Returns 0; 1 when growth failed
+//! part way (PartialGrowth); or 128 + the signal when `stop` ended growth. The files hold what
+//! grew.
 template <class Grow, class Report, class Summary>
 int run_model(const FileOptions& files, const std::vector<std::string>& args, const ModelRun& run,
               const StopFlag& stop, const volatile std::sig_atomic_t& stop_signal, Grow&& grow, Report&& report,
               Summary&& summary) {
   ProgressBar bar(run.total, !files.quiet && isatty(STDERR_FILENO));
   const Clock::time_point start = Clock::now();
-  const Cluster cluster = grow([&](const Cluster& so_far) {
-    bar.update(so_far.particles.size());
-    return !stop.load();
-  });
+  Cluster cluster;
+  std::string error;  // why growth failed part way, if it did
+  try {
+    cluster = grow([&](const Cluster& so_far) {
+      bar.update(so_far.particles.size());
+      return !stop.load();
+    });
+  } catch (const PartialGrowth& e) {
+    cluster = e.partial();
+    error = e.what();
+  }
   bar.clear();
   RunRecord record;
   record.grow_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   record.command = command_line(args);
   const int signal = stop_signal;
-  if (!cluster.complete) record.stopped_by = signal_name(signal);
+  if (!error.empty()) record.stopped_by = "error: " + error;
+  else if (!cluster.complete) record.stopped_by = signal_name(signal);
 
   PovOptions pov = files.pov;
   pov.comment = record.command;
@@ -115,6 +130,11 @@ int run_model(const FileOptions& files, const std::vector<std::string>& args, co
   record.write_seconds = std::chrono::duration<double>(Clock::now() - write_start).count();
   if (files.formats.json) report(cluster, pov, record);
 
+  if (!error.empty()) {
+    std::fprintf(stderr, "dla3d: error: %s; %s.* hold the %s %s grown before it\n", error.c_str(), files.output.c_str(),
+                 with_commas(static_cast<double>(cluster.particles.size())).c_str(), run.unit);
+    return 1;
+  }
   if (!files.quiet) {
     std::string written;
     for (const std::string& name : file_names(files)) written += (written.empty() ? "" : " ") + name;

@@ -220,4 +220,89 @@ void write_eden_report(const Cluster& cluster, const EdenOptions& o, const std::
   finish_model_report(out, cluster, look, pov, record);
 }
 
+namespace {
+
+void seeds_entry(detail::OutputFile& out, const std::vector<Vec3>& seeds) {
+  out << ",\n    \"seeds\": [";
+  for (std::size_t i = 0; i < seeds.size(); ++i) {
+    if (i) out << ", ";
+    vector(out, seeds[i]);
+  }
+  out << ']';
+}
+
+void count_entry(detail::OutputFile& out, const char* name, std::uint64_t value) {
+  out << ",\n    \"" << name << "\": ";
+  out.integer(static_cast<long long>(value));
+}
+
+}  // namespace
+
+void write_drop_report(const Cluster& cluster, const DropOptions& o, const DropStats& stats,
+                       const MeshConstraint* constraint, const std::string& mesh_file, const LookOptions& look,
+                       const PovOptions& pov, const RunRecord& record, const std::string& path) {
+  detail::OutputFile out(path);
+  begin(out, cluster, record);
+  out << "  \"model\": \"drop\",\n  \"rng_seed\": ";
+  out.integer(static_cast<long long>(o.rng_seed)) << ",\n  \"options\": {\n    \"particles\": ";
+  out.integer(static_cast<long long>(o.particles)) << ",\n    \"dimensions\": ";
+  out.integer(o.dimensions) << ",\n    \"spacing\": ";
+  out.number(o.spacing) << ",\n    \"stickiness\": ";
+  out.number(o.stickiness);
+  seeds_entry(out, o.seeds);
+  out << ",\n    \"zone\": \"" << to_string(o.zone) << '"';
+  if (o.zone != DropZone::mesh) {
+    out << ",\n    \"zone_radius\": ";
+    if (o.zone_radius > 0.0) {
+      out.number(o.zone_radius);
+    } else {
+      out << "\"growing\",\n    \"zone_margin\": ";
+      out.number(o.zone_margin);
+    }
+  }
+  if (o.zone_box) {
+    out << ",\n    \"zone_box\": [";
+    vector(out, o.zone_box->min);
+    out << ", ";
+    vector(out, o.zone_box->max);
+    out << ']';
+  }
+  out << ",\n    \"drop\": " << json::string(to_string(o.bias));
+  if (constraint)
+    out << ",\n    \"mesh\": " << json::string(mesh_file) << ",\n    \"side\": \"" << to_string(constraint->options().side)
+        << "\",\n    \"constraint\": \"" << to_string(constraint->options().mode) << '"';
+  out << "\n  },\n  \"drops\": {\n    \"drops\": ";
+  out.integer(static_cast<long long>(stats.drops));
+  count_entry(out, "on_structure", stats.on_structure);
+  count_entry(out, "refused", stats.refused);
+  count_entry(out, "lost", stats.lost);
+  count_entry(out, "mesh_rejected", stats.mesh_rejected);
+  count_entry(out, "clipped", stats.clipped);
+  out << ",\n    \"zone_full\": " << (stats.zone_full ? "true" : "false") << "\n  },\n";
+  finish_model_report(out, cluster, look, pov, record);
+}
+
+void write_ballistic_report(const Cluster& cluster, const BallisticOptions& o, const BallisticStats& stats,
+                            const LookOptions& look, const PovOptions& pov, const RunRecord& record,
+                            const std::string& path) {
+  detail::OutputFile out(path);
+  begin(out, cluster, record);
+  out << "  \"model\": \"ballistic\",\n  \"rng_seed\": ";
+  out.integer(static_cast<long long>(o.rng_seed)) << ",\n  \"options\": {\n    \"particles\": ";
+  out.integer(static_cast<long long>(o.particles)) << ",\n    \"dimensions\": ";
+  out.integer(o.dimensions) << ",\n    \"spacing\": ";
+  out.number(o.spacing);
+  seeds_entry(out, o.seeds);
+  out << ",\n    \"direction\": ";
+  if (o.direction.squaredNorm() > 0.0) vector(out, o.direction);
+  else out << "\"random\"";
+  out << "\n  },\n  \"lines\": {\n    \"launched\": ";
+  out.integer(static_cast<long long>(stats.launched));
+  count_entry(out, "missed", stats.missed);
+  count_entry(out, "far_steps", stats.far_steps);
+  count_entry(out, "near_steps", stats.near_steps);
+  out << "\n  },\n";
+  finish_model_report(out, cluster, look, pov, record);
+}
+
 }  // namespace dla

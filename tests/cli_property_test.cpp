@@ -8,8 +8,9 @@
 //   - exit 2 (bad input) prints one line and writes no file;
 //   - exit 1 (growth or I/O failed) ends with one error line, and any files are marked
 //     incomplete.
-// A quarter of the command lines are `dla3d colonize` ones and an eighth `dla3d eden` ones,
-// each drawn from its own table and the Output and Look options.
+// A quarter of the command lines are `dla3d colonize` ones, an eighth `dla3d eden` ones and a
+// sixteenth each `dla3d drop` and `dla3d ballistic` ones, each drawn from its own table and the
+// Output and Look options.
 // DLA_PROPERTY_RUNS sets the number of command lines (default 150, about a minute; the `slow`
 // ctest entry runs 1,000) and DLA_PROPERTY_SEED the generator's seed. Every option added to
 // dla3d must join the table below: the test fails on an option of --help it does not know.
@@ -145,6 +146,46 @@ const std::map<std::string, std::vector<std::string>>& eden_table() {
       {"--spacing", {"1", "0.5", "1e-6", "1e6", "1e-25", "1e25", "0", "-1", "nan", "1e-300", "1e100"}},
       {"--rng-seed", {"1", "7", "18446744073709551615", "-1"}},
   };
+  return table;
+}
+
+//! The options `dla3d drop` and `dla3d ballistic` share with DLA, with `extra` (their own).
+std::map<std::string, std::vector<std::string>> seeded_table(std::map<std::string, std::vector<std::string>> extra) {
+  extra.insert({
+      {"--particles", {"40", "300", "0", "-5", "3e9", "x"}},
+      {"--dimensions", {"2", "3", "1", "x"}},
+      {"--spacing", {"1", "0.5", "1e-6", "1e6", "1e-25", "1e25", "0", "-1", "nan", "1e-300"}},
+      {"--seed-at", {"0,0,0", "3,0,0", "0,0,5", "1e12,0,0", "nan,0,0", "x"}},
+      {"--rng-seed", {"1", "7", "18446744073709551615", "-1"}},
+  });
+  return extra;
+}
+
+//! `dla3d drop`'s own options, drawn as the table's; its Output and Look options are the
+//! table's.
+const std::map<std::string, std::vector<std::string>>& drop_table() {
+  static const std::map<std::string, std::vector<std::string>> table = seeded_table({
+      {"--stickiness", {"0.5", "1", "1e-4", "0", "2", "nan"}},
+      {"--zone", {"box", "ball", "mesh", "cone"}},
+      {"--zone-radius", {"30", "3", "1e6", "0.5", "-1", "1e300", "nan"}},
+      {"--zone-margin", {"4", "0.5", "1e6", "0.1", "-1", "inf"}},
+      {"--zone-box", {"-20,-20,-20,20,20,20", "-5,-5,0,5,5,0", "1,1,1,0,0,0", "1,2", "nan,0,0,1,1,1"}},
+      {"--drop", {"circle", "same:5", "offset:10,3", "uniform", "same:0", "offset:5", "offset:5,0", "same:1e10", "rain"}},
+      {"--stl", {"ball.stl", "box.off", "missing.stl", "noise.stl"}},
+      {"--side", {"inside", "outside", "both", "up"}},
+      {"--constraint", {"clip", "reject", "bounce"}},
+      {"--scene-mesh", {}},
+      {"--no-scene-mesh", {}},
+  });
+  return table;
+}
+
+//! `dla3d ballistic`'s own options, drawn as the table's; its Output and Look options are the
+//! table's.
+const std::map<std::string, std::vector<std::string>>& ballistic_table() {
+  static const std::map<std::string, std::vector<std::string>> table = seeded_table({
+      {"--direction", {"0,-1,0", "1,1,0", "0,0,-1", "0,0,0", "1e-300,0,0", "inf,0,0", "x"}},
+  });
   return table;
 }
 
@@ -379,18 +420,28 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
   for (const std::string& name : options_of_help(root, "eden"))
     EXPECT_TRUE(eden_table().count(name) || option_table().count(name))
         << name << " is in dla3d eden --help but not in the property test's tables";
-  // What colonize and eden share with DLA: the Output and Look options (and help).
+  for (const std::string& name : options_of_help(root, "drop"))
+    EXPECT_TRUE(drop_table().count(name) || option_table().count(name))
+        << name << " is in dla3d drop --help but not in the property test's tables";
+  for (const std::string& name : options_of_help(root, "ballistic"))
+    EXPECT_TRUE(ballistic_table().count(name) || option_table().count(name))
+        << name << " is in dla3d ballistic --help but not in the property test's tables";
+  // What the other models share with DLA: the Output and Look options (and help).
   const std::vector<const char*> shared = {"--output", "--ply-format", "--formats", "--png-scale", "--png-bands", "--radius", "--base-radius",
                                            "--tip-radius", "--pipe-exponent", "--color-by", "--look", "--tube-sides",
                                            "--tube-tolerance", "--tube-min-branch", "--instances", "--tips-within",
                                            "--up", "--quiet", "--help"};
-  std::vector<std::string> eden_flags(shared.begin(), shared.end());
-  for (const auto& [flag, values] : eden_table()) eden_flags.push_back(flag);
-  colonize_flags.insert(colonize_flags.end(), shared.begin(), shared.end());
-  const auto values_of = [&](const std::string& flag, bool eden) -> const std::vector<std::string>& {
-    if (eden && eden_table().count(flag)) return eden_table().at(flag);
-    return colonize_table().count(flag) ? colonize_table().at(flag) : option_table().at(flag);
+  const auto flags_of = [&](const std::map<std::string, std::vector<std::string>>& table) {
+    std::vector<std::string> model_flags(shared.begin(), shared.end());
+    for (const auto& [flag, values] : table) model_flags.push_back(flag);
+    return model_flags;
   };
+  const std::vector<std::string> eden_flags = flags_of(eden_table()), drop_flags = flags_of(drop_table()),
+                                 ballistic_flags = flags_of(ballistic_table());
+  colonize_flags.insert(colonize_flags.end(), shared.begin(), shared.end());
+  // A model's own table, else the shared options' values in DLA's.
+  const auto values_of = [&](const std::string& flag, const std::map<std::string, std::vector<std::string>>* table)
+      -> const std::vector<std::string>& { return table && table->count(flag) ? table->at(flag) : option_table().at(flag); };
 
   const char* runs_env = std::getenv("DLA_PROPERTY_RUNS");
   const char* seed_env = std::getenv("DLA_PROPERTY_SEED");
@@ -403,17 +454,26 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
   std::map<int, int> exits;
   for (int run = 0; run < runs; ++run) {
     // A few options, mostly valid values: an invalid one ends most runs at once. One run in
-    // four is space colonization, one in eight Eden growth.
-    const std::size_t model = pick(8);
-    const bool colonizing = model < 2, eden = model == 2;
+    // four is space colonization, one in eight Eden growth, one in sixteen random drops and one
+    // in sixteen ballistic aggregation.
+    const std::size_t model = pick(16);
+    const bool colonizing = model < 4, eden = model == 4 || model == 5, dropping = model == 6, flying = model == 7;
+    const std::map<std::string, std::vector<std::string>>* table = colonizing ? &colonize_table()
+                                                                  : eden      ? &eden_table()
+                                                                  : dropping  ? &drop_table()
+                                                                  : flying    ? &ballistic_table()
+                                                                              : nullptr;
+    const std::vector<std::string>& model_flags = colonizing ? colonize_flags
+                                                  : eden     ? eden_flags
+                                                  : dropping ? drop_flags
+                                                  : flying   ? ballistic_flags
+                                                             : flags;
     std::string args;
     bool particles_given = false, output_given = false;
     const std::size_t count = pick(7);
     for (std::size_t i = 0; i < count; ++i) {
-      const std::string& flag = colonizing ? colonize_flags[pick(colonize_flags.size())]
-                                : eden     ? eden_flags[pick(eden_flags.size())]
-                                           : flags[pick(flags.size())];
-      const std::vector<std::string>& values = colonizing || eden ? values_of(flag, eden) : option_table().at(flag);
+      const std::string& flag = model_flags[pick(model_flags.size())];
+      const std::vector<std::string>& values = values_of(flag, table);
       if (flag == "--help" || flag == "--version") {
         if (pick(8) != 0) continue;  // rare: they end every run with a print
       }
@@ -429,6 +489,8 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
       args = " colonize" + args;
     }
     if (eden) args = " eden" + args;
+    if (dropping) args = " drop" + args;
+    if (flying) args = " ballistic" + args;
     const std::string command = args.substr(1);
 
     ScratchDir dir;

@@ -576,3 +576,78 @@ TEST(Cli, ColonizeBadInputIsOneLineAndNoFiles) {
 }
 
 }  // namespace
+
+TEST(Cli, DropAndBallisticWriteTheSameFilesAsGrowth) {
+  ScratchDir dir;
+  const CliRun run = dla3d(dir, "drop -o rain -n 2000 --rng-seed 4");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("dla3d: grew 2,000 particles from "), std::string::npos) << run.err;
+  for (const char* name : {"rain.pov", "rain.inc", "rain.csv", "rain.ply", "rain.json"})
+    EXPECT_TRUE(std::filesystem::exists(dir / name)) << name;
+  ASSERT_EQ(dla::read_csv(dir / "rain.csv").particles.size(), 2001u);
+  const std::string json = read_file(dir / "rain.json");
+  EXPECT_NE(json.find("\"model\": \"drop\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"zone_radius\": \"growing\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"on_structure\": "), std::string::npos) << json;
+  ASSERT_EQ(dla3d(dir, "drop -q -o again -n 2000 --rng-seed 4").exit_code, 0);
+  for (const char* ext : {".csv", ".ply", ".inc"})
+    EXPECT_EQ(read_file(dir / (std::string("rain") + ext)), read_file(dir / (std::string("again") + ext))) << ext;
+
+  // The paper's biased drops in 2D, as PNG pictures.
+  for (const char* bias : {"circle", "same:5", "offset:20,3"}) {
+    const CliRun biased = dla3d(dir, std::string("drop -q -o biased --dimensions 2 --zone-radius 40 -n 800 --formats png,json --drop ") + bias);
+    ASSERT_EQ(biased.exit_code, 0) << bias << ": " << biased.err;
+    EXPECT_NE(read_file(dir / "biased.json").find(std::string("\"drop\": \"") + bias + "\""), std::string::npos) << bias;
+    EXPECT_GT(std::filesystem::file_size(dir / "biased.png"), 1000u);
+  }
+
+  // Inside a mesh, dropped inside it: every particle stays inside the sphere.
+  dla::write_stl(dla::make_sphere(dla::Vec3::Zero(), 10.0, 12, 24), dir / "ball.stl");
+  const CliRun inside = dla3d(dir, "drop -o held --stl ball.stl --zone mesh -n 600 --formats csv,json");
+  ASSERT_EQ(inside.exit_code, 0) << inside.err;
+  for (const dla::Particle& p : dla::read_csv(dir / "held.csv").particles) ASSERT_LT(p.position.norm(), 10.0);
+  EXPECT_NE(read_file(dir / "held.json").find("\"mesh\": \"ball.stl\""), std::string::npos);
+
+  const CliRun flown = dla3d(dir, "ballistic -o lines -n 2000 --dimensions 2 --formats csv,json,svg");
+  ASSERT_EQ(flown.exit_code, 0) << flown.err;
+  EXPECT_NE(flown.err.find("dla3d: grew 2,000 particles from "), std::string::npos) << flown.err;
+  const std::string lines = read_file(dir / "lines.json");
+  EXPECT_NE(lines.find("\"model\": \"ballistic\""), std::string::npos) << lines;
+  EXPECT_NE(lines.find("\"direction\": \"random\""), std::string::npos) << lines;
+  ASSERT_EQ(dla3d(dir, "ballistic -q -o rained -n 1000 --direction 0,0,-1 --formats csv,json").exit_code, 0);
+  EXPECT_NE(read_file(dir / "rained.json").find("\"direction\": [0, 0, -1]"), std::string::npos);
+}
+
+TEST(Cli, DropAndBallisticStopOnSigintWithTheStructureSoFar) {
+  for (const char* model : {"drop", "ballistic"}) {
+    ScratchDir dir;
+    const int code = interrupted(dir, std::string(model) + " -n 1000000000 -q -o part --formats ply,json", "INT", 0.7);
+    if (code == 0) GTEST_SKIP() << "the run ended before the signal: this machine is too fast for the test";
+    ASSERT_EQ(code, 130) << read_file(dir / "err.txt");
+    EXPECT_NE(read_file(dir / "err.txt").find("stopped by SIGINT after "), std::string::npos);
+    const std::string json = read_file(dir / "part.json");
+    EXPECT_NE(json.find("\"complete\": false"), std::string::npos) << json;
+  }
+}
+
+TEST(Cli, DropAndBallisticBadInputIsOneLineAndNoFiles) {
+  const char* cases[] = {
+      "drop --dimensions 4", "drop --zone cone", "drop --zone mesh", "drop --zone-radius 0.5", "drop --zone-margin 0",
+      "drop --zone-box 0,0,0,1,1", "drop --zone-box 1,1,1,0,0,0 --zone box", "drop --zone-box 0,0,0,1,1,1",
+      "drop --drop same:0", "drop --drop offset:3", "drop --drop rain", "drop --stickiness 0", "drop --side inside",
+      "drop --seed-at 0,0,1 --dimensions 2", "drop --seed-at 0,0,0 --seed-at 0.5,0,0", "drop -n -1", "drop --spacing 0",
+      "drop --formats png", "drop --radius boundary", "ballistic --direction 0,0,0", "ballistic --direction 1,2",
+      "ballistic --dimensions 2 --direction 0,0,1", "ballistic --zone ball", "ballistic --formats svg",
+      // A mesh that cannot be read: exit 1.
+      "drop --stl missing.stl",
+  };
+  for (const char* args : cases) {
+    ScratchDir dir;
+    const std::string words(args);
+    const CliRun run = dla3d(dir, words.substr(0, words.find(' ')) + " -q -o out" + words.substr(words.find(' ')));
+    EXPECT_EQ(run.exit_code, words.find("missing") != std::string::npos ? 1 : 2) << args;
+    EXPECT_EQ(run.err.rfind("dla3d: error: ", 0), 0u) << args << ": " << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << args << ": " << run.err;
+    EXPECT_TRUE(std::filesystem::is_empty(dir.path())) << args << " left files";
+  }
+}

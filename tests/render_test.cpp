@@ -1,6 +1,8 @@
 // POV-Ray renders the emitted scene as it is: the image is not blank and the structure is
 // framed, in 3D and in the plane.
 
+#include "dla/models/ballistic.h"
+#include "dla/models/drop.h"
 #include "dla/models/eden.h"
 #include "dla/models/growth.h"
 #include "dla/io/pov_writer.h"
@@ -245,6 +247,17 @@ TEST(Render, PovRayShowsEdenClusters) {
     o.sites = 3000;
     expect_framed_render(eden(o), dir);
   }
+}
+
+TEST(Render, PovRayShowsDropAndBallisticAggregates) {
+  ScratchDir dir;
+  DropOptions drops;
+  drops.particles = 3000;
+  drops.bias = parse_drop_bias("circle");
+  expect_framed_render(drop(drops), dir);
+  BallisticOptions lines;
+  lines.particles = 3000;
+  expect_framed_render(ballistic(lines), dir);
 }
 
 }  // namespace

@@ -4,12 +4,15 @@
 // as Ctrl-C would), and given the look it asks for. Any words must either be refused with
 // InvalidInput, or parse into options that grow a valid tree with positive radii, tubes and
 // instancing points: never crash, hang, overflow or read out of bounds. A colonize command is
-// grown with at most 64 nodes among at most 300 attractors, an eden command to 200 sites.
+// grown with at most 64 nodes among at most 300 attractors, an eden command to 200 sites, a
+// drop or ballistic command (without a mesh) to 64 particles.
 // Build with -DDLA_FUZZ=ON (clang); see docs/testing.md.
 
 #include "../../cli/command_line.h"
 
+#include "dla/models/ballistic.h"
 #include "dla/models/colonization.h"
+#include "dla/models/drop.h"
 #include "dla/models/eden.h"
 #include "dla/models/growth.h"
 #include "dla/look/instances.h"
@@ -73,6 +76,28 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         if (p.parent < 0 || static_cast<std::size_t>(p.parent) >= i || !p.position.allFinite()) std::abort();
       }
       const dla::Look look = dla::make_look(cluster, line.eden.look);
+      for (const float radius : look.radii(cluster))
+        if (!(radius > 0.0f) || !std::isfinite(radius)) std::abort();
+      return 0;
+    }
+    if (line.kind == dla::cli::CommandLine::Kind::drop || line.kind == dla::cli::CommandLine::Kind::ballistic) {
+      // Random drops (without a mesh: meshes are the property test's) and straight lines,
+      // small: each particle hangs from an earlier one.
+      const bool dropping = line.kind == dla::cli::CommandLine::Kind::drop;
+      if (dropping && !line.drop.mesh_path.empty()) return 0;
+      dla::DropOptions drop = line.drop.options;
+      dla::BallisticOptions lines = line.ballistic.options;
+      drop.particles = std::min<std::size_t>(drop.particles, 64);
+      lines.particles = std::min<std::size_t>(lines.particles, 64);
+      // Seeds thousands of spacings apart are valid but outgrow the grid: the property test's.
+      for (const dla::Vec3& seed : dropping ? drop.seeds : lines.seeds)
+        if (seed.cwiseAbs().maxCoeff() > 500.0 * (dropping ? drop.spacing : lines.spacing)) return 0;
+      const dla::Cluster cluster = dropping ? dla::drop(drop) : dla::ballistic(lines);
+      for (std::size_t i = cluster.seed_count; i < cluster.particles.size(); ++i) {
+        const dla::Particle& p = cluster.particles[i];
+        if (p.parent < 0 || static_cast<std::size_t>(p.parent) >= i || !p.position.allFinite()) std::abort();
+      }
+      const dla::Look look = dla::make_look(cluster, dropping ? line.drop.look : line.ballistic.look);
       for (const float radius : look.radii(cluster))
         if (!(radius > 0.0f) || !std::isfinite(radius)) std::abort();
       return 0;

@@ -171,6 +171,23 @@ inline void require_representable(const std::string& what, const Vec3& point, do
     throw InvalidInput(what + " lies more than " + format_number(kMaxCoordinate) +
                        " spacings from the origin, beyond what double precision resolves");
 }
+
+//! Throws InvalidInput unless there are seeds, each representable, in z = 0 for 2D, and no two
+//! closer than the spacing: what every model that starts from seeds asks of them.
+inline void validate_seeds(const std::vector<Vec3>& seeds, double spacing, int dimensions) {
+  if (seeds.empty()) throw InvalidInput("there is no seed");
+  for (std::size_t i = 0; i < seeds.size(); ++i) {
+    const Vec3& s = seeds[i];
+    require_representable("seed " + std::to_string(i + 1), s, spacing);
+    if (dimensions == 2 && s.z() != 0.0)
+      throw InvalidInput("seed " + std::to_string(i + 1) + " has z = " + format_number(s.z()) +
+                         " but growth in 2 dimensions is in the plane z = 0");
+    for (std::size_t j = 0; j < i; ++j)
+      if ((seeds[j] - s).norm() < spacing)
+        throw InvalidInput("seeds " + std::to_string(j + 1) + " and " + std::to_string(i + 1) +
+                           " are closer than the spacing " + format_number(spacing));
+  }
+}
 }  // namespace detail
 
 inline SpawnMode parse_spawn_mode(std::string_view word) {
@@ -198,18 +215,7 @@ inline void validate(const GrowthOptions& o) {
   detail::require_in("stickiness", o.stickiness, kMinStickiness, 1.0);
   if (o.dimensions != 2 && o.dimensions != 3)
     throw InvalidInput("dimensions " + std::to_string(o.dimensions) + " is not 2 or 3");
-  if (o.seeds.empty()) throw InvalidInput("there is no seed");
-  for (std::size_t i = 0; i < o.seeds.size(); ++i) {
-    const Vec3& s = o.seeds[i];
-    detail::require_representable("seed " + std::to_string(i + 1), s, o.spacing);
-    if (o.dimensions == 2 && s.z() != 0.0)
-      throw InvalidInput("seed " + std::to_string(i + 1) + " has z = " + format_number(s.z()) +
-                         " but growth in 2 dimensions is in the plane z = 0");
-    for (std::size_t j = 0; j < i; ++j)
-      if ((o.seeds[j] - s).norm() < o.spacing)
-        throw InvalidInput("seeds " + std::to_string(j + 1) + " and " + std::to_string(i + 1) +
-                           " are closer than the spacing " + format_number(o.spacing));
-  }
+  detail::validate_seeds(o.seeds, o.spacing, o.dimensions);
   if (o.dimensions == 2 && o.spawn == SpawnMode::disk && o.spawn_axis == Axis::z)
     throw InvalidInput("the disk spawn axis must be x or y in 2 dimensions");
   if (!(o.disk_radius > 0.0 && o.disk_radius <= kMaxDiskRadius))

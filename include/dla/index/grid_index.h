@@ -10,8 +10,10 @@
 //! occupied cells of the 3x3x3 block about the point (the occupancy bits of a row of cells are
 //! read in one load). From half a cell out it reads the point's gap, beyond the gap map's
 //! reach the eight nodes about the point, and beyond theirs one bit per pyramid level, and
-//! returns a lower bound on the distance: the walk only needs a ball free of particles. See
-//! docs/index.md for the layout and the measurements that chose it.
+//! returns a lower bound on the distance: the walk only needs a ball free of particles.
+//! nearest() finds the exact nearest particle however far the point (random drops), bound()
+//! the probe's bound without reading a particle (straight lines). See docs/index.md for the
+//! layout and the measurements that chose it.
 
 #include "dla/core/errors.h"
 #include "dla/index/spatial_index.h"
@@ -29,8 +31,12 @@ namespace dla {
 
 class GridIndex {
  public:
-  GridIndex(const std::vector<Particle>& particles, double spacing, int dimensions)
-      : particles_(particles), cell_(4.0 * spacing), planar_(dimensions == 2), max_cells_(planar_ ? 16384 : 2048) {}
+  //! Without `distance_maps` the gap and node maps, which bound a probe far from the structure,
+  //! are not kept: an insert costs several times less, and probe() answers with nearest(),
+  //! exact. For models that ask only nearest() and bound() (drop.h, ballistic.h).
+  GridIndex(const std::vector<Particle>& particles, double spacing, int dimensions, bool distance_maps = true)
+      : particles_(particles), cell_(4.0 * spacing), planar_(dimensions == 2), distance_maps_(distance_maps),
+        max_cells_(planar_ ? 16384 : 2048) {}
 
   void reserve(std::size_t particles) { next_.reserve(particles); }
 
@@ -56,6 +62,7 @@ class GridIndex {
 
   Probe probe(const Vec3& x, Reach reach = Reach::set) const {
     if (cells_ == 0) return {};  // reach: any particle changes it
+    if (!distance_maps_) return nearest(x).reaching(x, std::numeric_limits<double>::infinity());
     std::array<double, 3> f{0.0, 0.0, 0.0};  // position in cells from the domain's corner
     std::array<int, 3> c{0, 0, 0};
     for (int a = 0; a < axes(); ++a) {
@@ -84,6 +91,154 @@ class GridIndex {
     return nearest_in_block(x, f, c, reach);
   }
 
+  //! A lower bound on the distance from x to the nearest particle from the gap and node maps
+  //! (without them, the occupancy bits) and the pyramid, without reading a cell's particles:
+  //! cheap, and coarse next to the structure. For tracing a straight line (ballistic.h),
+  //! which tests the last stretch exactly.
+  double bound(const Vec3& x) const {
+    if (cells_ == 0) return std::numeric_limits<double>::infinity();
+    std::array<double, 3> f{0.0, 0.0, 0.0};
+    std::array<int, 3> c{0, 0, 0};
+    for (int a = 0; a < axes(); ++a) {
+      f[a] = (x[a] - origin_[a]) / cell_;
+      if (!(f[a] >= 0.0 && f[a] < dims_[a])) return distance_to_domain(x);
+      c[a] = static_cast<int>(f[a]);
+    }
+    if (!distance_maps_) {
+      // The nearest occupied cell of the 3x3x3 block about x's, from the occupancy bits.
+      const auto gaps = axis_gaps(x, c);
+      const int dz = planar_ ? 0 : 1;
+      const int x0 = std::max(c[0] - 1, 0), x1 = std::min(c[0] + 1, dims_[0] - 1);
+      double best2 = std::numeric_limits<double>::infinity();
+      for (int z = std::max(c[2] - dz, 0); z <= std::min(c[2] + dz, dims_[2] - 1); ++z)
+        for (int y = std::max(c[1] - 1, 0); y <= std::min(c[1] + 1, dims_[1] - 1); ++y)
+          for (std::uint64_t row = occupied_.row({x0, y, z}, x1 - x0 + 1); row; row &= row - 1) {
+            const int cx = x0 + __builtin_ctzll(row);
+            best2 = std::min(best2, gaps[0][cx - c[0] + 1] + gaps[1][y - c[1] + 1] + gaps[2][z - c[2] + 1]);
+          }
+      if (best2 < std::numeric_limits<double>::infinity()) return std::sqrt(best2);
+      return std::max((1.0 + face_margin(f, c, 0)) * cell_, pyramid_bound(f, c, Reach::skip).distance);
+    }
+    const std::uint8_t* gaps = gaps_of_[block_of(c)];
+    const int gap = gaps ? gaps[cell_in_block(c)] : kFarGap;
+    if (gap == 0) return 0.0;  // a particle may lie in x's cell
+    const double distance = (gap * (1.0 / kGapUnits) + face_margin(f, c, 0)) * cell_;
+    return gap < kFarGap ? distance : std::max(distance, far_bound(f, c, Reach::skip).distance);
+  }
+
+  //! The exact nearest particle to x, however far; among equally near particles, the lowest
+  //! id. Near the structure it searches the cells about x's shell by shell, while a particle
+  //! may lie nearer than the next shell; farther out, best-first down the pyramid (coarse cells
+  //! nearest x first, a cell's finer cells only while they may beat the best particle found).
+  //! The cost grows with the cells near the sphere through the answer, never with the
+  //! particles. Not for use while another thread inserts.
+  Probe nearest(const Vec3& x) const {
+    if (cells_ == 0) return {};
+    double best2 = std::numeric_limits<double>::infinity();
+    std::int32_t best = -1;
+    const auto visit = [&](const Cell& cell) {
+      for_each_in_cell(cell, [&](std::int32_t id) {
+        const double d2 = (position(id) - x).squaredNorm();
+        if (d2 < best2 || (d2 == best2 && id < best)) best2 = d2, best = id;
+      });
+    };
+    const auto found = [&] { return Probe{best, std::sqrt(best2)}; };
+    std::array<double, 3> f{0.0, 0.0, 0.0};
+    Cell c{0, 0, 0};
+    bool inside_domain = true;
+    for (int a = 0; a < axes(); ++a) {
+      f[a] = (x[a] - origin_[a]) / cell_;
+      inside_domain = inside_domain && f[a] >= 0.0 && f[a] < dims_[a];
+      c[a] = static_cast<int>(f[a]);
+    }
+    if (inside_domain) {
+      // Shell k: the cells k cells from x's along some axis and at most k along the others.
+      const double margin = face_margin(f, c, 0);
+      const int depth = planar_ ? 0 : 1;
+      // Squared gap along each axis from x to the cells at offsets -k..k: [axis][offset + k].
+      std::array<std::array<double, 2 * kMostShells + 1>, 3> gap2{};
+      for (int a = 0; a < axes(); ++a)
+        for (int o = -kMostShells; o <= kMostShells; ++o) {
+          const double gap = std::max({static_cast<double>(c[a] + o) - f[a], f[a] - static_cast<double>(c[a] + o + 1), 0.0}) * cell_;
+          gap2[a][o + kMostShells] = gap * gap;
+        }
+      thread_local std::vector<Candidate> shell;
+      for (int k = 0; k <= kMostShells && (k <= kNearShells || best >= 0); ++k) {
+        shell.clear();
+        for (int dz = -k * depth; dz <= k * depth; ++dz) {
+          const int z = c[2] + dz;
+          if (z < 0 || z >= dims_[2]) continue;
+          for (int dy = -k; dy <= k; ++dy) {
+            const int y = c[1] + dy;
+            const double yz2 = gap2[1][dy + kMostShells] + gap2[2][dz + kMostShells];
+            if (y < 0 || y >= dims_[1] || yz2 > best2) continue;
+            const bool whole_row = std::abs(dy) == k || std::abs(dz) == k;
+            const int x0 = std::max(c[0] - k, 0), x1 = std::min(c[0] + k, dims_[0] - 1);
+            for (std::uint64_t row = occupied_.row({x0, y, z}, x1 - x0 + 1); row; row &= row - 1) {
+              const int cx = x0 + __builtin_ctzll(row);
+              // Cells inside the shell were visited; a cell farther than the best holds none nearer.
+              const double cell2 = yz2 + gap2[0][cx - c[0] + kMostShells];
+              if ((whole_row || std::abs(cx - c[0]) == k) && cell2 <= best2) shell.push_back({cell2, {cx, y, z}});
+            }
+          }
+        }
+        // Nearest cells first: the best found soon rules out the rest.
+        std::sort(shell.begin(), shell.end(), [](const Candidate& a, const Candidate& b) { return a.gap2 < b.gap2; });
+        for (const Candidate& cell : shell) {
+          if (cell.gap2 > best2) break;
+          visit(cell.cell);
+        }
+        const double reach = (k + margin) * cell_;  // every cell beyond shell k is this far
+        if (best2 < reach * reach) return found();
+      }
+    }
+    struct Entry {
+      double gap2;  // squared distance from x to the cell's box
+      int level;    // index in levels_, or -1 for a base cell
+      Cell cell;
+      bool operator<(const Entry& other) const { return gap2 > other.gap2; }  // a min-heap
+    };
+    thread_local std::vector<Entry> heap;
+    heap.clear();
+    const auto push = [&](int level, const Cell& cell) {
+      const int shift = level < 0 ? 0 : levels_[static_cast<std::size_t>(level)].shift;
+      double gap2 = 0.0;
+      for (int a = 0; a < axes(); ++a) {
+        const double lo = origin_[a] + static_cast<double>(cell[a] << shift) * cell_;
+        const double gap = std::max({lo - x[a], x[a] - lo - static_cast<double>(1 << shift) * cell_, 0.0});
+        gap2 += gap * gap;
+      }
+      if (gap2 > best2) return;
+      heap.push_back({gap2, level, cell});
+      std::push_heap(heap.begin(), heap.end());
+    };
+    // The cells of `level` within the cell `parent` of the level above (with no parent, all of
+    // them) that may hold a particle.
+    const auto push_within = [&](int level, const Entry* parent) {
+      const BitGrid& bits = level < 0 ? occupied_ : levels_[static_cast<std::size_t>(level)].held;
+      const int shift = level < 0 ? 0 : levels_[static_cast<std::size_t>(level)].shift;
+      const int ratio = parent ? levels_[static_cast<std::size_t>(parent->level)].shift - shift : 0;
+      Cell lo{0, 0, 0}, hi = {bits.dims[0] - 1, bits.dims[1] - 1, bits.dims[2] - 1};
+      for (int a = 0; parent && a < 3; ++a) {
+        lo[a] = std::min(parent->cell[a] << ratio, hi[a]);
+        hi[a] = std::min(((parent->cell[a] + 1) << ratio) - 1, hi[a]);
+      }
+      for (int z = lo[2]; z <= hi[2]; ++z)
+        for (int y = lo[1]; y <= hi[1]; ++y)
+          for (int xx = lo[0]; xx <= hi[0]; ++xx)
+            if (bits.test({xx, y, z})) push(level, {xx, y, z});
+    };
+    push_within(static_cast<int>(levels_.size()) - 1, nullptr);
+    while (!heap.empty() && heap.front().gap2 <= best2) {
+      std::pop_heap(heap.begin(), heap.end());
+      const Entry e = heap.back();
+      heap.pop_back();
+      if (e.level >= 0) push_within(e.level - 1, &e);
+      else visit(e.cell);
+    }
+    return best >= 0 ? found() : Probe{};
+  }
+
   template <class Visit>
   void for_each_within(const Vec3& x, double radius, Visit&& visit) const {
     if (cells_ == 0) return;
@@ -96,17 +251,36 @@ class GridIndex {
       hi[a] = static_cast<int>(std::min(to, dims_[a] - 1.0));
     }
     const double r2 = radius * radius;
+    // The cells' lists are walked side by side, a few at a time: their loads do not wait on
+    // one another.
+    constexpr std::size_t kLanes = 16;
+    std::array<std::int32_t, kLanes> at;
+    std::size_t lanes = 0;
+    const auto walk = [&] {
+      while (lanes > 0)
+        for (std::size_t i = 0; i < lanes;) {
+          const std::int32_t id = at[i];
+          const double d2 = (position(id) - x).squaredNorm();
+          if (d2 <= r2) visit(id, d2);
+          at[i] = next(id);
+          if (at[i] < 0) at[i] = at[--lanes]; else ++i;
+        }
+    };
     for (int z = lo[2]; z <= hi[2]; ++z)
       for (int y = lo[1]; y <= hi[1]; ++y)
-        for (int xx = lo[0]; xx <= hi[0]; ++xx)
-          for_each_in_cell({xx, y, z}, [&](std::int32_t id) {
-            const double d2 = (position(id) - x).squaredNorm();
-            if (d2 <= r2) visit(id, d2);
-          });
+        for (int xx = lo[0]; xx <= hi[0]; ++xx) {
+          const std::int32_t first = head({xx, y, z});
+          if (first < 0) continue;
+          at[lanes++] = first;
+          if (lanes == kLanes) walk();
+        }
+    walk();
   }
 
  private:
   static constexpr int kBlockShift = 3;                   // blocks of 8 cells a side
+  static constexpr int kNearShells = 5;                   // nearest(): empty shells before the pyramid
+  static constexpr int kMostShells = 8;                   // nearest(): shells to confirm a particle
   static constexpr std::size_t kMaxLevelWords = 1 << 22;  // 32 MiB; finer levels are skipped
   static constexpr int kGapUnits = 32;                    // gap map units per cell width
   static constexpr int kGapReach = 4;                     // cells a particle lowers gaps around
@@ -165,10 +339,11 @@ class GridIndex {
 
   //! One pyramid level: cells of 2^shift cells a side. `near` has a bit set when a particle
   //! lies in the cell or one of its 26 neighbours, so one bit answers "is the 3x3x3 block
-  //! empty".
+  //! empty"; `held` when one lies in the cell, for nearest()'s descent.
   struct Level {
     int shift;
     BitGrid near;
+    BitGrid held;
 
     Cell up(const Cell& cell, bool planar) const {
       return {cell[0] >> shift, cell[1] >> shift, planar ? 0 : cell[2] >> shift};
@@ -180,6 +355,7 @@ class GridIndex {
         for (int y = std::max(c[1] - 1, 0); y <= std::min(c[1] + 1, near.dims[1] - 1); ++y)
           for (int x = std::max(c[0] - 1, 0); x <= std::min(c[0] + 1, near.dims[0] - 1); ++x)
             near.set({x, y, z});
+      held.set(c);
     }
   };
 
@@ -336,8 +512,9 @@ class GridIndex {
     for (int shift = 1; (cells_ >> shift) >= 4; ++shift) {
       const Cell dims{cells_ >> shift, cells_ >> shift, planar_ ? 1 : cells_ >> shift};
       if (static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] / 64 > kMaxLevelWords) continue;
-      Level level{shift, {}};
+      Level level{shift, {}, {}};
       level.near.reset(dims);
+      level.held.reset(dims);
       levels_.push_back(std::move(level));
     }
   }
@@ -353,7 +530,7 @@ class GridIndex {
           if (heads[cell_in_block(c)] < 0) continue;
           occupied_.set(c);
           for (Level& level : levels_) level.mark(c, planar_);
-          lower_nodes(c);
+          if (distance_maps_) lower_nodes(c);
         }
   }
 
@@ -423,11 +600,11 @@ class GridIndex {
     const bool opens = head < 0;
     store(next_[static_cast<std::size_t>(id)], head);
     store_release(head, id);
-    lower_gaps(p, c);
+    if (distance_maps_) lower_gaps(p, c);
     if (!opens) return false;  // the bits, the pyramid and the nodes already know the cell
     occupied_.set(c);
     for (Level& level : levels_) level.mark(c, planar_);
-    lower_nodes(c);
+    if (distance_maps_) lower_nodes(c);
     return true;
   }
 
@@ -608,6 +785,7 @@ class GridIndex {
   const std::vector<Particle>& particles_;
   double cell_;  // cell edge: four spacings (with the gap map, faster than five; docs/index.md)
   bool planar_;
+  bool distance_maps_;  // whether the gap and node maps are kept
   // Cells a side at most: 3D DLA reaches ~1,900 spacings (480 cells) at 10^8 particles, 2D
   // ~16,000 (4,000 cells) at 10^7. The dense tables then take ~1.5 GB in 3D, ~130 MB in 2D.
   int max_cells_;

@@ -23,6 +23,12 @@
 //!   template <class Visit> void for_each_within(const Vec3& x, double radius, Visit&& visit) const;
 //!                                                  // visit(id, squared distance) for every
 //!                                                  // particle centre within radius of x
+//!   Probe nearest(const Vec3& x) const;           // the exact nearest particle, however far,
+//!                                                  // the lowest id among equally near ones
+//!                                                  // (random drops, drop.h; grid and brute)
+//!   double bound(const Vec3& x) const;            // a lower bound on the distance to the
+//!                                                  // nearest particle, cheap (straight lines,
+//!                                                  // ballistic.h; grid and brute)
 //! \endcode
 //!
 //! GridIndex (grid_index.h) is the default; KdTreeIndex (kdtree_index.h) and BruteForceIndex
@@ -98,6 +104,9 @@ class BruteForceIndex {
     if (result.nearest >= 0) result.reaching(x, result.distance = std::sqrt(best));
     return result;
   }
+
+  Probe nearest(const Vec3& x) const { return probe(x); }
+  double bound(const Vec3& x) const { return probe(x).distance; }
 
   template <class Visit>
   void for_each_within(const Vec3& x, double radius, Visit&& visit) const {

@@ -4,7 +4,9 @@
 //! structure again), counts, walk statistics, measures and timings.
 
 #include "dla/core/cluster.h"
+#include "dla/models/ballistic.h"
 #include "dla/models/colonization.h"
+#include "dla/models/drop.h"
 #include "dla/models/eden.h"
 #include "dla/mesh/constraint.h"
 #include "dla/look/look.h"
@@ -50,5 +52,17 @@ void write_colonization_report(const Cluster& cluster, const ColonizationOptions
 void write_eden_report(const Cluster& cluster, const EdenOptions& options, const std::string& mask_file,
                        const LookOptions& look, const PovOptions& pov, const RunRecord& record,
                        const std::string& path);
+
+//! The sidecar of a random-drop run (drop.h): "model": "drop", its options, the constraint
+//! mesh's file and settings if any, and what became of the drops. Throws IOError.
+void write_drop_report(const Cluster& cluster, const DropOptions& options, const DropStats& stats,
+                       const MeshConstraint* constraint, const std::string& mesh_file, const LookOptions& look,
+                       const PovOptions& pov, const RunRecord& record, const std::string& path);
+
+//! The sidecar of a ballistic run (ballistic.h): "model": "ballistic", its options and the
+//! lines' counts. Throws IOError.
+void write_ballistic_report(const Cluster& cluster, const BallisticOptions& options, const BallisticStats& stats,
+                            const LookOptions& look, const PovOptions& pov, const RunRecord& record,
+                            const std::string& path);
 
 }  // namespace dla

@@ -1,0 +1,373 @@
+#pragma once
+//! \file drop.h
+//! Random-drop ballistic aggregation, RDBA (Roberts 2001, "Sticky Pixels", sections 4.2 and
+//! 4.3): each particle is dropped at a random point of a drop zone and joins the exactly
+//! closest particle of the structure, one spacing from it on the line towards the drop point.
+//! A drop within a spacing of the structure fell on top of it and is rejected. The closest
+//! particle to any point lies farther than the new one's neighbours can (the ball about the
+//! drop point through it holds the ball of one spacing about the new particle), so no particle
+//! comes closer than the spacing to an earlier one. The result is the Cluster every model
+//! returns. See docs/drop.md.
+
+#include "dla/core/cluster.h"
+#include "dla/core/errors.h"
+#include "dla/core/options.h"
+#include "dla/core/random.h"
+#include "dla/index/grid_index.h"
+#include "dla/mesh/constraint.h"
+#include "dla/models/one_by_one.h"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace dla {
+
+//! Where particles are dropped (`--zone`).
+enum class DropZone {
+  ball,  //!< a disk (2D) or ball about the seeds' centre, fixed or growing with the structure
+  box,   //!< a box: fixed, or the square or cube around the ball
+  mesh,  //!< the volume of the constraint mesh (`--stl`, `--side inside`)
+};
+
+inline std::string_view to_string(DropZone zone) {
+  switch (zone) {
+    case DropZone::ball: return "ball";
+    case DropZone::box: return "box";
+    case DropZone::mesh: return "mesh";
+  }
+  return "?";
+}
+
+inline DropZone parse_drop_zone(std::string_view word) {
+  constexpr DropZone values[] = {DropZone::ball, DropZone::box, DropZone::mesh};
+  return detail::parse_word(word, values, "drop zone");
+}
+
+//! How drop points follow one another (`--drop`; the paper's section 4.3).
+enum class DropPattern {
+  uniform,  //!< each uniform in the zone
+  same,     //!< `same:N`: N drops at one uniform point, then N at the next
+  circle,   //!< uniform on the zone's edge: the circle or sphere (the paper's figure 10,
+            //!< lightning bolts), the box's faces, the mesh's surface
+  offset,   //!< `offset:N,R`: a uniform drop, then N each uniform within R of the one before
+};
+
+struct DropBias {
+  DropPattern pattern = DropPattern::uniform;
+  std::uint64_t count = 1;     //!< same, offset: N, 1 to 1e9
+  double offset_radius = 0.0;  //!< offset: R, scene units, in (0, 1e6 spacings]
+};
+
+//! "uniform", "same:N", "circle" or "offset:N,R", as the CLI writes them.
+inline std::string to_string(const DropBias& bias) {
+  switch (bias.pattern) {
+    case DropPattern::uniform: return "uniform";
+    case DropPattern::circle: return "circle";
+    case DropPattern::same: return "same:" + std::to_string(bias.count);
+    case DropPattern::offset: return "offset:" + std::to_string(bias.count) + "," + detail::format_number(bias.offset_radius);
+  }
+  return "?";
+}
+
+//! Parses `--drop`'s words; throws InvalidInput naming the accepted forms. N and R are
+//! checked by validate().
+inline DropBias parse_drop_bias(const std::string& text) {
+  const auto fail = [&] {
+    return InvalidInput("--drop '" + text + "' is not uniform, circle, same:N or offset:N,R");
+  };
+  const auto number = [&](const std::string& word) {
+    std::size_t used = 0;
+    double value = 0.0;
+    try {
+      value = std::stod(word, &used);
+    } catch (const std::exception&) {
+      throw fail();
+    }
+    if (used != word.size()) throw fail();
+    return value;
+  };
+  const auto count = [&](const std::string& word) {
+    const double n = number(word);
+    if (!(n >= 1.0 && n <= 1e9 && n == std::floor(n))) throw InvalidInput("--drop '" + text + "': N is not a whole number in [1, 1e9]");
+    return static_cast<std::uint64_t>(n);
+  };
+  DropBias bias;
+  if (text == "uniform") return bias;
+  if (text == "circle") {
+    bias.pattern = DropPattern::circle;
+    return bias;
+  }
+  if (text.rfind("same:", 0) == 0) {
+    bias.pattern = DropPattern::same;
+    bias.count = count(text.substr(5));
+    return bias;
+  }
+  if (text.rfind("offset:", 0) == 0) {
+    const std::size_t comma = text.find(',', 7);
+    if (comma == std::string::npos) throw fail();
+    bias.pattern = DropPattern::offset;
+    bias.count = count(text.substr(7, comma - 7));
+    bias.offset_radius = number(text.substr(comma + 1));
+    return bias;
+  }
+  throw fail();
+}
+
+//! Options of a random-drop run. Lengths are in scene units; the spacing sets the scale.
+struct DropOptions {
+  std::size_t particles = 10000;  //!< particles to attach, seeds not counted
+  double spacing = 1.0;           //!< distance from a particle to its parent; no two come
+                                  //!< closer; in [1e-25, 1e25]
+  double stickiness = 1.0;        //!< chance that a particle sticks when it reaches the
+                                  //!< structure, in [1e-4, 1]; one that does not takes a
+                                  //!< random step of a spacing from its drop point and
+                                  //!< reaches again from there
+  std::uint64_t rng_seed = 1;     //!< seeds every random choice of the run
+  int dimensions = 3;             //!< 3, or 2 for growth in the plane z = 0
+  std::vector<Vec3> seeds = {Vec3::Zero()};  //!< one tree per seed
+  DropZone zone = DropZone::ball;
+  //! ball: the zone's radius about the seeds' centre; 0: growing, `zone_margin` beyond the
+  //! farthest particle. At most 1e6 spacings.
+  double zone_radius = 0.0;
+  double zone_margin = 10.0;      //!< growing ball: spacings beyond the farthest particle, [0.5, 1e6]
+  std::optional<Box> zone_box;    //!< box: a fixed box; unset, the square or cube around the ball
+  DropBias bias;                  //!< `--drop`
+};
+
+//! What happened to the drops, for the summary and the JSON record.
+struct DropStats {
+  std::uint64_t drops = 0;          //!< drop points drawn, biased ones included
+  std::uint64_t on_structure = 0;   //!< rejected: within a spacing of the structure
+  std::uint64_t refused = 0;        //!< reached the structure and did not stick (stickiness)
+  std::uint64_t lost = 0;           //!< on the wrong side of the constraint mesh
+  std::uint64_t mesh_rejected = 0;  //!< branches refused because they crossed the mesh
+  std::uint64_t clipped = 0;        //!< branches cut short at the mesh
+  bool zone_full = false;           //!< growth ended early: kMaxFailedDrops in a row failed
+};
+
+//! Drops that fail in a row before growth ends early, the zone full: ~0.1 s of drops.
+inline constexpr std::uint64_t kMaxFailedDrops = 1'000'000;
+
+inline void validate(const DropOptions& o) {
+  if (o.particles + o.seeds.size() > 2'000'000'000u)
+    throw InvalidInput("particles " + std::to_string(o.particles) + " is more than 2e9");
+  detail::require_in("spacing", o.spacing, kMinSpacing, kMaxSpacing);
+  detail::require_in("stickiness", o.stickiness, kMinStickiness, 1.0);
+  if (o.dimensions != 2 && o.dimensions != 3)
+    throw InvalidInput("dimensions " + std::to_string(o.dimensions) + " is not 2 or 3");
+  detail::validate_seeds(o.seeds, o.spacing, o.dimensions);
+  if (o.zone_radius != 0.0) detail::require_in("zone radius", o.zone_radius / o.spacing, 1.0, 1e6);
+  detail::require_in("zone margin", o.zone_margin, 0.5, 1e6);
+  if (o.zone_box) {
+    detail::require_representable("zone box's min corner", o.zone_box->min, o.spacing);
+    detail::require_representable("zone box's max corner", o.zone_box->max, o.spacing);
+    for (int a = 0; a < o.dimensions; ++a)
+      if (!(o.zone_box->min[a] < o.zone_box->max[a]))
+        throw InvalidInput("zone box is empty: its min corner is not below its max corner");
+  }
+  if (o.zone_box && o.zone != DropZone::box) throw InvalidInput("a zone box needs the box zone");
+  if (o.zone_radius != 0.0 && o.zone == DropZone::mesh) throw InvalidInput("a zone radius has no use with the mesh zone");
+  if (o.zone == DropZone::mesh && o.dimensions != 3) throw InvalidInput("the mesh zone needs 3 dimensions");
+  if (o.bias.count < 1 || o.bias.count > 1'000'000'000u)
+    throw InvalidInput("--drop's N " + std::to_string(o.bias.count) + " is not in [1, 1e9]");
+  if (o.bias.pattern == DropPattern::offset)
+    detail::require_in("--drop's offset radius, in spacings,", o.bias.offset_radius / o.spacing, 1e-6, 1e6);
+}
+
+//! Checks the options against a constraint mesh as well: 3 dimensions, the same spacing, seeds
+//! on the growing side, and a side for zones that need one.
+inline void validate(const DropOptions& o, const MeshConstraint& constraint) {
+  validate(o);
+  if (o.dimensions != 3) throw InvalidInput("a constraint mesh needs growth in 3 dimensions");
+  if (o.spacing != constraint.spacing())
+    throw InvalidInput("the constraint was built for spacing " + detail::format_number(constraint.spacing()) +
+                       ", not " + detail::format_number(o.spacing));
+  const Side side = constraint.options().side;
+  if (o.zone == DropZone::mesh && side != Side::inside)
+    throw InvalidInput("the mesh zone drops inside the mesh: it needs --side inside, not --side " + std::string(to_string(side)));
+  if (o.zone == DropZone::mesh && o.bias.pattern == DropPattern::circle && side == Side::both)
+    throw InvalidInput("drops on the mesh's surface need a growing side, --side inside or outside");
+  for (std::size_t i = 0; i < o.seeds.size(); ++i)
+    if (!constraint.on_growth_side(o.seeds[i]))
+      throw InvalidInput("seed " + std::to_string(i + 1) + " is not on the growing side of the mesh");
+}
+
+namespace detail {
+
+template <class Index>
+class RandomDrop {
+ public:
+  RandomDrop(const DropOptions& o, const MeshConstraint* constraint, DropStats& stats)
+      : o_(o), constraint_(constraint), stats_(stats), growth_(o.seeds, o.spacing, o.dimensions, o.particles, false),
+        rng_(o.rng_seed, 0x64726f70ULL) {}  // a stream of its own: "drop"
+
+  Cluster run(const ProgressFn& progress, const StopFlag* stop) {
+    std::uint64_t failed = 0;  // drops in a row that attached nothing
+    return growth_.run(o_.particles, progress, stop, [&] {
+      if (drop_one()) {
+        failed = 0;
+        return Attempt::attached;
+      }
+      if (++failed < kMaxFailedDrops) return Attempt::failed;
+      stats_.zone_full = true;
+      return Attempt::done;
+    });
+  }
+
+ private:
+  //! One drop: true if it attached a particle.
+  bool drop_one() {
+    ++stats_.drops;
+    Vec3 at = next_drop();
+    const auto lost = [&] {
+      if (!constraint_ || !constraint_->lost(at)) return false;
+      ++stats_.lost;
+      return true;
+    };
+    if (lost()) return false;
+    Probe closest = growth_.index().nearest(at);
+    while (closest.distance >= o_.spacing && o_.stickiness < 1.0 && rng_.uniform() >= o_.stickiness) {
+      ++stats_.refused;
+      at += o_.spacing * random_direction(rng_, o_.dimensions);
+      if (lost()) return false;
+      closest = growth_.index().nearest(at);
+    }
+    if (closest.distance < o_.spacing) {
+      ++stats_.on_structure;
+      return false;
+    }
+    const Vec3& parent = growth_.position(closest.nearest);
+    Vec3 end = parent + (at - parent) * (o_.spacing / closest.distance);
+    if (constraint_) {
+      const BranchCheck check = constraint_->check_branch(parent, end);
+      if (!check.accepted) {
+        ++stats_.mesh_rejected;
+        return false;
+      }
+      stats_.clipped += check.clipped;
+      end = check.end;
+    }
+    growth_.attach(end, closest.nearest);
+    return true;
+  }
+
+  const Vec3& center() const { return growth_.cluster().center; }
+
+  double ball_radius() const {
+    return o_.zone_radius > 0.0 ? o_.zone_radius : growth_.cluster_radius() + o_.zone_margin * o_.spacing;
+  }
+
+  Vec3 next_drop() {
+    switch (o_.bias.pattern) {
+      case DropPattern::uniform: return in_zone();
+      case DropPattern::circle: return on_edge();
+      case DropPattern::same:
+        if (left_ == 0) place_ = in_zone(), left_ = o_.bias.count;
+        --left_;
+        return place_;
+      case DropPattern::offset:
+        if (left_ == 0) {
+          place_ = in_zone();
+          left_ = o_.bias.count;
+        } else {
+          place_ += o_.bias.offset_radius * in_unit_ball();
+          --left_;
+        }
+        return place_;
+    }
+    return in_zone();
+  }
+
+  Vec3 in_unit_ball() {
+    return random_direction(rng_, o_.dimensions) * std::pow(rng_.uniform(), 1.0 / o_.dimensions);
+  }
+
+  //! The box zone: the given one, or the square or cube around the ball.
+  Box box() const {
+    if (o_.zone_box) return *o_.zone_box;
+    const double r = ball_radius();
+    Box b{center().array() - r, center().array() + r};
+    if (o_.dimensions == 2) b.min.z() = b.max.z() = 0.0;
+    return b;
+  }
+
+  Vec3 in_zone() {
+    switch (o_.zone) {
+      case DropZone::ball: return center() + ball_radius() * in_unit_ball();
+      case DropZone::box: {
+        const Box b = box();
+        Vec3 p = Vec3::Zero();
+        for (int a = 0; a < o_.dimensions; ++a) p[a] = b.min[a] + rng_.uniform() * (b.max[a] - b.min[a]);
+        return p;
+      }
+      case DropZone::mesh: return constraint_->draw_inside(rng_);
+    }
+    return center();
+  }
+
+  Vec3 on_edge() {
+    switch (o_.zone) {
+      case DropZone::ball: return center() + ball_radius() * random_direction(rng_, o_.dimensions);
+      case DropZone::box: {
+        // A face (an edge in 2D) chosen by its area, then a uniform point on it.
+        const Box b = box();
+        const Vec3 size = b.max - b.min;
+        std::array<double, 3> area{};
+        double total = 0.0;
+        for (int a = 0; a < o_.dimensions; ++a) {
+          area[a] = 1.0;
+          for (int other = 0; other < o_.dimensions; ++other)
+            if (other != a) area[a] *= size[other];
+          total += 2.0 * area[a];
+        }
+        double pick = rng_.uniform() * total;
+        int axis = 0;
+        while (axis + 1 < o_.dimensions && pick >= 2.0 * area[axis]) pick -= 2.0 * area[axis++];
+        Vec3 p = Vec3::Zero();
+        for (int a = 0; a < o_.dimensions; ++a) p[a] = b.min[a] + rng_.uniform() * size[a];
+        p[axis] = pick < area[axis] ? b.min[axis] : b.max[axis];
+        return p;
+      }
+      case DropZone::mesh: return constraint_->draw_near_surface(rng_);
+    }
+    return center();
+  }
+
+  const DropOptions& o_;
+  const MeshConstraint* constraint_;
+  DropStats& stats_;
+  OneByOne<Index> growth_;  // no distance maps: only nearest() is asked
+  Rng rng_;
+  Vec3 place_ = Vec3::Zero();    // same, offset: the last drop point
+  std::uint64_t left_ = 0;       // same, offset: drops left at or about place_
+};
+
+}  // namespace detail
+
+//! Grows a structure by random drops with a given index (GridIndex, or BruteForceIndex to test
+//! against), constrained by `constraint` if set. Does not validate. Calls `progress` every 256
+//! particles and at the end; `stop` ends growth early, the cluster marked incomplete. Growth
+//! that attaches nothing in kMaxFailedDrops drops in a row ends there, complete, with
+//! `stats->zone_full` set. Throws PartialGrowth if the structure outgrows the index.
+template <class Index>
+Cluster drop_with(const DropOptions& options, const MeshConstraint* constraint, const ProgressFn& progress = {},
+                  const StopFlag* stop = nullptr, DropStats* stats = nullptr) {
+  DropStats local;
+  return detail::RandomDrop<Index>(options, constraint, stats ? *stats : local).run(progress, stop);
+}
+
+//! Validates the options (against the constraint, if any) and grows with the grid index.
+inline Cluster drop(const DropOptions& options, const MeshConstraint* constraint = nullptr,
+                    const ProgressFn& progress = {}, const StopFlag* stop = nullptr, DropStats* stats = nullptr) {
+  if (constraint) validate(options, *constraint);
+  else validate(options);
+  if (options.zone == DropZone::mesh && !constraint) throw InvalidInput("the mesh zone drops inside a mesh: give one with --stl");
+  return drop_with<GridIndex>(options, constraint, progress, stop, stats);
+}
+
+}  // namespace dla
