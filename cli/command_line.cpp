@@ -243,7 +243,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   std::vector<std::string> seed_at;
   std::string spawn = std::string(to_string(options.spawn));
   std::string spawn_axis = std::string(to_string(options.spawn_axis));
-  std::string box, drift, index = std::string(to_string(options.index));
+  std::string box, drift, rotate, index = std::string(to_string(options.index));
   std::string side = std::string(to_string(g.constraint.side));
   std::string constraint_mode = std::string(to_string(g.constraint.mode));
 
@@ -284,6 +284,12 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
           ->type_name("K")->group(meshes)->excludes(seed_at_option);
   app.add_flag("--scene-mesh,!--no-scene-mesh", g.scene_mesh, "show the mesh, as glass, in the POV-Ray scene")
       ->capture_default_str()->group(meshes);
+  CLI::Option* fill_option =
+      app.add_option("--fill", options.fill, "grow until this fraction of the mesh's volume lies within "
+                                             "--fill-distance of the structure, (0, 1]; -n then caps it (default 1e7)")
+          ->type_name("F")->group(meshes);
+  app.add_option("--fill-distance", options.fill_distance, "--fill: how near counts as covered, in spacings, [0.5, 1000]")
+      ->capture_default_str()->group(meshes);
 
   const char* spawning = "Spawn";
   CLI::Option* spawn_option =
@@ -298,6 +304,9 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
       ->type_name("X0,Y0,Z0,X1,Y1,Z1")->group(spawning);
   app.add_option("--drift", drift, "bias of every step, per unit step length, length < 1")
       ->type_name("X,Y,Z")->group(spawning);
+  app.add_option("--rotate", rotate, "turn the spawn and the drift about the seeds' centre by DEGREES per 1000 "
+                                     "particles, as if the structure turned while it grew: spirals; no mesh")
+      ->type_name("AXIS,DEGREES")->group(spawning);
 
   FileWords words;
   add_file_options(app, g, words);
@@ -693,7 +702,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     // Inside a mesh, a root system: enough particles to fill a bust at the default spacing,
     // short of the 35,000 or so that cover its skin, where the surface spawn starts walkers;
     // thick trunks and fine tips (docs/look.md shows the main job's picture).
-    if (!g.particles_given) options.particles = kMeshParticles;
+    if (!g.particles_given) options.particles = fill_option->count() ? kFillParticles : kMeshParticles;
     if (!g.radius_given) g.look.radius.model = RadiusModel::pipe;
     if (!g.base_radius_given) g.look.radius.base_radius = kMeshBaseRadius;
     if (!g.tip_radius_given) g.look.radius.tip_radius = kMeshTipRadius;
@@ -705,6 +714,12 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     if (options.spawn != SpawnMode::box) throw InvalidInput("--box is for --spawn box, not --spawn " + spawn);
   }
   if (!drift.empty()) options.drift = parse_vec3("--drift", drift);
+  if (!rotate.empty()) {
+    const std::size_t comma = rotate.find(',');
+    if (comma == std::string::npos) throw InvalidInput("--rotate '" + rotate + "' is not AXIS,DEGREES (as y,30)");
+    options.rotate_axis = parse_axis(rotate.substr(0, comma));
+    options.rotate_degrees = parse_numbers("--rotate's degrees", rotate.substr(comma + 1), 1)[0];
+  }
   g.constraint.side = parse_side(side);
   g.constraint.mode = parse_constraint_mode(constraint_mode);
   g.spacing_given = spacing->count() > 0;
@@ -714,10 +729,12 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   if (g.mesh_path.empty() && seeds_option->count())
     throw InvalidInput("--seeds places seeds in a mesh given with --stl; without one, use --seed-at");
   if (seeds_option->count() && g.seed_count == 0) throw InvalidInput("--seeds 0: there must be a seed");
+  if (!fill_option->count() && app.count("--fill-distance")) throw InvalidInput("--fill-distance is for --fill");
   if (g.mesh_path.empty()) {
     validate(options);
     if (spawns_from_mesh(options.spawn))
       throw InvalidInput("spawn " + spawn + " needs a mesh (--stl)");
+    if (fill_option->count()) throw InvalidInput("--fill fills a mesh's volume: give one with --stl");
   } else if (g.spacing_given) {
     detail::require_in("spacing", options.spacing, kMinSpacing, kMaxSpacing);
   }

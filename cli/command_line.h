@@ -22,6 +22,8 @@ namespace dla::cli {
 
 //! Defaults with a mesh (--stl) that differ from those without one.
 inline constexpr std::size_t kMeshParticles = 30000;
+//! With --fill: the particles at most, unless -n says otherwise (growth stops when filled).
+inline constexpr std::size_t kFillParticles = 10'000'000;
 inline constexpr double kMeshBaseRadius = 3.0, kMeshTipRadius = 0.05;
 
 //! The files a run writes (`--formats`), each as PREFIX.EXT (tips: PREFIX_tips.ply).

@@ -57,9 +57,13 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
       } catch (const InvalidInput& e) {
         throw InvalidInput(command.mesh_path + ": " + e.what());
       }
-      // From the skin inside: thin parts (horns, fingers) get walkers by their surface.
+      // From the skin inside: thin parts (horns, fingers) get walkers by their surface. To fill
+      // the volume, from anywhere in it: the skin, covered first, would stop walkers from the
+      // surface long before the inside is full.
       if (!command.spawn_given)
-        options.spawn = command.constraint.side == Side::inside ? SpawnMode::surface : SpawnMode::sphere;
+        options.spawn = command.constraint.side != Side::inside ? SpawnMode::sphere
+                        : options.fill > 0.0                     ? SpawnMode::inside
+                                                                 : SpawnMode::surface;
       if (!command.seeds_given)
         options.seeds = constraint->place_seeds(command.seed_count ? command.seed_count : 1, options.rng_seed);
       validate(options, *constraint);
@@ -88,7 +92,7 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
     }
   };
   const auto progress = [&](const Cluster& so_far) {
-    bar.update(attached(so_far));
+    bar.update(attached(so_far), so_far.filled, options.fill);
     if (stop.load()) return false;
     if (!command.checkpoint_path.empty() &&
         Clock::now() - saved >= std::chrono::duration<double>(command.checkpoint_every)) {
@@ -138,13 +142,18 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
     std::string written;
     for (const std::string& name : file_names(command)) written += (written.empty() ? "" : " ") + name;
     const std::string render = command.formats.pov ? "; render: povray +W1280 +H960 +A " + output + ".pov" : "";
+    char filled[160] = "";
+    if (options.fill > 0.0)
+      std::snprintf(filled, sizeof filled, "; %.1f%% of the mesh's volume within %g spacings of it%s",
+                    100.0 * cluster.filled, options.fill_distance,
+                    cluster.filled >= options.fill ? "" : ", short of the fill asked (-n ended growth)");
     std::fprintf(stderr,
                  "dla3d: grew %s particles in %.2f s (%s particles/s); bounding radius %.1f, "
-                 "radius of gyration %.1f\n"
+                 "radius of gyration %.1f%s\n"
                  "dla3d: wrote %s%s\n",
                  grown.c_str(), record.grow_seconds,
                  with_commas(record.grow_seconds > 0 ? count / record.grow_seconds : 0.0).c_str(),
-                 bounding_radius(cluster), radius_of_gyration(cluster), written.c_str(), render.c_str());
+                 bounding_radius(cluster), radius_of_gyration(cluster), filled, written.c_str(), render.c_str());
   }
   if (!cluster.complete) {
     std::fprintf(stderr, "dla3d: stopped by %s after %s of %s particles; the files hold them%s\n",

@@ -10,6 +10,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -29,22 +30,29 @@ class ProgressBar {
  public:
   ProgressBar(std::size_t total, bool enabled) : total_(total), enabled_(enabled), start_(Clock::now()) {}
 
-  void update(std::size_t done) {
+  //! `done` of the total; with a `fill` target (growth until a mesh is filled), the bar shows
+  //! the fraction `filled` of it instead, and no ETA (filling slows as it goes).
+  void update(std::size_t done, double filled = 0.0, double fill = 0.0) {
     if (!enabled_) return;
     const Clock::time_point now = Clock::now();
     const double elapsed = std::chrono::duration<double>(now - start_).count();
     if (elapsed < 1.0 || now - last_ < std::chrono::milliseconds(100)) return;
     last_ = now;
-    const double fraction = total_ ? static_cast<double>(done) / total_ : 1.0;
+    const double fraction = fill > 0.0 ? std::min(filled / fill, 1.0) : total_ ? static_cast<double>(done) / total_ : 1.0;
     const double rate = done / elapsed;
     const double eta = rate > 0 ? (total_ - done) / rate : 0.0;
     constexpr int width = 30;
-    const int filled = static_cast<int>(fraction * width);
-    std::string bar(static_cast<std::size_t>(filled), '=');
+    const int full = static_cast<int>(fraction * width);
+    std::string bar(static_cast<std::size_t>(full), '=');
     bar.resize(width, ' ');
-    std::fprintf(stderr, "\r\033[K%3d%% [%s] %s/%s  %s/s  ETA %d:%02d", static_cast<int>(fraction * 100),
-                 bar.c_str(), with_commas(done).c_str(), with_commas(total_).c_str(),
-                 with_commas(rate).c_str(), static_cast<int>(eta) / 60, static_cast<int>(eta) % 60);
+    if (fill > 0.0)
+      std::fprintf(stderr, "\r\033[K%3d%% [%s] filled %.1f%% of %.1f%%  %s particles  %s/s",
+                   static_cast<int>(fraction * 100), bar.c_str(), 100.0 * filled, 100.0 * fill,
+                   with_commas(done).c_str(), with_commas(rate).c_str());
+    else
+      std::fprintf(stderr, "\r\033[K%3d%% [%s] %s/%s  %s/s  ETA %d:%02d", static_cast<int>(fraction * 100),
+                   bar.c_str(), with_commas(done).c_str(), with_commas(total_).c_str(),
+                   with_commas(rate).c_str(), static_cast<int>(eta) / 60, static_cast<int>(eta) % 60);
     drawn_ = true;
   }
 

@@ -48,18 +48,25 @@ std::string point(const Vec3& p) {
          detail::format_number(p.z()) + ")";
 }
 
+//! What needs a mesh and has none.
+void require_no_mesh_options(const GrowthOptions& options) {
+  if (spawns_from_mesh(options.spawn))
+    throw InvalidInput("spawn " + std::string(to_string(options.spawn)) + " needs a constraint mesh");
+  if (options.fill != 0.0) throw InvalidInput("--fill fills a mesh's volume: give one with --stl");
+}
+
 }  // namespace
 
 Cluster grow(const GrowthOptions& options, const ProgressFn& progress, const StopFlag* stop) {
   validate(options);
-  if (spawns_from_mesh(options.spawn))
-    throw InvalidInput("spawn " + std::string(to_string(options.spawn)) + " needs a constraint mesh");
+  require_no_mesh_options(options);
   return grow_any(options, progress, nullptr, nullptr, stop);
 }
 
 Cluster resume(const GrowthOptions& options, const Cluster& partial, const ProgressFn& progress,
                const StopFlag* stop) {
   validate(options);
+  require_no_mesh_options(options);
   validate_partial(options, partial);
   return grow_any(options, progress, nullptr, &partial, stop);
 }
@@ -75,6 +82,12 @@ void validate(const GrowthOptions& options, const MeshConstraint& constraint) {
   validate(options);
   const Side side = constraint.options().side;
   if (options.dimensions != 3) throw InvalidInput("a constraint mesh needs growth in 3 dimensions");
+  if (options.fill != 0.0 && side != Side::inside)
+    throw InvalidInput("--fill fills the volume a mesh encloses: it needs --side inside, not --side " +
+                       std::string(to_string(side)));
+  if (options.rotate_degrees != 0.0)
+    throw InvalidInput("--rotate turns the spawn and the drift about the seeds' centre, and a mesh does not turn "
+                       "with them: leave out --rotate or the mesh");
   if (options.spacing != constraint.spacing())
     throw InvalidInput("the constraint was built for spacing " + detail::format_number(constraint.spacing()) +
                        ", not " + detail::format_number(options.spacing));

@@ -51,6 +51,7 @@ void measures(detail::OutputFile& out, const Cluster& cluster) {
   dimension(fractal_dimension_by_gyration(cluster));
   out << ",\n    \"fractal_dimension_mass_radius\": ";
   dimension(fractal_dimension_by_mass_radius(cluster));
+  if (cluster.filled > 0.0) out << ",\n    \"filled\": " << json::number(cluster.filled, 6);
   out << "\n  },\n";
 }
 
@@ -105,6 +106,15 @@ void write_run_report(const Cluster& cluster, const GrowthOptions& o, const Look
   }
   out << ",\n    \"drift\": ";
   vector(out, o.drift);
+  if (o.fill > 0.0) {
+    out << ",\n    \"fill\": ";
+    out.number(o.fill) << ",\n    \"fill_distance\": ";
+    out.number(o.fill_distance);
+  }
+  if (o.rotate_degrees != 0.0) {
+    out << ",\n    \"rotate_axis\": \"" << to_string(o.rotate_axis) << "\",\n    \"rotate_degrees_per_1000\": ";
+    out.number(o.rotate_degrees);
+  }
   out << ",\n    \"min_step\": ";
   out.number(o.min_step) << ",\n    \"index\": \"" << to_string(o.index) << "\"\n  },\n";
   look_section(out, look, pov);

@@ -651,3 +651,45 @@ TEST(Cli, DropAndBallisticBadInputIsOneLineAndNoFiles) {
     EXPECT_TRUE(std::filesystem::is_empty(dir.path())) << args << " left files";
   }
 }
+
+TEST(Cli, RotateTurnsTheSpawnAndIsRefusedWithAMesh) {
+  ScratchDir dir;
+  const CliRun turned = dla3d(dir, "-q -o turned -n 500 --spawn disk --spawn-axis x --rotate z,90 --formats csv,json");
+  ASSERT_EQ(turned.exit_code, 0) << turned.err;
+  const std::string json = read_file(dir / "turned.json");
+  EXPECT_NE(json.find("\"rotate_axis\": \"z\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"rotate_degrees_per_1000\": 90"), std::string::npos) << json;
+  ASSERT_EQ(dla3d(dir, "-q -o straight -n 500 --spawn disk --spawn-axis x --formats csv").exit_code, 0);
+  EXPECT_NE(read_file(dir / "turned.csv"), read_file(dir / "straight.csv"));
+  dla::write_stl(dla::make_sphere(dla::Vec3::Zero(), 10.0, 12, 24), dir / "ball.stl");
+  for (const char* args : {"--stl ball.stl --rotate y,30", "--rotate y", "--rotate q,30", "--rotate z,4e4",
+                           "--dimensions 2 --rotate x,10"}) {
+    const CliRun run = dla3d(dir, std::string("-q -o bad -n 50 ") + args);
+    EXPECT_EQ(run.exit_code, 2) << args << ": " << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << args << ": " << run.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad.csv")) << args;
+  }
+}
+
+TEST(Cli, FillGrowsUntilTheMeshIsCovered) {
+  ScratchDir dir;
+  dla::write_stl(dla::make_sphere(dla::Vec3::Zero(), 10.0, 12, 24), dir / "ball.stl");
+  const CliRun run = dla3d(dir, "--stl ball.stl --fill 0.5 -o filled --formats csv,json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("% of the mesh's volume within 3 spacings of it"), std::string::npos) << run.err;
+  const std::string json = read_file(dir / "filled.json");
+  EXPECT_NE(json.find("\"fill\": 0.5"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"spawn\": \"inside\""), std::string::npos) << json;  // the default when filling
+  const std::size_t at = json.find("\"filled\": ");
+  ASSERT_NE(at, std::string::npos) << json;
+  EXPECT_GE(std::stod(json.substr(at + 10)), 0.5);
+  EXPECT_NE(json.find("\"complete\": true"), std::string::npos) << json;
+  EXPECT_LT(dla::read_csv(dir / "filled.csv").particles.size(), 1000000u);  // stopped long before its cap, 10^7
+  for (const char* args : {"--fill 0.5", "--stl ball.stl --fill-distance 2", "--stl ball.stl --fill 1.5",
+                           "--stl ball.stl --fill 0.5 --side outside --seed-at 20,0,0"}) {
+    const CliRun bad = dla3d(dir, std::string("-q -o bad -n 50 ") + args);
+    EXPECT_EQ(bad.exit_code, 2) << args << ": " << bad.err;
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << args << ": " << bad.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad.csv")) << args;
+  }
+}

@@ -3,6 +3,7 @@
 // every seed growing, the same files for the same seed.
 
 #include "dla/mesh/constraint.h"
+#include "dla/models/fill.h"
 #include "dla/models/growth.h"
 #include "dla/mesh/mesh_repair.h"
 #include "dla/mesh/shapes.h"
@@ -201,6 +202,71 @@ TEST(Constraint, OpenCanOfBourkesFigure4) {
   for (const Particle& p : cluster.particles) in_can += p.position.z() < 19.0 && p.position.head<2>().norm() < 10.0;
   EXPECT_GT(in_can, 0u) << "nothing grew down into the can";
   EXPECT_GT(cluster.stats.rejected, 0u);
+}
+
+//! The fraction of the mesh's volume within `distance` of a particle, by Monte Carlo: points
+//! uniform in the box, inside by the exact winding number, near by a scan of every particle.
+double sampled_fill(const MeshConstraint& constraint, const std::vector<Particle>& particles, double distance) {
+  Rng rng(99);
+  const Box& box = constraint.box();
+  std::size_t inside = 0, near = 0;
+  for (int i = 0; i < 40000; ++i) {
+    Vec3 p;
+    for (int a = 0; a < 3; ++a) p[a] = box.min[a] + rng.uniform() * (box.max[a] - box.min[a]);
+    if (!constraint.inside_test().contains(p)) continue;
+    ++inside;
+    for (const Particle& q : particles)
+      if ((q.position - p).squaredNorm() <= distance * distance) {
+        ++near;
+        break;
+      }
+  }
+  return static_cast<double>(near) / static_cast<double>(inside);
+}
+
+TEST(Constraint, FillGaugeMatchesASampledFraction) {
+  const MeshConstraint constraint(make_sphere(Vec3::Zero(), 10.0), {}, 0.5);
+  Rng rng(5);
+  std::vector<Particle> particles;
+  FillGauge gauge(constraint, 1.5);
+  for (int i = 0; i < 120; ++i) {
+    const Vec3 p = 9.0 * random_direction(rng, 3) * std::cbrt(rng.uniform());
+    particles.push_back({p, -1, 0});
+    gauge.add(p);
+    if (i % 40 == 39) {
+      EXPECT_NEAR(gauge.fraction(), sampled_fill(constraint, particles, 1.5), 0.02) << i + 1;
+    }
+  }
+}
+
+TEST(Constraint, FillStopsGrowthOnceTheVolumeIsCovered) {
+  const MeshConstraint constraint(make_sphere(Vec3::Zero(), 8.0), {}, 0.5);
+  GrowthOptions o = options_for(constraint, 100000, 1);
+  o.fill = 0.6;
+  o.fill_distance = 3.0;
+  const Cluster c = grow(o, constraint);
+  EXPECT_TRUE(c.complete);
+  EXPECT_LT(attached(c), o.particles);
+  EXPECT_GE(c.filled, 0.6);
+  // The particle before the last had not covered it: growth stopped at the first that did.
+  FillGauge gauge(constraint, 1.5);
+  for (std::size_t i = 0; i + 1 < c.particles.size(); ++i) gauge.add(c.particles[i].position);
+  EXPECT_LT(gauge.fraction(), 0.6);
+  gauge.add(c.particles.back().position);
+  EXPECT_EQ(gauge.fraction(), c.filled);
+  EXPECT_NEAR(c.filled, sampled_fill(constraint, c.particles, 1.5), 0.03);
+  // Threads stop at the same particle.
+  o.threads = 2;
+  const Cluster two = grow(o, constraint);
+  ASSERT_EQ(two.particles.size(), c.particles.size());
+  EXPECT_EQ(two.particles.back().position, c.particles.back().position);
+  // Without a mesh, or outside one, there is no volume to fill.
+  EXPECT_THROW(grow(o), InvalidInput);
+  ConstraintOptions outside;
+  outside.side = Side::outside;
+  o.seeds = {Vec3(12, 0, 0)};
+  o.spawn = SpawnMode::sphere;
+  EXPECT_THROW(grow(o, MeshConstraint(make_sphere(Vec3::Zero(), 8.0), outside, 0.5)), InvalidInput);
 }
 
 TEST(Constraint, BadSetupsAreClearErrors) {

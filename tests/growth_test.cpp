@@ -244,6 +244,32 @@ TEST(Threads, ErrorsAreTheOneThreadErrors) {
   EXPECT_THROW(grow(o), GrowthError);
 }
 
+TEST(Growth, RotationTurnsTheDriftAndSoTheGrowth) {
+  // Walkers drifting along +x build towards -x. Turned about z by 180 degrees per 1000
+  // particles, the drift sweeps half a turn over the first 1000 and the second half over the
+  // next: growth leans to -y (the mean of -(cos t, sin t) over the half turn), then back
+  // towards +y. Without rotation all of it leans to -x alone.
+  GrowthOptions o = small(2000);
+  o.dimensions = 2;
+  o.drift = Vec3(0.5, 0.0, 0.0);
+  const auto lean = [](const Cluster& c, std::size_t from, std::size_t to) {
+    Vec3 sum = Vec3::Zero();
+    for (std::size_t i = c.seed_count + from; i < c.seed_count + to; ++i) sum += c.particles[i].position;
+    return Vec3(sum / static_cast<double>(to - from));
+  };
+  const Cluster straight = grow(o);
+  o.rotate_degrees = 180.0;
+  const Cluster turned = grow(o);
+  expect_valid_tree(turned, o);
+  const Vec3 first = lean(turned, 0, 1000), second = lean(turned, 1000, 2000);
+  EXPECT_LT(first.y(), -0.2 * radius_of_gyration(turned)) << first.transpose();
+  EXPECT_GT(second.y() - first.y(), 0.2 * radius_of_gyration(turned)) << second.transpose();
+  EXPECT_LT(std::abs(lean(straight, 0, 2000).y()), 0.2 * radius_of_gyration(straight));
+  EXPECT_LT(lean(straight, 0, 2000).x(), -0.3 * radius_of_gyration(straight));
+  // The frame turns with the walker's number, so threads give the same structure.
+  expect_same_for_every_thread_count(o);
+}
+
 TEST(Growth, FilledSpawnBoxIsAnErrorNotAHang) {
   GrowthOptions o = small(10);
   o.spawn = SpawnMode::box;
@@ -415,6 +441,10 @@ TEST(Options, BadValuesAreRefusedWithAClearMessage) {
   EXPECT_EQ(message([](GrowthOptions& o) { o.dimensions = 2, o.spawn = SpawnMode::disk; }),
             "the disk spawn axis must be x or y in 2 dimensions");
   EXPECT_EQ(message([](GrowthOptions& o) { o.threads = 0; }), "threads 0 is not in 1-256");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.dimensions = 2, o.rotate_degrees = 10, o.rotate_axis = Axis::y; }),
+            "growth in 2 dimensions turns about z, not y");
+  EXPECT_EQ(message([](GrowthOptions& o) { o.rotate_degrees = NAN; }),
+            "rotation, in degrees per 1000 particles, nan is not in [-36000, 36000]");
   // Where the walk's arithmetic breaks down or a walker would practically never stick.
   EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = 1e300; }), "spacing 1e+300 is not in [1e-25, 1e+25]");
   EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = 1e-300; }), "spacing 1e-300 is not in [1e-25, 1e+25]");

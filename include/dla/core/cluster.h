@@ -47,6 +47,8 @@ struct Cluster {
   WalkStats stats;
   std::uint64_t replays = 0;        //!< walkers run again because a particle attached by an
                                     //!< earlier walker on another thread changed their path
+  double filled = 0.0;              //!< growing to fill a mesh (GrowthOptions::fill): the
+                                    //!< fraction of its volume covered so far; else 0
 };
 
 //! Called as growth goes on (each model says how often) and at the end, with the structure so

@@ -63,6 +63,16 @@ struct GrowthOptions {
                                      //!< launch sphere, growing with the structure
   Vec3 drift = Vec3::Zero();         //!< bias added to every step, per unit step length,
                                      //!< |drift| < 1 (gravity, wind)
+  //! Bourke's rotation (`--rotate AXIS,DEGREES`): the spawn and the drift turn about this axis
+  //! through the seeds' centre, by `rotate_degrees` per 1000 particles attached, as if the
+  //! structure turned the other way while it grew. In 2D the axis is z.
+  Axis rotate_axis = Axis::z;
+  double rotate_degrees = 0.0;       //!< per 1000 particles, [-36000, 36000]; 0: no rotation
+  //! With a constraint mesh grown inside: stop once this fraction of the enclosed volume lies
+  //! within `fill_distance` spacings of the structure (`--fill F`), in (0, 1]; 0: grow to
+  //! `particles`, which stays the cap.
+  double fill = 0.0;
+  double fill_distance = 3.0;        //!< spacings, [0.5, 1000]
   double min_step = 0.5;             //!< step length near the structure, in spacings,
                                      //!< [0.01, 1]
   IndexKind index = IndexKind::grid; //!< nearest-particle look-up
@@ -234,6 +244,11 @@ inline void validate(const GrowthOptions& o) {
     throw InvalidInput("drift length " + format_number(o.drift.norm()) + " is not below 1");
   if (o.dimensions == 2 && o.drift.z() != 0.0)
     throw InvalidInput("drift has a z component but growth in 2 dimensions is in the plane z = 0");
+  detail::require_in("rotation, in degrees per 1000 particles,", o.rotate_degrees, -36000.0, 36000.0);
+  if (o.dimensions == 2 && o.rotate_degrees != 0.0 && o.rotate_axis != Axis::z)
+    throw InvalidInput("growth in 2 dimensions turns about z, not " + std::string(to_string(o.rotate_axis)));
+  if (o.fill != 0.0) detail::require_in("fill", o.fill, 1e-6, 1.0);
+  detail::require_in("fill distance", o.fill_distance, 0.5, 1000.0);
   detail::require_in("min step", o.min_step, kMinMinStep, 1.0);
   if (o.threads < 1 || o.threads > 256) throw InvalidInput("threads " + std::to_string(o.threads) + " is not in 1-256");
   if (o.threads > 1 && o.index != IndexKind::grid)

@@ -7,9 +7,12 @@
 #include "dla/mesh/constraint.h"
 #include "dla/core/options.h"
 #include "dla/core/random.h"
+#include "dla/models/fill.h"
 #include "dla/models/spawn.h"
 #include "dla/index/spatial_index.h"
 #include "dla/models/walk.h"
+
+#include <Eigen/Geometry>
 
 #include <atomic>
 #include <cmath>
@@ -141,6 +144,7 @@ class Aggregation {
         contact_(options.spacing),
         near_step_(options.min_step * options.spacing),
         drift_scale_(1.0 / (1.0 + options.drift.norm())),
+        radians_per_walker_(options.rotate_degrees * (3.141592653589793238462643383279502884 / 180.0) / 1000.0),
         index_(cluster_.particles, options.spacing, options.dimensions) {
     cluster_.spacing = options.spacing;
     cluster_.dimensions = options.dimensions;
@@ -151,6 +155,8 @@ class Aggregation {
     index_.reserve(options.seeds.size() + options.particles);
     for (const Vec3& s : options.seeds) cluster_.center += s;
     cluster_.center /= static_cast<double>(options.seeds.size());
+    if (constraint && options.fill > 0.0)
+      fill_ = std::make_unique<FillGauge>(*constraint, options.fill_distance * options.spacing);
     if (partial) {
       // The same particles added in the same order rebuild the same index and radii.
       for (const Particle& p : partial->particles) add(p);
@@ -164,12 +170,13 @@ class Aggregation {
   Cluster run(const ProgressFn& progress) {
     try {
       if (opt_.threads > 1) {
-        run_in_parallel(progress);
+        if (!filled()) run_in_parallel(progress);
       } else {
-        for (std::size_t k = attached(cluster_); k < opt_.particles; ++k) {
+        for (std::size_t k = attached(cluster_); k < opt_.particles && !filled(); ++k) {
           add(walk(k, *sight_, cluster_.stats, nullptr));
           if (!report(k, progress)) break;
         }
+        if (filled() && progress) progress(cluster_);
       }
     } catch (const Stopped&) {
       cluster_.complete = false;
@@ -251,6 +258,10 @@ class Aggregation {
           slot.done.store(false, std::memory_order_relaxed);
           committed.store(k + 1, std::memory_order_release);
           if (!report(k, progress)) stop.store(true);
+          if (filled()) {  // where the one-thread run stops too
+            if (progress) progress(cluster_);
+            stop.store(true);
+          }
         }
       } catch (...) {
         error = std::current_exception();
@@ -327,6 +338,15 @@ class Aggregation {
   }
 
   bool drifting() const { return opt_.drift.squaredNorm() > 0.0; }
+  bool turning() const { return radians_per_walker_ != 0.0; }
+
+  //! Walker k's frame: the spawn and the drift turned by k times the rotation a walker (the
+  //! same for any thread count: k is the number attached before it in every run).
+  Eigen::Matrix3d frame(std::size_t k) const {
+    Vec3 axis = Vec3::Zero();
+    axis[static_cast<int>(opt_.rotate_axis)] = 1.0;
+    return Eigen::AngleAxisd(static_cast<double>(k) * radians_per_walker_, axis).toRotationMatrix();
+  }
 
   //! add() while walkers run on other threads: they stop while the grid's domain grows.
   void add_stopping(const Particle& p) {
@@ -348,8 +368,15 @@ class Aggregation {
   //! walker clear of every contact ball.
   double return_radius_for(double cluster_radius) const { return cluster_radius + 2.0 * contact_; }
 
+  //! Whether growth asked to fill the mesh has: it stops there, complete.
+  bool filled() const { return fill_ && cluster_.filled >= opt_.fill; }
+
   void add(const Particle& p) {
     cluster_.particles.push_back(p);
+    if (fill_) {
+      fill_->add(p.position);
+      cluster_.filled = fill_->fraction();
+    }
     const bool opened = index_.insert(static_cast<std::int32_t>(cluster_.particles.size() - 1));
     if (opt_.threads > 1) opened_.push_back(opened);
     const double r = (p.position - cluster_.center).norm();
@@ -379,7 +406,10 @@ class Aggregation {
     Rng rng(opt_.rng_seed, k);
     const Vec3& center = cluster_.center;
     const double return_radius = sight.return_radius;
-    Vec3 x = launch(rng, sight, reads);
+    const Eigen::Matrix3d turn = turning() ? frame(k) : Eigen::Matrix3d::Identity();
+    const Vec3 drift = turning() ? Vec3(turn * opt_.drift) : opt_.drift;
+    const Eigen::Matrix3d* turned = turning() ? &turn : nullptr;
+    Vec3 x = launch(rng, sight, reads, turned);
     // Bounds that turn a setup where nothing can stick into an error rather than a hang.
     constexpr std::uint64_t max_lost = 10'000'000, max_rejected = 10'000, max_relaunches = 100'000;
     std::uint64_t lost = 0, rejected = 0, relaunches = 0, steps = 0;
@@ -389,7 +419,7 @@ class Aggregation {
         throw GrowthError("walker " + std::to_string(k + 1) + " was started afresh " + std::to_string(max_relaunches) +
                           " times without reaching the structure: walkers start too far from it, or the drift "
                           "carries them away");
-      x = launch(rng, sight, reads);
+      x = launch(rng, sight, reads, turned);
     };
     for (;;) {
       if (reads) pause_.check();
@@ -416,7 +446,7 @@ class Aggregation {
           relaunch();
           continue;
         }
-        x += jump(rng, std::sqrt(r2) - sight.cluster_radius - contact_);
+        x += jump(rng, std::sqrt(r2) - sight.cluster_radius - contact_, drift);
         continue;
       }
 
@@ -425,20 +455,20 @@ class Aggregation {
         if (++lost == max_lost)
           throw GrowthError("walker " + std::to_string(k + 1) + " left the growing side of the mesh " +
                             std::to_string(max_lost) + " times: walkers cannot reach the seeds");
-        x = launch(rng, sight, reads);
+        x = launch(rng, sight, reads, turned);
         continue;
       }
 
       // Outside the sphere around every particle, its distance is a bound the index may not beat.
       const double free = std::max(probe(x, reads).distance, std::sqrt(r2) - sight.cluster_radius) - contact_;
       if (free > near_step_) {
-        x += jump(rng, free);
+        x += jump(rng, free, drift);
         continue;
       }
 
       // Next to the structure: a short straight step, stopped at the first contact.
       ++stats.near_steps;
-      const Vec3 step = near_step_ * (random_direction(rng, opt_.dimensions) + opt_.drift);
+      const Vec3 step = near_step_ * (random_direction(rng, opt_.dimensions) + drift);
       double first = 2.0;
       std::int32_t touched = -1;
       const double search = contact_ + step.norm();
@@ -479,22 +509,24 @@ class Aggregation {
 
   //! A step to a uniform point on the sphere of radius `free` (less any drift), which lies in
   //! a ball free of contacts: the walk-on-spheres move.
-  Vec3 jump(Rng& rng, double free) const {
-    return free * drift_scale_ * (random_direction(rng, opt_.dimensions) + opt_.drift);
+  Vec3 jump(Rng& rng, double free, const Vec3& drift) const {
+    return free * drift_scale_ * (random_direction(rng, opt_.dimensions) + drift);
   }
 
   const Vec3& position(std::int32_t id) const {
     return cluster_.particles[static_cast<std::size_t>(id)].position;
   }
 
-  //! A walker's start. Starts beyond the return sphere are fine: the walk's first step applies
-  //! the return rule. A start within contact of the structure, or lost, is drawn again.
-  Vec3 launch(Rng& rng, const Sight& sight, std::vector<Read>* reads) const {
+  //! A walker's start, in the frame `turn` if the spawn turns. Starts beyond the return sphere
+  //! are fine: the walk's first step applies the return rule. A start within contact of the
+  //! structure, or lost, is drawn again.
+  Vec3 launch(Rng& rng, const Sight& sight, std::vector<Read>* reads, const Eigen::Matrix3d* turn) const {
     const Vec3& center = cluster_.center;
     const double R2 = sight.return_radius * sight.return_radius;
     constexpr int max_draws = 1'000'000;
     for (int draw = 0; draw < max_draws; ++draw) {
-      const Vec3 x = draw_start(rng, sight);
+      Vec3 x = draw_start(rng, sight);
+      if (turn) x = center + *turn * (x - center);
       if (constraint_ && constraint_->lost(x)) continue;
       if ((x - center).squaredNorm() >= R2) return x;
       if (probe(x, reads).distance >= contact_) return x;
@@ -527,8 +559,10 @@ class Aggregation {
   const double contact_;      // centre distance at which a walker touches a particle
   const double near_step_;    // step length near the structure
   const double drift_scale_;  // keeps a drifted jump inside its free ball
+  const double radians_per_walker_;  // Bourke's rotation of the spawn and the drift
   alignas(64) Cluster cluster_;  // written at every attachment: apart from what walkers read
   std::vector<std::uint8_t> opened_;  // per particle, with threads: whether it opened a cell
+  std::unique_ptr<FillGauge> fill_;   // with GrowthOptions::fill and a mesh: the volume covered
   alignas(64) Index index_;
   std::deque<Sight> sights_;                     // every sight so far: walkers may hold any
   const Sight* sight_ = nullptr;                // the current one
