@@ -282,6 +282,9 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   CLI::Option* seeds_option =
       app.add_option("--seeds", g.seed_count, "place this many seeds on the growing side, far apart; default 1")
           ->type_name("K")->group(meshes)->excludes(seed_at_option);
+  app.add_flag("--seed-surface", g.seed_surface, "start from the whole surface: seeds a spacing apart, half a "
+                                                 "spacing off it on the growing side")
+      ->group(meshes)->excludes(seeds_option)->excludes(seed_at_option);
   app.add_flag("--scene-mesh,!--no-scene-mesh", g.scene_mesh, "show the mesh, as glass, in the POV-Ray scene")
       ->capture_default_str()->group(meshes);
   CLI::Option* fill_option =
@@ -728,6 +731,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   g.seeds_given = seed_at_option->count() > 0;
   if (g.mesh_path.empty() && seeds_option->count())
     throw InvalidInput("--seeds places seeds in a mesh given with --stl; without one, use --seed-at");
+  if (g.mesh_path.empty() && g.seed_surface) throw InvalidInput("--seed-surface seeds a mesh's surface: give one with --stl");
   if (seeds_option->count() && g.seed_count == 0) throw InvalidInput("--seeds 0: there must be a seed");
   if (!fill_option->count() && app.count("--fill-distance")) throw InvalidInput("--fill-distance is for --fill");
   if (g.mesh_path.empty()) {

@@ -50,6 +50,7 @@ struct GrowCommand : FileOptions {
   std::string mesh_path;               //!< empty: no constraint
   ConstraintOptions constraint;
   std::size_t seed_count = 0;          //!< --seeds; 0 when not given
+  bool seed_surface = false;           //!< --seed-surface: the mesh's surface, sampled, is the start
   bool scene_mesh = true;
   std::string checkpoint_path;         //!< empty: no checkpoint
   double checkpoint_every = 60.0;      //!< seconds

@@ -58,14 +58,21 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
         throw InvalidInput(command.mesh_path + ": " + e.what());
       }
       // From the skin inside: thin parts (horns, fingers) get walkers by their surface. To fill
-      // the volume, from anywhere in it: the skin, covered first, would stop walkers from the
-      // surface long before the inside is full.
+      // the volume, or to grow from seeds lining the skin, from anywhere in the volume: the
+      // skin, covered, would stop walkers from the surface long before the inside is full.
       if (!command.spawn_given)
-        options.spawn = command.constraint.side != Side::inside ? SpawnMode::sphere
-                        : options.fill > 0.0                     ? SpawnMode::inside
-                                                                 : SpawnMode::surface;
-      if (!command.seeds_given)
+        options.spawn = command.constraint.side != Side::inside      ? SpawnMode::sphere
+                        : options.fill > 0.0 || command.seed_surface ? SpawnMode::inside
+                                                                     : SpawnMode::surface;
+      if (command.seed_surface) {
+        try {
+          options.seeds = constraint->sample_surface(options.rng_seed);
+        } catch (const InvalidInput& e) {
+          throw InvalidInput(command.mesh_path + ": " + e.what());
+        }
+      } else if (!command.seeds_given) {
         options.seeds = constraint->place_seeds(command.seed_count ? command.seed_count : 1, options.rng_seed);
+      }
       validate(options, *constraint);
     }
     check_memory(options.particles);

@@ -1,8 +1,10 @@
 #include "dla/mesh/constraint.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 
 namespace dla {
 
@@ -171,6 +173,47 @@ Vec3 MeshConstraint::draw_near_surface(Rng& rng) const {
     }
   }
   throw GrowthError("no start beside the mesh surface in a million draws");
+}
+
+std::vector<Vec3> MeshConstraint::sample_surface(std::uint64_t rng_seed) const {
+  if (options_.side == Side::both)
+    throw InvalidInput("--seed-surface needs a growing side to put the seeds on: --side inside or outside");
+  const double area = area_prefix_.back() / (spacing_ * spacing_);
+  constexpr double max_area = 500'000.0;
+  if (!(area <= max_area))
+    throw InvalidInput("the surface is " + detail::format_count(static_cast<std::uint64_t>(area)) +
+                       " spacings² and --seed-surface places a seed a spacing²: more than 500,000; use a larger spacing");
+  Rng rng(rng_seed, ~std::uint64_t{1});  // a stream no walker and no other seeding uses
+  // Accepted points by cell of a spacing: a candidate checks the 27 cells about its own.
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
+  const auto cell_of = [&](const Vec3& p) {
+    std::array<std::int64_t, 3> c;
+    for (int a = 0; a < 3; ++a) c[a] = static_cast<std::int64_t>(std::floor(p[a] / spacing_));
+    return c;
+  };
+  const auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return (static_cast<std::uint64_t>(x) & 0x1fffff) | (static_cast<std::uint64_t>(y) & 0x1fffff) << 21 |
+           (static_cast<std::uint64_t>(z) & 0x1fffff) << 42;
+  };
+  std::vector<Vec3> seeds;
+  const auto tries = static_cast<std::size_t>(std::ceil(4.0 * area)) + 1;
+  for (std::size_t i = 0; i < tries; ++i) {
+    const Vec3 p = draw_near_surface(rng);
+    const auto c = cell_of(p);
+    bool free = true;
+    for (std::int64_t z = c[2] - 1; z <= c[2] + 1 && free; ++z)
+      for (std::int64_t y = c[1] - 1; y <= c[1] + 1 && free; ++y)
+        for (std::int64_t x = c[0] - 1; x <= c[0] + 1 && free; ++x) {
+          const auto found = cells.find(key(x, y, z));
+          if (found == cells.end()) continue;
+          for (const std::uint32_t j : found->second)
+            if ((seeds[j] - p).norm() < spacing_) free = false;
+        }
+    if (!free) continue;
+    cells[key(c[0], c[1], c[2])].push_back(static_cast<std::uint32_t>(seeds.size()));
+    seeds.push_back(p);
+  }
+  return seeds;
 }
 
 double MeshConstraint::distance_to_surface(const Vec3& p) const {

@@ -74,6 +74,7 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--drift", {"0,0,0", "0,-0.3,0", "0.2,0,0", "0,0.9,0", "0,0,2", "nan,0,0", "0,0,0.5"}},
       {"--rotate", {"z,30", "y,-90", "x,36000", "z,0", "z,36001", "w,10", "z", "z,nan", "y,1e300"}},
       {"--fill", {"0.3", "0.05", "1", "0", "1.5", "-0.1", "nan"}},
+      {"--seed-surface", {}},
       {"--fill-distance", {"3", "0.5", "1000", "0.1", "2000", "inf"}},
       {"--output", {"out", "'with space'", "'we\"ird'", "'back\\slash'", "sub/out", "''", "dir/"}},
       {"--ply-format", {"binary", "ascii", "text"}},

@@ -693,3 +693,23 @@ TEST(Cli, FillGrowsUntilTheMeshIsCovered) {
     EXPECT_FALSE(std::filesystem::exists(dir / "bad.csv")) << args;
   }
 }
+
+TEST(Cli, SeedSurfaceStartsFromTheWholeSurface) {
+  ScratchDir dir;
+  dla::write_stl(dla::make_sphere(dla::Vec3::Zero(), 10.0, 12, 24), dir / "ball.stl");
+  const CliRun run = dla3d(dir, "-q --stl ball.stl --spacing 0.5 --seed-surface -n 500 -o lined --formats csv,json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const dla::Cluster lined = dla::read_csv(dir / "lined.csv");
+  EXPECT_GT(lined.seed_count, 1000u);  // about 1,250 spacings² of surface
+  EXPECT_EQ(lined.particles.size(), lined.seed_count + 500);
+  for (std::size_t i = 0; i < lined.seed_count; ++i) ASSERT_EQ(lined.particles[i].parent, -1);
+  const std::string json = read_file(dir / "lined.json");
+  EXPECT_NE(json.find("\"seeds\": " + std::to_string(lined.seed_count)), std::string::npos) << json.substr(0, 2000);
+  for (const char* args : {"--seed-surface", "--stl ball.stl --seed-surface --seeds 2",
+                           "--stl ball.stl --seed-surface --seed-at 0,0,0", "--stl ball.stl --seed-surface --side both"}) {
+    const CliRun bad = dla3d(dir, std::string("-q -o bad -n 50 ") + args);
+    EXPECT_EQ(bad.exit_code, 2) << args << ": " << bad.err;
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << args << ": " << bad.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad.csv")) << args;
+  }
+}

@@ -269,6 +269,40 @@ TEST(Constraint, FillStopsGrowthOnceTheVolumeIsCovered) {
   EXPECT_THROW(grow(o, MeshConstraint(make_sphere(Vec3::Zero(), 8.0), outside, 0.5)), InvalidInput);
 }
 
+TEST(Constraint, SurfaceSamplesLineTheGrowingSideASpacingApart) {
+  const TriangleMesh sphere = make_sphere(Vec3::Zero(), 8.0);
+  for (const Side side : {Side::inside, Side::outside}) {
+    ConstraintOptions c;
+    c.side = side;
+    const MeshConstraint constraint(sphere, c, 0.5);
+    const std::vector<Vec3> seeds = constraint.sample_surface(3);
+    SCOPED_TRACE(std::string(to_string(side)));
+    // A spacing apart, seeds cover a spacing² or a little more each: 804 units² of sphere.
+    const double per_spacing2 = static_cast<double>(seeds.size()) * 0.25 / (4.0 * 3.14159265 * 64.0);
+    EXPECT_GT(per_spacing2, 0.4);
+    EXPECT_LT(per_spacing2, 1.2);
+    for (std::size_t i = 0; i < seeds.size(); ++i) {
+      ASSERT_EQ(constraint.inside_test().contains(seeds[i]), side == Side::inside) << i;
+      const double d = constraint.distance_to_surface(seeds[i]);
+      ASSERT_GT(d, 0.0) << i;
+      ASSERT_LE(d, 0.25 * (1.0 + 1e-9)) << i;  // half a spacing off, or nearer another triangle
+      for (std::size_t j = 0; j < i; ++j) ASSERT_GE((seeds[j] - seeds[i]).norm(), 0.5) << j << ", " << i;
+    }
+    EXPECT_EQ(constraint.sample_surface(3), seeds);
+    // The surface as the start: every seed is a root, and growth inside stays inside.
+    GrowthOptions o = options_for(constraint, 1500, 1);
+    o.seeds = seeds;
+    if (side == Side::outside) o.spawn = SpawnMode::sphere;
+    const Cluster grown = grow(o, constraint);
+    EXPECT_EQ(grown.seed_count, seeds.size());
+    for (const Particle& p : grown.particles) ASSERT_EQ(constraint.inside_test().contains(p.position), side == Side::inside);
+  }
+  ConstraintOptions wall;
+  wall.side = Side::both;
+  EXPECT_THROW(MeshConstraint(sphere, wall, 0.5).sample_surface(1), InvalidInput);
+  EXPECT_THROW(MeshConstraint(sphere, {}, 0.01).sample_surface(1), InvalidInput);  // 8 million spacings²
+}
+
 TEST(Constraint, BadSetupsAreClearErrors) {
   const MeshConstraint constraint(make_sphere(Vec3::Zero(), 5.0), {}, 1.0);
   GrowthOptions o;

@@ -95,6 +95,12 @@ class MeshConstraint {
   //! not fit.
   std::vector<Vec3> place_seeds(std::size_t count, std::uint64_t rng_seed) const;
 
+  //! The surface sampled at the spacing, as seeds (`--seed-surface`): points half a spacing off
+  //! it on the growing side, uniform by area, no two closer than the spacing (dart throwing, 4
+  //! tries per spacing² of area). The same for the same `rng_seed`. Throws InvalidInput for a
+  //! surface of more than 500,000 spacings², or with `--side both`.
+  std::vector<Vec3> sample_surface(std::uint64_t rng_seed) const;
+
   //! Distance from p to the nearest triangle (a scan of every triangle: for set-up and tests).
   double distance_to_surface(const Vec3& p) const;
 
