@@ -29,6 +29,12 @@ extern "C" void on_stop_signal(int signal) {
   std::signal(signal, SIG_DFL);
 }
 
+//! Every growth run, of every model, stops on Ctrl-C and SIGTERM and writes what grew.
+void catch_stop_signals() {
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
+}
+
 int run(const std::vector<std::string>& args) {
   using Kind = dla::cli::CommandLine::Kind;
   const dla::cli::CommandLine line = dla::cli::parse_command_line(args);
@@ -38,20 +44,16 @@ int run(const std::vector<std::string>& args) {
     case Kind::analyze: return dla::cli::analyze(line.analyze_csv);
     case Kind::grow: break;
     case Kind::colonize:
-      std::signal(SIGINT, on_stop_signal);
-      std::signal(SIGTERM, on_stop_signal);
+      catch_stop_signals();
       return dla::cli::colonize(line.colonize, args, stop_requested, stop_signal);
     case Kind::eden:
-      std::signal(SIGINT, on_stop_signal);
-      std::signal(SIGTERM, on_stop_signal);
+      catch_stop_signals();
       return dla::cli::eden(line.eden, args, stop_requested, stop_signal);
     case Kind::drop:
-      std::signal(SIGINT, on_stop_signal);
-      std::signal(SIGTERM, on_stop_signal);
+      catch_stop_signals();
       return dla::cli::drop(line.drop, args, stop_requested, stop_signal);
     case Kind::ballistic:
-      std::signal(SIGINT, on_stop_signal);
-      std::signal(SIGTERM, on_stop_signal);
+      catch_stop_signals();
       return dla::cli::ballistic(line.ballistic, args, stop_requested, stop_signal);
     case Kind::resume: {
       // The checkpoint's own command, with this thread count and -q: the count changes how
@@ -67,13 +69,11 @@ int run(const std::vector<std::string>& args) {
       if (line.grow.quiet) command.push_back("-q");
       const dla::cli::CommandLine resumed = dla::cli::parse_command_line(command);
       if (resumed.kind != Kind::grow) throw dla::InvalidInput(line.resume_path + ": its command is not a growth run");
-      std::signal(SIGINT, on_stop_signal);
-      std::signal(SIGTERM, on_stop_signal);
+      catch_stop_signals();
       return dla::cli::grow(resumed.grow, command, &checkpoint, stop_requested, stop_signal);
     }
   }
-  std::signal(SIGINT, on_stop_signal);
-  std::signal(SIGTERM, on_stop_signal);
+  catch_stop_signals();
   return dla::cli::grow(line.grow, args, nullptr, stop_requested, stop_signal);
 }
 
