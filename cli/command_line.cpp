@@ -279,12 +279,23 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
       ->capture_default_str()->group(meshes);
   app.add_option("--constraint", constraint_mode, "a branch crossing the mesh: reject (walk on) or clip (end at it)")
       ->capture_default_str()->group(meshes);
+  std::string seeds, seed_paint;
   CLI::Option* seeds_option =
-      app.add_option("--seeds", g.seed_count, "place this many seeds on the growing side, far apart; default 1")
-          ->type_name("K")->group(meshes)->excludes(seed_at_option);
-  app.add_flag("--seed-surface", g.seed_surface, "start from the whole surface: seeds a spacing apart, half a "
-                                                 "spacing off it on the growing side")
-      ->group(meshes)->excludes(seeds_option)->excludes(seed_at_option);
+      app.add_option("--seeds", seeds, "place K seeds on the growing side, far apart (default 1), or all: the "
+                                       "surface, the paint or the --seed-mesh curves at the spacing (their default)")
+          ->type_name("K|all")->group(meshes)->excludes(seed_at_option);
+  CLI::Option* seed_surface_option =
+      app.add_flag("--seed-surface", g.seed_surface, "start from the whole surface (or the painted part): seeds a "
+                                                     "spacing apart, half a spacing off it on the growing side")
+          ->group(meshes)->excludes(seeds_option)->excludes(seed_at_option);
+  CLI::Option* seed_paint_option =
+      app.add_option("--seed-paint", seed_paint, "seeds on the part of the surface painted this colour (a name or "
+                                                 "ff8000), within TOLERANCE per channel, [0, 1), default 0.3")
+          ->type_name("COLOR[,TOLERANCE]")->group(meshes)->excludes(seed_at_option);
+  app.add_option("--seed-mesh", g.seed_mesh_paths, "seeds where this mesh's surface meets the mesh (repeat for "
+                                                   "several): growth from where objects enter")
+      ->type_name("FILE")->allow_extra_args(false)->group(meshes)->excludes(seed_at_option)
+      ->excludes(seed_paint_option)->excludes(seed_surface_option);
   app.add_flag("--scene-mesh,!--no-scene-mesh", g.scene_mesh, "show the mesh, as glass, in the POV-Ray scene")
       ->capture_default_str()->group(meshes);
   CLI::Option* fill_option =
@@ -732,7 +743,20 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   if (g.mesh_path.empty() && seeds_option->count())
     throw InvalidInput("--seeds places seeds in a mesh given with --stl; without one, use --seed-at");
   if (g.mesh_path.empty() && g.seed_surface) throw InvalidInput("--seed-surface seeds a mesh's surface: give one with --stl");
-  if (seeds_option->count() && g.seed_count == 0) throw InvalidInput("--seeds 0: there must be a seed");
+  if (g.mesh_path.empty() && seed_paint_option->count())
+    throw InvalidInput("--seed-paint seeds the painted part of a mesh: give one with --stl");
+  if (g.mesh_path.empty() && !g.seed_mesh_paths.empty())
+    throw InvalidInput("--seed-mesh seeds where a mesh meets the one given with --stl: give one");
+  if (seed_paint_option->count()) g.seed_paint = parse_paint(seed_paint);
+  if (seeds == "all") {
+    // Without paint or other meshes, all of the surface.
+    g.seed_surface = !g.seed_paint && g.seed_mesh_paths.empty();
+  } else if (seeds_option->count()) {
+    const bool digits = !seeds.empty() && seeds.size() <= 9 && seeds.find_first_not_of("0123456789") == std::string::npos;
+    if (!digits) throw InvalidInput("--seeds '" + seeds + "' is neither a count of seeds nor all");
+    g.seed_count = std::stoul(seeds);
+    if (g.seed_count == 0) throw InvalidInput("--seeds 0: there must be a seed");
+  }
   if (!fill_option->count() && app.count("--fill-distance")) throw InvalidInput("--fill-distance is for --fill");
   if (g.mesh_path.empty()) {
     validate(options);

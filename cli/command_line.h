@@ -15,6 +15,7 @@
 #include "dla/io/pov_writer.h"
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,8 +50,10 @@ struct GrowCommand : FileOptions {
   GrowthOptions options;
   std::string mesh_path;               //!< empty: no constraint
   ConstraintOptions constraint;
-  std::size_t seed_count = 0;          //!< --seeds; 0 when not given
+  std::size_t seed_count = 0;          //!< --seeds K; 0 when not given or `all`
   bool seed_surface = false;           //!< --seed-surface: the mesh's surface, sampled, is the start
+  std::optional<Paint> seed_paint;     //!< --seed-paint: seeds on the painted part only
+  std::vector<std::string> seed_mesh_paths;  //!< --seed-mesh: seeds where these meshes meet the mesh
   bool scene_mesh = true;
   std::string checkpoint_path;         //!< empty: no checkpoint
   double checkpoint_every = 60.0;      //!< seconds

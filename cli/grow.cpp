@@ -40,6 +40,7 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
   PovOptions pov = command.pov;
   const std::string& output = command.output;
   std::unique_ptr<MeshConstraint> constraint;
+  TriangleMesh scene_mesh;  // the scene's mesh when it is more than the constraint's
   std::uint64_t input_hash = 0;
   {
     check_writable(file_names(command).front());  // before a mesh's set-up and a long run
@@ -60,13 +61,24 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
       // From the skin inside: thin parts (horns, fingers) get walkers by their surface. To fill
       // the volume, or to grow from seeds lining the skin, from anywhere in the volume: the
       // skin, covered, would stop walkers from the surface long before the inside is full.
+      const bool whole_surface = command.seed_surface && !command.seed_paint;
       if (!command.spawn_given)
-        options.spawn = command.constraint.side != Side::inside      ? SpawnMode::sphere
-                        : options.fill > 0.0 || command.seed_surface ? SpawnMode::inside
-                                                                     : SpawnMode::surface;
-      if (command.seed_surface) {
+        options.spawn = command.constraint.side != Side::inside ? SpawnMode::sphere
+                        : options.fill > 0.0 || whole_surface   ? SpawnMode::inside
+                                                                : SpawnMode::surface;
+      if (command.seed_surface || command.seed_paint || !command.seed_mesh_paths.empty()) {
+        std::vector<TriangleMesh> entering;
+        for (const std::string& path : command.seed_mesh_paths) entering.push_back(read_mesh(path));
+        // The scene shows the meshes that enter with the one they enter, to see where growth starts.
+        if (!entering.empty() && command.scene_mesh) {
+          scene_mesh = constraint->mesh();
+          for (const TriangleMesh& other : entering) append(scene_mesh, other);
+        }
         try {
-          options.seeds = constraint->sample_surface(options.rng_seed);
+          const std::vector<Vec3> cover =
+              entering.empty() ? constraint->sample_surface(options.rng_seed, command.seed_paint ? &*command.seed_paint : nullptr)
+                               : constraint->sample_intersection(entering, options.rng_seed);
+          options.seeds = command.seed_count ? farthest_apart(cover, command.seed_count) : cover;
         } catch (const InvalidInput& e) {
           throw InvalidInput(command.mesh_path + ": " + e.what());
         }
@@ -130,7 +142,9 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
   pov.comment = record.command;
   const Clock::time_point write_start = Clock::now();
   write_files(cluster, command, pov, options.threads, constraint.get(),
-              constraint && command.scene_mesh ? &constraint->mesh() : nullptr);
+              !scene_mesh.triangles.empty()            ? &scene_mesh
+              : constraint && command.scene_mesh ? &constraint->mesh()
+                                                 : nullptr);
   record.write_seconds = std::chrono::duration<double>(Clock::now() - write_start).count();
   if (command.formats.json)
     write_run_report(cluster, options, command.look, pov, record, output + ".json", constraint.get(), command.mesh_path);

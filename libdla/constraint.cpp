@@ -1,9 +1,14 @@
 #include "dla/mesh/constraint.h"
 
+#include "dla/mesh/mesh_intersection.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <functional>
 #include <limits>
+#include <map>
 #include <unordered_map>
 
 namespace dla {
@@ -164,56 +169,217 @@ Vec3 MeshConstraint::draw_near_surface(Rng& rng) const {
   constexpr int max_draws = 1'000'000;
   for (int draw = 0; draw < max_draws; ++draw) {
     Vec3 normal;
-    const Vec3 s = surface_point(rng, &normal);
-    if (!normal.allFinite()) continue;  // a degenerate triangle
-    // The normal's orientation is not trusted: take whichever side is the growing one.
-    for (const double side : {0.5, -0.5}) {
-      const Vec3 p = s + side * spacing_ * normal;
-      if (encloses(p) == (options_.side == Side::inside)) return p;
-    }
+    const Vec3 p = beside(surface_point(rng, &normal), normal);
+    if (p.allFinite()) return p;  // else a degenerate triangle
   }
   throw GrowthError("no start beside the mesh surface in a million draws");
 }
 
-std::vector<Vec3> MeshConstraint::sample_surface(std::uint64_t rng_seed) const {
-  if (options_.side == Side::both)
-    throw InvalidInput("--seed-surface needs a growing side to put the seeds on: --side inside or outside");
-  const double area = area_prefix_.back() / (spacing_ * spacing_);
-  constexpr double max_area = 500'000.0;
-  if (!(area <= max_area))
-    throw InvalidInput("the surface is " + detail::format_count(static_cast<std::uint64_t>(area)) +
-                       " spacings² and --seed-surface places a seed a spacing²: more than 500,000; use a larger spacing");
-  Rng rng(rng_seed, ~std::uint64_t{1});  // a stream no walker and no other seeding uses
-  // Accepted points by cell of a spacing: a candidate checks the 27 cells about its own.
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
-  const auto cell_of = [&](const Vec3& p) {
+namespace {
+
+//! Points no two closer than the spacing, thrown one after another (dart throwing): a
+//! candidate checks the accepted points in the 27 cells of a spacing about its own.
+class Darts {
+ public:
+  explicit Darts(double spacing) : spacing_(spacing) {}
+
+  void throw_at(const Vec3& p) {
+    if (!p.allFinite()) return;
     std::array<std::int64_t, 3> c;
     for (int a = 0; a < 3; ++a) c[a] = static_cast<std::int64_t>(std::floor(p[a] / spacing_));
-    return c;
-  };
-  const auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+    for (std::int64_t z = c[2] - 1; z <= c[2] + 1; ++z)
+      for (std::int64_t y = c[1] - 1; y <= c[1] + 1; ++y)
+        for (std::int64_t x = c[0] - 1; x <= c[0] + 1; ++x) {
+          const auto found = cells_.find(key(x, y, z));
+          if (found == cells_.end()) continue;
+          for (const std::uint32_t j : found->second)
+            if ((points[j] - p).norm() < spacing_) return;
+        }
+    cells_[key(c[0], c[1], c[2])].push_back(static_cast<std::uint32_t>(points.size()));
+    points.push_back(p);
+  }
+
+  std::vector<Vec3> points;
+
+ private:
+  static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
     return (static_cast<std::uint64_t>(x) & 0x1fffff) | (static_cast<std::uint64_t>(y) & 0x1fffff) << 21 |
            (static_cast<std::uint64_t>(z) & 0x1fffff) << 42;
-  };
-  std::vector<Vec3> seeds;
-  const auto tries = static_cast<std::size_t>(std::ceil(4.0 * area)) + 1;
-  for (std::size_t i = 0; i < tries; ++i) {
-    const Vec3 p = draw_near_surface(rng);
-    const auto c = cell_of(p);
-    bool free = true;
-    for (std::int64_t z = c[2] - 1; z <= c[2] + 1 && free; ++z)
-      for (std::int64_t y = c[1] - 1; y <= c[1] + 1 && free; ++y)
-        for (std::int64_t x = c[0] - 1; x <= c[0] + 1 && free; ++x) {
-          const auto found = cells.find(key(x, y, z));
-          if (found == cells.end()) continue;
-          for (const std::uint32_t j : found->second)
-            if ((seeds[j] - p).norm() < spacing_) free = false;
-        }
-    if (!free) continue;
-    cells[key(c[0], c[1], c[2])].push_back(static_cast<std::uint32_t>(seeds.size()));
-    seeds.push_back(p);
   }
-  return seeds;
+
+  double spacing_;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
+};
+
+//! Throws unless at most 500,000 seeds' worth of surface or curve is asked for.
+void require_seedable(double measure, const char* unit, const char* option) {
+  constexpr double max_measure = 500'000.0;
+  if (!(measure <= max_measure))
+    throw InvalidInput(std::string("there are ") + detail::format_count(static_cast<std::uint64_t>(measure)) + " " +
+                       unit + " to seed and " + option + " places a seed a spacing apart: more than 500,000; " +
+                       "use a larger spacing");
+}
+
+std::string hex(const Vec3& rgb) {
+  char text[8];
+  std::snprintf(text, sizeof text, "#%02x%02x%02x", static_cast<int>(std::lround(255 * rgb[0])),
+                static_cast<int>(std::lround(255 * rgb[1])), static_cast<int>(std::lround(255 * rgb[2])));
+  return text;
+}
+
+//! "#ffffff on 9,120 vertices, #ff0000 on 310": the most common colours, to say what there is.
+std::string colors_used(const std::vector<Vec3>& colors) {
+  std::map<std::string, std::size_t> counts;
+  for (const Vec3& c : colors) ++counts[hex(c)];
+  std::vector<std::pair<std::size_t, std::string>> order;
+  for (const auto& [name, n] : counts) order.emplace_back(n, name);
+  std::sort(order.begin(), order.end(), std::greater<>());
+  std::string text;
+  for (std::size_t i = 0; i < order.size() && i < 4; ++i)
+    text += (i ? ", " : "") + order[i].second + " on " + detail::format_count(order[i].first) +
+            (i ? "" : " vertices");
+  return text;
+}
+
+}  // namespace
+
+Vec3 MeshConstraint::beside(const Vec3& s, const Vec3& normal) const {
+  // The normal's orientation is not trusted: take whichever side is the growing one.
+  for (const double side : {0.5, -0.5}) {
+    const Vec3 p = s + side * spacing_ * normal;
+    if (encloses(p) == (options_.side == Side::inside)) return p;
+  }
+  return Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+}
+
+std::vector<Vec3> MeshConstraint::sample_surface(std::uint64_t rng_seed, const Paint* paint) const {
+  const char* option = paint ? "--seed-paint" : "--seed-surface";
+  if (options_.side == Side::both)
+    throw InvalidInput(std::string(option) + " needs a growing side to put the seeds on: --side inside or outside");
+  if (paint && mesh_.colors.empty())
+    throw InvalidInput("the mesh has no vertex colours for --seed-paint: paint it, and save it as PLY, OFF or OBJ with "
+                       "its colours");
+  // The triangles whose corners' colours could blend to the paint (all of them without paint),
+  // by cumulative area.
+  std::vector<std::uint32_t> triangles;
+  std::vector<double> prefix;
+  double area = 0.0;
+  for (std::uint32_t t = 0; t < mesh_.triangles.size(); ++t) {
+    const auto& tri = mesh_.triangles[t];
+    if (paint) {
+      Vec3 low = mesh_.colors[tri[0]], high = low;
+      for (int k = 1; k < 3; ++k) {
+        low = low.cwiseMin(mesh_.colors[tri[k]]);
+        high = high.cwiseMax(mesh_.colors[tri[k]]);
+      }
+      if ((low.array() > paint->color.array() + paint->tolerance).any() ||
+          (high.array() < paint->color.array() - paint->tolerance).any())
+        continue;
+    }
+    const Vec3 &a = mesh_.vertices[tri[0]], &b = mesh_.vertices[tri[1]], &c = mesh_.vertices[tri[2]];
+    area += 0.5 * (b - a).cross(c - a).norm();
+    triangles.push_back(t);
+    prefix.push_back(area);
+  }
+  if (triangles.empty())
+    throw InvalidInput("no part of the mesh is painted within " + detail::format_number(paint->tolerance) + " of " +
+                       hex(paint->color) + "; its colours: " + colors_used(mesh_.colors));
+  require_seedable(area / (spacing_ * spacing_), "spacings² of surface", option);
+  Rng rng(rng_seed, ~std::uint64_t{1});  // a stream no walker and no other seeding uses
+  Darts darts(spacing_);
+  const auto tries = static_cast<std::size_t>(std::ceil(4.0 * area / (spacing_ * spacing_))) + 1;
+  for (std::size_t i = 0; i < tries; ++i) {
+    const std::size_t k = std::min<std::size_t>(
+        static_cast<std::size_t>(std::upper_bound(prefix.begin(), prefix.end(), rng.uniform() * area) - prefix.begin()),
+        triangles.size() - 1);
+    const auto& tri = mesh_.triangles[triangles[k]];
+    double u = rng.uniform(), v = rng.uniform();
+    if (u + v > 1.0) {
+      u = 1.0 - u;
+      v = 1.0 - v;
+    }
+    if (paint && !paint->matches((1 - u - v) * mesh_.colors[tri[0]] + u * mesh_.colors[tri[1]] + v * mesh_.colors[tri[2]]))
+      continue;
+    const Vec3 &a = mesh_.vertices[tri[0]], &b = mesh_.vertices[tri[1]], &c = mesh_.vertices[tri[2]];
+    darts.throw_at(beside(a + u * (b - a) + v * (c - a), (b - a).cross(c - a).normalized()));
+  }
+  if (darts.points.empty())
+    throw InvalidInput("the painted part of the mesh is too small for a seed at a spacing of " +
+                       detail::format_number(spacing_) + ": use a smaller spacing or a larger --seed-paint tolerance");
+  return std::move(darts.points);
+}
+
+std::vector<Vec3> MeshConstraint::sample_intersection(const std::vector<TriangleMesh>& others,
+                                                      std::uint64_t rng_seed) const {
+  if (options_.side == Side::both)
+    throw InvalidInput("--seed-mesh needs a growing side to put the seeds on: --side inside or outside");
+  // Every piece, weighed by length (curves) or area over a spacing (patches): seeds per spacing.
+  struct Piece {
+    Vec3 a, b, c;  // c == a for a segment
+    bool patch;
+    Vec3 normal;
+  };
+  std::vector<Piece> pieces;
+  std::vector<double> prefix;
+  double measure = 0.0;
+  const auto normal_of = [&](std::uint32_t t) {
+    const auto& tri = mesh_.triangles[t];
+    const Vec3 &a = mesh_.vertices[tri[0]], &b = mesh_.vertices[tri[1]], &c = mesh_.vertices[tri[2]];
+    return Vec3((b - a).cross(c - a).normalized());
+  };
+  for (const TriangleMesh& other : others) {
+    const SurfaceIntersection shared = intersect_surfaces(mesh_, other);
+    for (const auto& s : shared.segments) {
+      measure += (s.b - s.a).norm() / spacing_;
+      pieces.push_back({s.a, s.b, s.a, false, normal_of(s.triangle)});
+      prefix.push_back(measure);
+    }
+    for (const auto& p : shared.patches) {
+      measure += 0.5 * (p.b - p.a).cross(p.c - p.a).norm() / (spacing_ * spacing_);
+      pieces.push_back({p.a, p.b, p.c, true, normal_of(p.triangle)});
+      prefix.push_back(measure);
+    }
+  }
+  if (!(measure > 0.0)) throw InvalidInput("no --seed-mesh meets the mesh's surface, so there is nowhere to seed");
+  require_seedable(measure, "spacings of curve", "--seed-mesh");
+  Rng rng(rng_seed, ~std::uint64_t{2});  // a stream of its own
+  Darts darts(spacing_);
+  const auto tries = static_cast<std::size_t>(std::ceil(4.0 * measure)) + 1;
+  for (std::size_t i = 0; i < tries; ++i) {
+    const std::size_t k = std::min<std::size_t>(
+        static_cast<std::size_t>(std::upper_bound(prefix.begin(), prefix.end(), rng.uniform() * measure) - prefix.begin()),
+        pieces.size() - 1);
+    const Piece& piece = pieces[k];
+    double u = rng.uniform(), v = piece.patch ? rng.uniform() : 0.0;
+    if (u + v > 1.0) {
+      u = 1.0 - u;
+      v = 1.0 - v;
+    }
+    darts.throw_at(beside(piece.a + u * (piece.b - piece.a) + v * (piece.c - piece.a), piece.normal));
+  }
+  return std::move(darts.points);
+}
+
+std::vector<Vec3> farthest_apart(const std::vector<Vec3>& points, std::size_t count) {
+  if (count > 1000)
+    throw InvalidInput("--seeds " + std::to_string(count) + " is more than 1000; --seeds all covers the part at the spacing");
+  if (points.size() < count)
+    throw InvalidInput("--seeds " + std::to_string(count) + ": only " + std::to_string(points.size()) +
+                       " seeds fit there a spacing apart");
+  if (count == 0) return {};
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& p : points) mean += p / static_cast<double>(points.size());
+  std::vector<double> apart(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) apart[i] = -(points[i] - mean).norm();
+  std::vector<Vec3> taken;
+  while (taken.size() < count) {
+    const auto best = static_cast<std::size_t>(std::max_element(apart.begin(), apart.end()) - apart.begin());
+    taken.push_back(points[best]);
+    for (std::size_t i = 0; i < points.size(); ++i)
+      apart[i] = std::min(taken.size() == 1 ? std::numeric_limits<double>::infinity() : apart[i],
+                          (points[i] - points[best]).norm());
+  }
+  return taken;
 }
 
 double MeshConstraint::distance_to_surface(const Vec3& p) const {

@@ -39,6 +39,14 @@ class Words {
 
   //! The next word, or an empty view at the end.
   std::string_view next() {
+    skip();
+    const std::size_t start = pos_;
+    while (pos_ < text_.size() && !std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+    return text_.substr(start, pos_ - start);
+  }
+
+  //! Moves past white space and comments to the next word: line() is then the word's line.
+  void skip() {
     for (;;) {
       while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) {
         if (text_[pos_] == '\n') ++line_;
@@ -50,9 +58,6 @@ class Words {
       }
       break;
     }
-    const std::size_t start = pos_;
-    while (pos_ < text_.size() && !std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
-    return text_.substr(start, pos_ - start);
   }
 
   //! The rest of the current line, without its end.
@@ -109,6 +114,14 @@ class Builder {
                                  static_cast<std::uint32_t>(ids[i + 1])});
   }
 
+  //! The colour of the vertex read last, from numbers that count to `full` (255 or 1).
+  void color(const Vec3& rgb, double full, const std::string& where) {
+    if (!rgb.allFinite() || rgb.minCoeff() < 0.0 || rgb.maxCoeff() > full)
+      malformed(name_, where + " has a colour outside 0 to " + detail::format_number(full));
+    mesh_.colors.resize(mesh_.vertices.size(), Vec3::Ones());
+    mesh_.colors.back() = rgb / full;
+  }
+
   void reserve(std::size_t vertices, std::size_t triangles) {
     mesh_.vertices.reserve(vertices);
     mesh_.triangles.reserve(triangles);
@@ -116,6 +129,8 @@ class Builder {
 
   TriangleMesh finish(bool need_triangles = true) {
     if (need_triangles && mesh_.triangles.empty()) malformed(name_, "has no triangles");
+    // A file that colours some vertices leaves the rest white, as Blender shows them.
+    if (!mesh_.colors.empty()) mesh_.colors.resize(mesh_.vertices.size(), Vec3::Ones());
     return std::move(mesh_);
   }
 
@@ -218,6 +233,7 @@ TriangleMesh parse_off(std::string_view text, const std::string& name) {
   const std::string header = std::string(words.next());
   if (header != "OFF" && header != "COFF" && header != "NOFF" && header != "CNOFF")
     malformed(name, "does not begin with OFF");
+  const bool colored = header.front() == 'C', normals = header.find('N') != std::string::npos;
   std::uint64_t nv = 0, nf = 0, ne = 0;
   if (!parse_integer(words.next(), nv) || !parse_integer(words.next(), nf) || !parse_integer(words.next(), ne))
     malformed(name, "has no vertex, face and edge counts after OFF");
@@ -228,15 +244,30 @@ TriangleMesh parse_off(std::string_view text, const std::string& name) {
   Builder mesh(name);
   mesh.reserve(nv, nf);
   for (std::uint64_t i = 0; i < nv; ++i) {
+    words.skip();
     const std::string where = "vertex " + std::to_string(i) + " (line " + std::to_string(words.line()) + ")";
     Vec3 v;
     for (int a = 0; a < 3; ++a)
       if (!parse_double(words.next(), v[a])) malformed(name, where + " is not 3 numbers");
     mesh.vertex(v, where);
-    words.rest_of_line();  // normals or colours of NOFF and COFF
+    Words rest(words.rest_of_line());  // NOFF's normal, then COFF's colour and alpha
+    if (normals)
+      for (int a = 0; a < 3; ++a) rest.next();
+    if (colored) {
+      // Geomview's rule: integers count to 255, any other number to 1.
+      Vec3 rgb;
+      bool integers = true;
+      for (int a = 0; a < 3; ++a) {
+        const std::string_view word = rest.next();
+        if (!parse_double(word, rgb[a])) malformed(name, where + " has no red, green and blue after its place");
+        integers = integers && word.find_first_of(".eE") == std::string_view::npos;
+      }
+      mesh.color(rgb, integers ? 255.0 : 1.0, where);
+    }
   }
   std::vector<std::int64_t> ids;
   for (std::uint64_t f = 0; f < nf; ++f) {
+    words.skip();
     const std::string where = "face " + std::to_string(f) + " (line " + std::to_string(words.line()) + ")";
     std::uint32_t n = 0;
     if (!parse_integer(words.next(), n)) malformed(name, where + " does not begin with its vertex count");
@@ -271,6 +302,13 @@ TriangleMesh parse_obj(std::string_view text, const std::string& name) {
       for (int a = 0; a < 3; ++a)
         if (!parse_double(words.next(), v[a])) malformed(name, where + ": a vertex needs 3 numbers");
       mesh.vertex(v, where);
+      // `v x y z r g b`, as Blender and MeshLab write vertex colours; a lone fourth number is a weight.
+      const std::string_view red = words.next();
+      if (!red.empty()) {
+        Vec3 rgb;
+        if (parse_double(red, rgb[0]) && parse_double(words.next(), rgb[1]) && parse_double(words.next(), rgb[2]))
+          mesh.color(rgb, rgb.maxCoeff() > 1.0 ? 255.0 : 1.0, where);
+      }
     } else if (key == "f") {
       ids.clear();
       for (std::string_view word = words.next(); !word.empty(); word = words.next()) {
@@ -426,25 +464,39 @@ TriangleMesh parse_ply(std::string_view bytes, const std::string& name, bool poi
                           std::to_string(body.size()) + " data bytes can hold");
     const bool vertices = element.name == "vertex", faces = element.name == "face" && !points_only;
     int axis_of[3] = {-1, -1, -1};
+    int channel_of[3] = {-1, -1, -1};
     int list_of_faces = -1;
+    static const char* const channels[2][3] = {{"red", "green", "blue"}, {"diffuse_red", "diffuse_green", "diffuse_blue"}};
     for (std::size_t p = 0; p < element.properties.size(); ++p) {
       const std::string& n = element.properties[p].name;
       if (vertices && n.size() == 1 && n[0] >= 'x' && n[0] <= 'z' && !element.properties[p].list)
         axis_of[n[0] - 'x'] = static_cast<int>(p);
+      for (int c = 0; c < 3; ++c)
+        if (vertices && !points_only && !element.properties[p].list && (n == channels[0][c] || n == channels[1][c]))
+          channel_of[c] = static_cast<int>(p);
       if (faces && element.properties[p].list && (n == "vertex_indices" || n == "vertex_index")) list_of_faces = static_cast<int>(p);
     }
     if (vertices && (axis_of[0] < 0 || axis_of[1] < 0 || axis_of[2] < 0))
       malformed(name, "has vertices without x, y and z");
     if (faces && list_of_faces < 0) malformed(name, "has faces without a vertex_indices list");
+    const bool colored = channel_of[0] >= 0 && channel_of[1] >= 0 && channel_of[2] >= 0;
+    // Integer channels count to their type's largest value, floats to 1.
+    double full = 1.0;
+    if (colored) {
+      const PlyType type = element.properties[static_cast<std::size_t>(channel_of[0])].type;
+      full = type == PlyType::u8 || type == PlyType::i8 ? 255.0 : type == PlyType::u16 || type == PlyType::i16 ? 65535.0 : 1.0;
+    }
     if (vertices) mesh.reserve(element.count, 0);
     for (std::uint64_t i = 0; i < element.count; ++i) {
-      Vec3 v = Vec3::Zero();
+      Vec3 v = Vec3::Zero(), rgb = Vec3::Zero();
       for (std::size_t p = 0; p < element.properties.size(); ++p) {
         const PlyProperty& property = element.properties[p];
         if (!property.list) {
           const double value = in.read(property.type);
-          for (int a = 0; a < 3; ++a)
+          for (int a = 0; a < 3; ++a) {
             if (axis_of[a] == static_cast<int>(p)) v[a] = value;
+            if (channel_of[a] == static_cast<int>(p)) rgb[a] = value;
+          }
           continue;
         }
         const double n = in.read(property.count_type);
@@ -458,6 +510,7 @@ TriangleMesh parse_ply(std::string_view bytes, const std::string& name, bool poi
         }
       }
       if (vertices) mesh.vertex(v, "vertex " + std::to_string(i));
+      if (vertices && colored) mesh.color(rgb, full, "vertex " + std::to_string(i));
       if (faces) mesh.polygon(ids, "face " + std::to_string(i));
     }
   }
@@ -597,6 +650,17 @@ void write_stl(const TriangleMesh& mesh, const std::string& path) {
     out << std::string_view("\0\0", 2);
   }
   out.commit();
+}
+
+void append(TriangleMesh& mesh, const TriangleMesh& more) {
+  const auto offset = static_cast<std::uint32_t>(mesh.vertices.size());
+  if (!mesh.colors.empty() || !more.colors.empty()) {
+    mesh.colors.resize(mesh.vertices.size(), Vec3::Ones());
+    if (more.colors.empty()) mesh.colors.resize(mesh.vertices.size() + more.vertices.size(), Vec3::Ones());
+    else mesh.colors.insert(mesh.colors.end(), more.colors.begin(), more.colors.end());
+  }
+  mesh.vertices.insert(mesh.vertices.end(), more.vertices.begin(), more.vertices.end());
+  for (const auto& t : more.triangles) mesh.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
 }
 
 Box bounding_box(const TriangleMesh& mesh) {

@@ -59,15 +59,17 @@ TriangleMesh repair_mesh(const TriangleMesh& input, const RepairOptions& options
   // Merge vertices at exactly the same place (STL stores every corner of every triangle).
   std::vector<Point> points;
   std::vector<std::uint32_t> merged(input.vertices.size());
-  {
-    std::map<std::array<double, 3>, std::uint32_t> first;
-    for (std::size_t i = 0; i < input.vertices.size(); ++i) {
-      const Vec3& v = input.vertices[i];
-      const auto [it, added] = first.emplace(std::array<double, 3>{v.x(), v.y(), v.z()},
-                                             static_cast<std::uint32_t>(points.size()));
-      if (added) points.emplace_back(v.x(), v.y(), v.z());
-      merged[i] = it->second;
+  std::map<std::array<double, 3>, std::uint32_t> first;
+  std::vector<std::uint32_t> read_as;  // for each merged vertex, the first vertex read there
+  for (std::size_t i = 0; i < input.vertices.size(); ++i) {
+    const Vec3& v = input.vertices[i];
+    const auto [it, added] = first.emplace(std::array<double, 3>{v.x(), v.y(), v.z()},
+                                           static_cast<std::uint32_t>(points.size()));
+    if (added) {
+      points.emplace_back(v.x(), v.y(), v.z());
+      read_as.push_back(static_cast<std::uint32_t>(i));
     }
+    merged[i] = it->second;
   }
   std::size_t used_vertices = 0;
   {
@@ -146,6 +148,9 @@ TriangleMesh repair_mesh(const TriangleMesh& input, const RepairOptions& options
     const Point& p = mesh.point(v);
     id[v.idx()] = static_cast<std::uint32_t>(out.vertices.size());
     out.vertices.emplace_back(p.x(), p.y(), p.z());
+    // Vertices keep their places (split ones are copies, holes add none): the colour is the
+    // first one read there.
+    if (!input.colors.empty()) out.colors.push_back(input.colors[read_as[first.at({p.x(), p.y(), p.z()})]]);
   }
   out.triangles.reserve(mesh.number_of_faces());
   for (Mesh::Face_index f : mesh.faces()) {

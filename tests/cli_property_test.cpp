@@ -17,6 +17,7 @@
 
 #include "cli_util.h"
 #include "clients.h"
+#include "mesh_util.h"
 #include "test_util.h"
 
 #include "dla/io/checkpoint.h"
@@ -60,11 +61,13 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--min-step", {"0.5", "1", "0.01", "0", "2", "1e-300", "nan"}},
       {"--index", {"grid", "kdtree", "brute", "octree"}},
       {"--threads", {"1", "2", "3", "0", "300", "-1"}},
-      {"--stl", {"box.off", "ball.stl", "missing.stl", "noise.stl", "out.csv"}},
-      {"--mesh", {"ball.stl", "box.off", "missing.stl"}},
+      {"--stl", {"box.off", "ball.stl", "paint.ply", "missing.stl", "noise.stl", "out.csv"}},
+      {"--mesh", {"ball.stl", "box.off", "paint.ply", "missing.stl"}},
       {"--side", {"inside", "outside", "both", "sideways"}},
       {"--constraint", {"reject", "clip", "bend"}},
-      {"--seeds", {"1", "2", "3", "0", "-1", "1000"}},
+      {"--seeds", {"1", "2", "3", "all", "0", "-1", "1000", "x"}},
+      {"--seed-paint", {"red", "ff0000", "'#ff0000,0.5'", "red,0", "blue", "pink", "red,1", "red,x", "''"}},
+      {"--seed-mesh", {"rod.stl", "box.off", "ball.stl", "missing.stl", "noise.stl"}},
       {"--scene-mesh", {}},
       {"--no-scene-mesh", {}},
       {"--spawn", {"sphere", "disk", "box", "inside", "radial", "surface", "cube"}},
@@ -206,10 +209,15 @@ std::set<std::string> options_of_help(const ScratchDir& dir, const std::string& 
   return names;
 }
 
-//! Inputs the command lines name: two meshes, a file of noise, point files, a checkpoint to resume.
+//! Inputs the command lines name: meshes (one painted), a file of noise, point files, a checkpoint
+//! to resume.
 void make_inputs(const ScratchDir& dir) {
   write_stl(make_sphere(Vec3::Zero(), 12.0, 10, 20), dir / "ball.stl");
   std::filesystem::copy_file(TEST_DATA_DIR "/open_box.off", dir / "box.off");
+  TriangleMesh painted = make_sphere(Vec3::Zero(), 12.0, 10, 20);
+  for (const Vec3& v : painted.vertices) painted.colors.push_back(v.z() > 6.0 ? Vec3(1, 0, 0) : Vec3(1, 1, 1));
+  std::ofstream(dir / "paint.ply") << testing::painted_ply(painted);
+  write_stl(make_open_can(Vec3(0, 0, 6), 2.0, 10.0, 12), dir / "rod.stl");
   std::string noise;
   for (int i = 0; i < 500; ++i) noise += static_cast<char>((i * 7919 + 13) % 251);
   std::ofstream(dir / "noise.stl", std::ios::binary) << noise;
@@ -500,8 +508,8 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
     ScratchDir dir;
     make_inputs(dir);
     std::filesystem::create_directory(dir.path() / "dir");
-    const std::set<std::string> inputs = {"ball.stl",   "box.off",  "noise.stl", "out.csv", "points.csv",
-                                          "points.ply", "saved.ck", "mask.txt",  "dir"};
+    const std::set<std::string> inputs = {"ball.stl",   "box.off",  "noise.stl", "out.csv",  "points.csv", "paint.ply",
+                                          "points.ply", "saved.ck", "mask.txt",  "rod.stl", "dir"};
     // The bound: far above what any of these takes (under the sanitizers too); `timeout`
     // kills a hang with 137 and the assertion below names the command.
     const testing::CliRun result = testing::dla3d(dir, command, "timeout -s KILL 120");

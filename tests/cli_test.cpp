@@ -709,3 +709,60 @@ TEST(Cli, SeedSurfaceStartsFromTheWholeSurface) {
   expect_refused(dir, {"--seed-surface", "--stl ball.stl --seed-surface --seeds 2",
                        "--stl ball.stl --seed-surface --seed-at 0,0,0", "--stl ball.stl --seed-surface --side both"});
 }
+
+TEST(Cli, SeedsAllIsTheWholeSurface) {
+  ScratchDir dir;
+  dla::write_stl(dla::make_sphere(dla::Vec3::Zero(), 10.0, 12, 24), dir / "ball.stl");
+  ASSERT_EQ(dla3d(dir, "-q --stl ball.stl --spacing 0.5 --seed-surface -n 200 -o surface --formats csv").exit_code, 0);
+  ASSERT_EQ(dla3d(dir, "-q --stl ball.stl --spacing 0.5 --seeds all -n 200 -o all --formats csv").exit_code, 0);
+  EXPECT_EQ(read_file(dir / "surface.csv"), read_file(dir / "all.csv"));
+  expect_refused(dir, {"--stl ball.stl --seeds some", "--stl ball.stl --seeds 1e3", "--seeds all"});
+}
+
+TEST(Cli, SeedPaintGrowsFromThePaintedPart) {
+  ScratchDir dir;
+  // A ball painted red above z = 5, in a PLY as Blender writes one.
+  dla::TriangleMesh ball = dla::make_sphere(dla::Vec3::Zero(), 10.0, 12, 24);
+  for (const dla::Vec3& v : ball.vertices) ball.colors.push_back(v.z() > 5.0 ? dla::Vec3(1, 0, 0) : dla::Vec3(1, 1, 1));
+  std::ofstream(dir / "painted.ply") << dla::testing::painted_ply(ball);
+  const CliRun run = dla3d(dir, "-q --stl painted.ply --spacing 0.5 --seed-paint ff0000 -n 300 -o painted --formats csv,json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const dla::Cluster painted = dla::read_csv(dir / "painted.csv");
+  EXPECT_GT(painted.seed_count, 30u);  // the cap is some 310 units² (less its blended rim)
+  EXPECT_EQ(painted.particles.size(), painted.seed_count + 300);
+  for (std::size_t i = 0; i < painted.seed_count; ++i) EXPECT_GT(painted.particles[i].position.z(), 3.5) << i;
+  ASSERT_EQ(dla3d(dir, "-q --stl painted.ply --spacing 0.5 --seed-paint red,0.1 --seeds 2 -n 100 -o two --formats csv")
+                .exit_code, 0);
+  EXPECT_EQ(dla::read_csv(dir / "two.csv").seed_count, 2u);
+  dla::write_stl(ball, dir / "plain.stl");
+  expect_refused(dir, {"--seed-paint red", "--stl plain.stl --seed-paint red", "--stl painted.ply --seed-paint blue",
+                       "--stl painted.ply --seed-paint pink", "--stl painted.ply --seed-paint red,1",
+                       "--stl painted.ply --seed-paint red,x", "--stl painted.ply --seed-paint red --seed-at 0,0,0",
+                       "--stl painted.ply --seed-paint red --side both", "--stl painted.ply --seed-paint red --seeds 5000"});
+}
+
+TEST(Cli, SeedMeshGrowsFromWhereARodEnters) {
+  ScratchDir dir;
+  dla::write_stl(dla::make_sphere(dla::Vec3::Zero(), 10.0, 12, 24), dir / "ball.stl");
+  dla::write_stl(dla::make_open_can(dla::Vec3(0, 0, 5), 2.0, 10.0, 16), dir / "rod.stl");
+  dla::write_stl(dla::make_open_can(dla::Vec3(5, 0, -15), 1.5, 10.0, 16), dir / "rod2.stl");
+  const CliRun run = dla3d(dir, "-q --stl ball.stl --spacing 0.5 --seed-mesh rod.stl --seed-mesh rod2.stl -n 300 "
+                                "--radius seed-distance -o entered --formats csv,json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const dla::Cluster entered = dla::read_csv(dir / "entered.csv");
+  EXPECT_GT(entered.seed_count, 20u);  // two rings, some 22 units round
+  bool top = false, bottom = false;
+  for (std::size_t i = 0; i < entered.seed_count; ++i) {
+    const dla::Vec3& p = entered.particles[i].position;
+    top = top || p.z() > 9.0;
+    bottom = bottom || p.z() < -7.0;
+    EXPECT_TRUE(p.z() > 9.0 || p.z() < -7.0) << p.transpose();
+  }
+  EXPECT_TRUE(top && bottom) << "a ring for each rod";
+  const CliRun missing = dla3d(dir, "-q -o bad --stl ball.stl --seed-mesh missing.stl");
+  EXPECT_EQ(missing.exit_code, 1);  // as for any file that cannot be read
+  EXPECT_EQ(missing.err, "dla3d: error: cannot read 'missing.stl': No such file or directory\n");
+  expect_refused(dir, {"--seed-mesh rod.stl",
+                       "--stl ball.stl --seed-mesh rod.stl --seed-paint red", "--stl ball.stl --seed-mesh rod.stl --seed-surface",
+                       "--stl ball.stl --seed-mesh rod.stl --seed-at 0,0,0"});
+}

@@ -303,6 +303,149 @@ TEST(Constraint, SurfaceSamplesLineTheGrowingSideASpacingApart) {
   EXPECT_THROW(MeshConstraint(sphere, {}, 0.01).sample_surface(1), InvalidInput);  // 8 million spacings²
 }
 
+namespace {
+
+//! A sphere of radius 8 painted red above z = 4 and white below, through a PLY file's text as
+//! Blender writes it.
+TriangleMesh painted_sphere() {
+  TriangleMesh sphere = make_sphere(Vec3::Zero(), 8.0);
+  for (const Vec3& v : sphere.vertices) sphere.colors.push_back(v.z() > 4.0 ? Vec3(1, 0, 0) : Vec3(1, 1, 1));
+  return parse_mesh(testing::painted_ply(sphere), "ply", "painted.ply");
+}
+
+//! Fails unless some point lies within `reach` of p.
+void expect_near_one(const std::vector<Vec3>& points, const Vec3& p, double reach) {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const Vec3& q : points) nearest = std::min(nearest, (q - p).norm());
+  EXPECT_LE(nearest, reach) << "nothing near " << p.transpose();
+}
+
+}  // namespace
+
+TEST(Constraint, PaintedSeedsCoverThePaintAndNothingElse) {
+  const TriangleMesh sphere = painted_sphere();
+  ASSERT_EQ(sphere.colors.size(), sphere.vertices.size());
+  const MeshConstraint constraint(sphere, {}, 0.5);
+  Paint red;
+  red.color = Vec3(1, 0, 0);
+  red.tolerance = 0.3;
+  const std::vector<Vec3> seeds = constraint.sample_surface(5, &red);
+  ASSERT_GT(seeds.size(), 50u);
+  for (std::size_t i = 0; i < seeds.size(); ++i) {
+    // Half a spacing inside, over the paint: the colour blended at the closest point of the
+    // surface (by brute force) is within the tolerance, give or take the step to that point.
+    const testing::SampledClosest closest = testing::sampled_closest(constraint.mesh(), seeds[i]);
+    ASSERT_LE(closest.distance, 0.26) << i;  // the sampling's own error is about 0.01
+    ASSERT_LE((closest.color - red.color).cwiseAbs().maxCoeff(), red.tolerance + 0.05) << i << ": " << seeds[i].transpose();
+    ASSERT_TRUE(constraint.inside_test().contains(seeds[i])) << i;
+    for (std::size_t j = 0; j < i; ++j) ASSERT_GE((seeds[j] - seeds[i]).norm(), 0.5) << j << ", " << i;
+  }
+  // Every part of the paint has a seed near it: the cap above z = 5, sampled.
+  Rng rng(11, 0);
+  for (int k = 0; k < 300; ++k) {
+    const double z = 5.0 + 3.0 * rng.uniform(), phi = 2 * 3.14159265358979 * rng.uniform();
+    const double r = std::sqrt(64.0 - z * z);
+    expect_near_one(seeds, Vec3(r * std::cos(phi), r * std::sin(phi), z), 1.0);
+  }
+  EXPECT_EQ(constraint.sample_surface(5, &red), seeds);
+  // K far apart: among the cover, the first at its middle, the top of the cap.
+  const std::vector<Vec3> three = farthest_apart(seeds, 3);
+  ASSERT_EQ(three.size(), 3u);
+  EXPECT_GT(three[0].z(), 7.0);
+  for (const Vec3& s : three) EXPECT_NE(std::find(seeds.begin(), seeds.end(), s), seeds.end());
+  EXPECT_GT((three[1] - three[2]).norm(), 6.0);
+  EXPECT_THROW(farthest_apart(seeds, seeds.size() + 1), InvalidInput);
+  // A colour the mesh does not carry, and a mesh without colours, are errors that say so.
+  Paint blue = red;
+  blue.color = Vec3(0, 0, 1);
+  try {
+    constraint.sample_surface(5, &blue);
+    ADD_FAILURE() << "no error";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("#ffffff on"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(MeshConstraint(make_sphere(Vec3::Zero(), 8.0), {}, 0.5).sample_surface(5, &red), InvalidInput);
+}
+
+TEST(Constraint, PaintedSeedsOnAPatchOfTheBust) {
+  DLA_NEED_BUST(path);
+  TriangleMesh bust = read_mesh(path);
+  // A patch of radius 5 about the top of the head, in Blender's red, the rest grey.
+  const Vec3 top = *std::max_element(bust.vertices.begin(), bust.vertices.end(),
+                                     [](const Vec3& a, const Vec3& b) { return a.z() < b.z(); });
+  constexpr double radius = 5.0;
+  double longest_edge = 0.0;
+  for (const auto& t : bust.triangles)
+    for (int k = 0; k < 3; ++k)
+      longest_edge = std::max(longest_edge, (bust.vertices[t[k]] - bust.vertices[t[(k + 1) % 3]]).norm());
+  for (const Vec3& v : bust.vertices)
+    bust.colors.push_back((v - top).norm() < radius ? Vec3(0.8, 0.05, 0.05) : Vec3(0.6, 0.6, 0.6));
+  const MeshConstraint constraint(bust, {}, 0.4);
+  Paint paint;
+  paint.color = Vec3(0.8, 0.05, 0.05);
+  const std::vector<Vec3> seeds = constraint.sample_surface(3, &paint);
+  // The patch is some 80 units² (a cap of the head): a seed for every spacing² or so.
+  EXPECT_GT(seeds.size(), 150u);
+  for (const Vec3& s : seeds) {
+    ASSERT_LE((s - top).norm(), radius + longest_edge + 0.2) << s.transpose();
+    ASSERT_LE(constraint.distance_to_surface(s), 0.2 + 1e-9);
+  }
+  // Each painted vertex well inside the patch has a seed near it.
+  for (const Vec3& v : bust.vertices)
+    if ((v - top).norm() < radius - 1.0) expect_near_one(seeds, v, 1.0);
+}
+
+TEST(Constraint, IntersectionSeedsFollowWhereAnotherMeshEnters) {
+  const MeshConstraint ball(make_sphere(Vec3::Zero(), 10.0), {}, 0.5);
+  const auto expect_on_both = [&](const std::vector<Vec3>& seeds, const TriangleMesh& other) {
+    for (std::size_t i = 0; i < seeds.size(); ++i) {
+      ASSERT_TRUE(ball.inside_test().contains(seeds[i])) << i;
+      ASSERT_LE(ball.distance_to_surface(seeds[i]), 0.25 + 1e-9) << i;
+      double to_other = std::numeric_limits<double>::infinity();
+      for (const auto& t : other.triangles)
+        to_other = std::min(to_other, distance_to_triangle(seeds[i], other.vertices[t[0]], other.vertices[t[1]],
+                                                           other.vertices[t[2]]));
+      ASSERT_LE(to_other, 0.25 + 1e-9) << i;
+      for (std::size_t j = 0; j < i; ++j) ASSERT_GE((seeds[j] - seeds[i]).norm(), 0.5) << j << ", " << i;
+    }
+  };
+  // A rod (a can, closed at its base inside the ball, open outside) enters through a circle.
+  const TriangleMesh rod = make_open_can(Vec3(0, 0, 5), 2.0, 10.0, 32);
+  const std::vector<Vec3> ring = ball.sample_intersection({rod}, 7);
+  expect_on_both(ring, rod);
+  for (int k = 0; k < 64; ++k) {
+    const double phi = 2 * 3.14159265358979 * k / 64;
+    expect_near_one(ring, Vec3(2 * std::cos(phi), 2 * std::sin(phi), std::sqrt(96.0)), 1.0);
+  }
+  EXPECT_EQ(ball.sample_intersection({rod}, 7), ring);
+  // Two open squares crossing each other (one self-intersecting mesh) cut two great circles.
+  TriangleMesh cross;
+  cross.vertices = {{0, -15, -15}, {0, 15, -15}, {0, 15, 15}, {0, -15, 15},
+                    {-15, 0, -15}, {15, 0, -15}, {15, 0, 15}, {-15, 0, 15}};
+  cross.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}};
+  const std::vector<Vec3> circles = ball.sample_intersection({cross}, 7);
+  expect_on_both(circles, cross);
+  for (int k = 0; k < 128; ++k) {
+    const double phi = 2 * 3.14159265358979 * k / 128, c = 10 * std::cos(phi), s = 10 * std::sin(phi);
+    expect_near_one(circles, Vec3(0, c, s), 1.0);
+    expect_near_one(circles, Vec3(c, 0, s), 1.0);
+  }
+  // A box's face lying in a face of the room: a patch, seeded over.
+  const MeshConstraint room(make_box(Vec3::Zero(), Vec3(10, 10, 10)), {}, 0.5);
+  const std::vector<Vec3> patch = room.sample_intersection({make_box(Vec3(2, 2, -1), Vec3(4, 4, 0))}, 7);
+  for (const Vec3& s : patch) {
+    ASSERT_NEAR(s.z(), 0.25, 1e-9);
+    ASSERT_TRUE(s.x() >= 2 - 1e-9 && s.x() <= 4 + 1e-9 && s.y() >= 2 - 1e-9 && s.y() <= 4 + 1e-9) << s.transpose();
+  }
+  for (double x = 2.25; x < 4; x += 0.5)
+    for (double y = 2.25; y < 4; y += 0.5) expect_near_one(patch, Vec3(x, y, 0.25), 0.75);
+  // Meshes that do not meet the surface, and a wall without a growing side, are errors.
+  EXPECT_THROW(ball.sample_intersection({make_sphere(Vec3::Zero(), 3.0)}, 7), InvalidInput);
+  ConstraintOptions wall;
+  wall.side = Side::both;
+  EXPECT_THROW(MeshConstraint(make_sphere(Vec3::Zero(), 10.0), wall, 0.5).sample_intersection({rod}, 7), InvalidInput);
+}
+
 TEST(Constraint, BadSetupsAreClearErrors) {
   const MeshConstraint constraint(make_sphere(Vec3::Zero(), 5.0), {}, 1.0);
   GrowthOptions o;

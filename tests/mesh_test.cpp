@@ -114,6 +114,62 @@ TEST(MeshFiles, OffObjAndPlyPolygonsBecomeFans) {
   EXPECT_EQ(from_ply.vertices[1], Vec3(2, 0, 0));
 }
 
+TEST(MeshFiles, VertexColoursFromPlyOffAndObj) {
+  // PLY: integer channels count to 255 (to 65535 for 16 bits), floats to 1.
+  const std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0 255 0 0 255\n1 0 0 0 51 0 255\n0 1 0 255 255 255 255\n3 0 1 2\n";
+  const TriangleMesh from_ply = parse_mesh(ply, "ply", "t.ply");
+  ASSERT_EQ(from_ply.colors.size(), 3u);
+  EXPECT_EQ(from_ply.colors[0], Vec3(1, 0, 0));
+  EXPECT_EQ(from_ply.colors[1], Vec3(0, 0.2, 0));
+  std::string binary =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nproperty float red\nproperty float green\nproperty float blue\n"
+      "element face 1\nproperty list uchar uint vertex_indices\nend_header\n";
+  const float rows[18] = {0, 0, 0, 0.5f, 0.25f, 1, 1, 0, 0, 0, 0, 0, 0, 1, 0, 1, 1, 1};
+  binary.append(reinterpret_cast<const char*>(rows), sizeof rows);
+  const unsigned char count = 3;
+  const std::uint32_t ids[3] = {0, 1, 2};
+  binary.append(reinterpret_cast<const char*>(&count), 1);
+  binary.append(reinterpret_cast<const char*>(ids), sizeof ids);
+  EXPECT_EQ(parse_mesh(binary, "ply", "t.ply").colors[0], Vec3(0.5, 0.25, 1));
+  // COFF: Geomview's integers to 255 or floats to 1, with an alpha or not; CNOFF has normals first.
+  const TriangleMesh coff = parse_mesh("COFF\n3 1 0\n0 0 0 255 0 0 255\n1 0 0 0 0.5 0 1\n0 1 0 0 0 51\n3 0 1 2\n", "off", "t.off");
+  ASSERT_EQ(coff.colors.size(), 3u);
+  EXPECT_EQ(coff.colors[0], Vec3(1, 0, 0));
+  EXPECT_EQ(coff.colors[1], Vec3(0, 0.5, 0));
+  EXPECT_EQ(coff.colors[2], Vec3(0, 0, 0.2));
+  const TriangleMesh cnoff = parse_mesh("CNOFF\n3 1 0\n0 0 0 0 0 1 255 0 0\n1 0 0 0 0 1 0 255 0\n0 1 0 0 0 1 0 0 255\n3 0 1 2\n",
+                                        "off", "t.off");
+  EXPECT_EQ(cnoff.colors[2], Vec3(0, 0, 1));
+  EXPECT_TRUE(parse_mesh("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "off", "t.off").colors.empty());
+  // OBJ: `v x y z r g b`; vertices left uncoloured are white.
+  const TriangleMesh obj = parse_mesh("v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0\nv 0 0 1 0 0 255\nf 1 2 3\nf 1 2 4\n", "obj", "t.obj");
+  ASSERT_EQ(obj.colors.size(), 4u);
+  EXPECT_EQ(obj.colors[1], Vec3(0, 1, 0));
+  EXPECT_EQ(obj.colors[2], Vec3(1, 1, 1));
+  EXPECT_EQ(obj.colors[3], Vec3(0, 0, 1));
+  EXPECT_TRUE(parse_mesh("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "obj", "t.obj").colors.empty());
+}
+
+TEST(MeshFiles, AppendKeepsBothPartsAndTheirColours) {
+  TriangleMesh mesh = make_box(Vec3::Zero(), Vec3::Ones());
+  const std::size_t vertices = mesh.vertices.size(), triangles = mesh.triangles.size();
+  TriangleMesh painted = make_box(Vec3::Constant(2), Vec3::Constant(3));
+  painted.colors.assign(painted.vertices.size(), Vec3(1, 0, 0));
+  append(mesh, painted);
+  ASSERT_EQ(mesh.vertices.size(), 2 * vertices);
+  ASSERT_EQ(mesh.triangles.size(), 2 * triangles);
+  EXPECT_EQ(mesh.vertices[mesh.triangles[triangles][0]], painted.vertices[painted.triangles[0][0]]);
+  ASSERT_EQ(mesh.colors.size(), mesh.vertices.size());
+  EXPECT_EQ(mesh.colors.front(), Vec3(1, 1, 1));  // the part without colours is white
+  EXPECT_EQ(mesh.colors.back(), Vec3(1, 0, 0));
+  EXPECT_EQ(bounding_box(mesh).max, Vec3::Constant(3));
+}
+
 TEST(MeshFiles, MalformedFilesNameTheFileAndTheFault) {
   expect_named_faults({
       {"stl", "", "is empty"},
@@ -129,6 +185,9 @@ TEST(MeshFiles, MalformedFilesNameTheFileAndTheFault) {
       {"ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n", "more than its 0 data bytes"},
       {"xyz", "1 2 3", "unknown mesh format"},
       {"off", "hello, world\n", "does not begin with OFF"},
+      {"off", "COFF\n3 1 0\n0 0 0 300 0 0\n1 0 0 0 0 0\n0 1 0 0 0 0\n3 0 1 2\n", "vertex 0 (line 3) has a colour outside 0 to 255"},
+      {"off", "COFF\n3 1 0\n0 0 0\n1 0 0 0 0 0\n0 1 0 0 0 0\n3 0 1 2\n", "no red, green and blue"},
+      {"obj", "v 0 0 0 1 -0.5 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "line 1 has a colour outside 0 to 1"},
   }, [](std::string_view bytes, std::string_view ext, const std::string& name) { parse_mesh(bytes, ext, name); });
 }
 
@@ -204,6 +263,29 @@ TEST(MeshRepair, TurnsFlippedTrianglesToFaceOut) {
   for (auto& t : inside_out.triangles) std::swap(t[1], t[2]);
   const TriangleMesh turned = repair_mesh(inside_out);
   EXPECT_NEAR(testing::generalized_winding_number(turned, Vec3::Zero()), 1.0, 1e-9);
+}
+
+TEST(MeshRepair, KeepsEachVertexsColour) {
+  // As an STL-like soup (every corner its own vertex) with a hole: colour by height.
+  const TriangleMesh sphere = make_sphere(Vec3::Zero(), 5.0, 12, 24);
+  TriangleMesh soup;
+  for (std::size_t t = 24; t < sphere.triangles.size(); ++t) {  // the north cap left open
+    std::array<std::uint32_t, 3> ids;
+    for (int k = 0; k < 3; ++k) {
+      ids[k] = static_cast<std::uint32_t>(soup.vertices.size());
+      const Vec3& v = sphere.vertices[sphere.triangles[t][k]];
+      soup.vertices.push_back(v);
+      soup.colors.push_back(Vec3(v.z() > 0 ? 1.0 : 0.0, 0.5, 0.0));
+    }
+    soup.triangles.push_back(ids);
+  }
+  RepairReport report;
+  const TriangleMesh repaired = repair_mesh(soup, {}, &report);
+  ASSERT_TRUE(report.closed);
+  ASSERT_EQ(repaired.colors.size(), repaired.vertices.size());
+  for (std::size_t v = 0; v < repaired.vertices.size(); ++v)
+    EXPECT_EQ(repaired.colors[v], Vec3(repaired.vertices[v].z() > 0 ? 1.0 : 0.0, 0.5, 0.0)) << v;
+  EXPECT_TRUE(repair_mesh(sphere).colors.empty());
 }
 
 TEST(MeshRepair, AllDegenerateIsAnError) {

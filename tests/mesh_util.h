@@ -1,13 +1,15 @@
 #pragma once
 // Brute-force references for the mesh tests, written independently of the library's own
-// methods: the generalized winding number by solid angles, and segment/triangle hits by
-// Moller-Trumbore over every triangle.
+// methods: the generalized winding number by solid angles, segment/triangle hits by
+// Moller-Trumbore over every triangle, and the closest point by sampling each triangle densely.
 
 #include "dla/mesh/mesh.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <filesystem>
 #include <string>
 
@@ -47,6 +49,50 @@ inline double brute_first_hit(const TriangleMesh& mesh, const Vec3& from, const 
     if (hit >= 0.0 && hit <= 1.0 && (best < 0.0 || hit < best)) best = hit;
   }
   return best;
+}
+
+//! The closest of `samples`² barycentric samples of every triangle to p, and the vertex colours
+//! blended there: slow, and exact to about an edge / samples.
+struct SampledClosest {
+  double distance = std::numeric_limits<double>::infinity();
+  Vec3 color = Vec3::Zero();
+};
+inline SampledClosest sampled_closest(const TriangleMesh& mesh, const Vec3& p, int samples = 24) {
+  SampledClosest best;
+  for (const auto& t : mesh.triangles) {
+    const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
+    const Vec3 lo = a.cwiseMin(b).cwiseMin(c), hi = a.cwiseMax(b).cwiseMax(c);
+    if (((lo - p).cwiseMax(p - hi).cwiseMax(0.0)).norm() > best.distance) continue;
+    for (int i = 0; i <= samples; ++i)
+      for (int j = 0; i + j <= samples; ++j) {
+        const double u = double(i) / samples, v = double(j) / samples;
+        const double d = (a + u * (b - a) + v * (c - a) - p).norm();
+        if (d >= best.distance) continue;
+        best.distance = d;
+        if (!mesh.colors.empty())
+          best.color = (1 - u - v) * mesh.colors[t[0]] + u * mesh.colors[t[1]] + v * mesh.colors[t[2]];
+      }
+  }
+  return best;
+}
+
+//! An ASCII PLY of `mesh` with its vertex colours as bytes, as Blender writes a painted mesh.
+inline std::string painted_ply(const TriangleMesh& mesh) {
+  std::string text = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(mesh.vertices.size()) +
+                     "\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\n"
+                     "property uchar green\nproperty uchar blue\nelement face " +
+                     std::to_string(mesh.triangles.size()) + "\nproperty list uchar uint vertex_indices\nend_header\n";
+  char line[160];
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+    const Vec3& v = mesh.vertices[i];
+    const Vec3 c = 255.0 * mesh.colors[i];
+    std::snprintf(line, sizeof line, "%.9g %.9g %.9g %d %d %d\n", v.x(), v.y(), v.z(), int(std::lround(c.x())),
+                  int(std::lround(c.y())), int(std::lround(c.z())));
+    text += line;
+  }
+  for (const auto& t : mesh.triangles)
+    text += "3 " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) + "\n";
+  return text;
 }
 
 //! The scanned bust from Debian's libcgal-demo, extracted into the build tree by CMake; empty

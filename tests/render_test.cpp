@@ -6,6 +6,7 @@
 #include "dla/models/eden.h"
 #include "dla/models/growth.h"
 #include "dla/io/pov_writer.h"
+#include "dla/mesh/constraint.h"
 #include "dla/mesh/shapes.h"
 #include "dla/mesh/surface_distance.h"
 #include "mesh_util.h"
@@ -202,6 +203,25 @@ TEST(Render, PovRayShowsTheStructureInTheBust) {
   look.up = Axis::z;
   ScratchDir dir;
   expect_framed_render(grow(o, constraint), dir, &constraint.mesh(), look);
+}
+
+// Growth from seeds the artist chose: a painted cap, and where a rod enters.
+TEST(Render, PovRayShowsGrowthFromPaintAndFromARodEntering) {
+  TriangleMesh ball = make_sphere(Vec3::Zero(), 10.0);
+  for (const Vec3& v : ball.vertices) ball.colors.push_back(v.z() > 6.0 ? Vec3(1, 0, 0) : Vec3(1, 1, 1));
+  const MeshConstraint constraint(ball, {}, 0.4);
+  const Paint red;
+  const std::vector<std::vector<Vec3>> starts = {constraint.sample_surface(1, &red),
+                                                 constraint.sample_intersection({make_open_can(Vec3(0, 0, 5), 2.0, 10.0)}, 1)};
+  for (const std::vector<Vec3>& seeds : starts) {
+    GrowthOptions o;
+    o.particles = 3000;
+    o.spacing = 0.4;
+    o.spawn = SpawnMode::surface;
+    o.seeds = seeds;
+    ScratchDir dir;
+    expect_framed_render(grow(o, constraint), dir, &constraint.mesh());
+  }
 }
 
 // POV-Ray's epsilons are absolute and it drops what lies beyond 10^7: a tiny or a huge spacing,

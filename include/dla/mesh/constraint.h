@@ -9,6 +9,7 @@
 #include "dla/mesh/inside_test.h"
 #include "dla/mesh/mesh.h"
 #include "dla/mesh/mesh_repair.h"
+#include "dla/mesh/paint.h"
 #include "dla/core/random.h"
 #include "dla/mesh/surface_intersector.h"
 
@@ -97,15 +98,25 @@ class MeshConstraint {
 
   //! The surface sampled at the spacing, as seeds (`--seed-surface`): points half a spacing off
   //! it on the growing side, uniform by area, no two closer than the spacing (dart throwing, 4
-  //! tries per spacing² of area). The same for the same `rng_seed`. Throws InvalidInput for a
-  //! surface of more than 500,000 spacings², or with `--side both`.
-  std::vector<Vec3> sample_surface(std::uint64_t rng_seed) const;
+  //! tries per spacing² of area). With `paint`, only its painted part (`--seed-paint`). The
+  //! same for the same `rng_seed`. Throws InvalidInput for a surface of more than 500,000
+  //! spacings², with `--side both`, and for paint on a mesh without colours or not on it.
+  std::vector<Vec3> sample_surface(std::uint64_t rng_seed, const Paint* paint = nullptr) const;
+
+  //! Seeds where other meshes enter this one (`--seed-mesh`): along the curves where their
+  //! surfaces cross this surface, and over the patches where they overlap it in a plane, half a
+  //! spacing off it on the growing side, a spacing apart. Open and self-intersecting meshes
+  //! work: only their triangles count. Throws InvalidInput when none meets the surface, with
+  //! `--side both`, or for more than 500,000 spacings of curve.
+  std::vector<Vec3> sample_intersection(const std::vector<TriangleMesh>& others, std::uint64_t rng_seed) const;
 
   //! Distance from p to the nearest triangle (a scan of every triangle: for set-up and tests).
   double distance_to_surface(const Vec3& p) const;
 
  private:
   Vec3 surface_point(Rng& rng, Vec3* normal) const;
+  //! s moved half a spacing along ±normal to the growing side; not finite if neither side is.
+  Vec3 beside(const Vec3& s, const Vec3& normal) const;
   bool encloses(const Vec3& p) const;  // inside, by the grid where it can tell
 
   ConstraintOptions options_;
@@ -121,6 +132,11 @@ class MeshConstraint {
   InsideTest inside_;
   SurfaceIntersector hits_;
 };
+
+//! `count` of `points`, far apart: the one nearest their mean first, then each the farthest
+//! from those taken (`--seeds K` with paint or other meshes). Throws InvalidInput if there are
+//! fewer points than `count`.
+std::vector<Vec3> farthest_apart(const std::vector<Vec3>& points, std::size_t count);
 
 //! Closest distance from p to triangle (a, b, c).
 double distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);

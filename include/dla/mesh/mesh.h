@@ -1,7 +1,7 @@
 #pragma once
 //! \file mesh.h
 //! Triangle meshes as plain data, and their files: STL (binary and ASCII), OFF, OBJ and PLY in,
-//! binary STL out. See docs/formats.md.
+//! with the vertex colours the last three can carry, binary STL out. See docs/formats.md.
 
 #include "dla/core/options.h"
 
@@ -20,10 +20,15 @@ namespace dla {
 struct TriangleMesh {
   std::vector<Vec3> vertices;
   std::vector<std::array<std::uint32_t, 3>> triangles;
+  //! One per vertex, red, green and blue in [0, 1], as painted in Blender or MeshLab; empty
+  //! when the file has none.
+  std::vector<Vec3> colors;
 };
 
 //! Reads a mesh, choosing the format by the file's extension (.stl, .off, .obj, .ply, any
-//! case). Polygons are split into triangle fans; STL normals are ignored. Throws IOError if the
+//! case). Polygons are split into triangle fans; STL normals are ignored. Vertex colours are
+//! read from PLY (red, green, blue), COFF (r g b after each vertex) and OBJ (`v x y z r g b`):
+//! integers count to 255, other numbers to 1. Throws IOError if the
 //! file cannot be read and InvalidInput, naming the file, if it is not a well-formed mesh.
 //! With `file_hash`, also gives the FNV-1a hash of the file's bytes (to tell if it changes).
 TriangleMesh read_mesh(const std::string& path, std::uint64_t* file_hash = nullptr);
@@ -44,6 +49,10 @@ std::vector<Vec3> parse_points(std::string_view bytes, std::string_view extensio
 
 //! Writes a binary STL (its header does not begin with "solid"). Throws IOError.
 void write_stl(const TriangleMesh& mesh, const std::string& path);
+
+//! Adds `more`'s vertices and triangles to `mesh`, as separate parts of one mesh (colours: a
+//! part without them is white).
+void append(TriangleMesh& mesh, const TriangleMesh& more);
 
 //! The smallest axis-aligned box around the vertices that triangles use.
 Box bounding_box(const TriangleMesh& mesh);
