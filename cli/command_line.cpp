@@ -273,8 +273,15 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
       ->capture_default_str()->group(growth);
 
   const char* meshes = "Mesh constraint";
-  app.add_option("--stl,--mesh", g.mesh_path, "grow constrained by this mesh: STL, OFF, OBJ or PLY")
-      ->type_name("FILE")->group(meshes);
+  CLI::Option* stl_option = app.add_option("--stl,--mesh", g.mesh_path, "grow constrained by this mesh: STL, OFF, OBJ or PLY")
+                                ->type_name("FILE")->group(meshes);
+  std::string text, font = kDefaultFont;
+  CLI::Option* text_option =
+      app.add_option("--text", text, "grow in this text, extruded a quarter of its size (lines split at \\n): "
+                                     "a mesh, as --stl's; one seed in each letter")
+          ->type_name("TEXT")->group(meshes)->excludes(stl_option);
+  CLI::Option* font_option =
+      app.add_option("--font", font, "--text's font: a TrueType or OpenType file")->capture_default_str()->group(meshes);
   app.add_option("--side", side, "inside, outside or both (the mesh is only a wall; not closed)")
       ->capture_default_str()->group(meshes);
   app.add_option("--constraint", constraint_mode, "a branch crossing the mesh: reject (walk on) or clip (end at it)")
@@ -712,7 +719,14 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   g.radius_given = words.radius->count() > 0;
   g.base_radius_given = words.base_radius->count() > 0;
   g.tip_radius_given = words.tip_radius->count() > 0;
-  if (!g.mesh_path.empty()) {
+  if (text_option->count()) {
+    // "\n" typed in the shell is a line break.
+    for (std::size_t at = text.find("\\n"); at != std::string::npos; at = text.find("\\n", at + 1)) text.replace(at, 2, "\n");
+    g.text = TextOptions{text, font};
+  } else if (font_option->count()) {
+    throw InvalidInput("--font is the font of --text: give the text");
+  }
+  if (g.has_mesh()) {
     // Inside a mesh, a root system: enough particles to fill a bust at the default spacing,
     // short of the 35,000 or so that cover its skin, where the surface spawn starts walkers;
     // thick trunks and fine tips (docs/look.md shows the main job's picture).
@@ -721,7 +735,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     if (!g.base_radius_given) g.look.radius.base_radius = kMeshBaseRadius;
     if (!g.tip_radius_given) g.look.radius.tip_radius = kMeshTipRadius;
   }
-  check_file_options(g, words, options.dimensions, !g.mesh_path.empty());
+  check_file_options(g, words, options.dimensions, g.has_mesh());
   if (!box.empty()) {
     const std::vector<double> b = parse_numbers("--box", box, 6);
     options.spawn_box = Box{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}};
@@ -740,12 +754,12 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   g.up_given = words.up_option->count() > 0;
   g.spawn_given = spawn_option->count() > 0;
   g.seeds_given = seed_at_option->count() > 0;
-  if (g.mesh_path.empty() && seeds_option->count())
+  if (!g.has_mesh() && seeds_option->count())
     throw InvalidInput("--seeds places seeds in a mesh given with --stl; without one, use --seed-at");
-  if (g.mesh_path.empty() && g.seed_surface) throw InvalidInput("--seed-surface seeds a mesh's surface: give one with --stl");
-  if (g.mesh_path.empty() && seed_paint_option->count())
+  if (!g.has_mesh() && g.seed_surface) throw InvalidInput("--seed-surface seeds a mesh's surface: give one with --stl");
+  if (!g.has_mesh() && seed_paint_option->count())
     throw InvalidInput("--seed-paint seeds the painted part of a mesh: give one with --stl");
-  if (g.mesh_path.empty() && !g.seed_mesh_paths.empty())
+  if (!g.has_mesh() && !g.seed_mesh_paths.empty())
     throw InvalidInput("--seed-mesh seeds where a mesh meets the one given with --stl: give one");
   if (seed_paint_option->count()) g.seed_paint = parse_paint(seed_paint);
   if (seeds == "all") {
@@ -758,7 +772,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     if (g.seed_count == 0) throw InvalidInput("--seeds 0: there must be a seed");
   }
   if (!fill_option->count() && app.count("--fill-distance")) throw InvalidInput("--fill-distance is for --fill");
-  if (g.mesh_path.empty()) {
+  if (!g.has_mesh()) {
     validate(options);
     if (spawns_from_mesh(options.spawn))
       throw InvalidInput("spawn " + spawn + " needs a mesh (--stl)");

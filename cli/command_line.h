@@ -7,6 +7,7 @@
 #include "dla/models/drop.h"
 #include "dla/models/eden.h"
 #include "dla/mesh/constraint.h"
+#include "dla/mesh/text.h"
 #include "dla/look/instances.h"
 #include "dla/look/look.h"
 #include "dla/core/options.h"
@@ -48,7 +49,8 @@ struct FileOptions {
 //! `dla3d [options]`: grow a structure by DLA and write its files.
 struct GrowCommand : FileOptions {
   GrowthOptions options;
-  std::string mesh_path;               //!< empty: no constraint
+  std::string mesh_path;               //!< --stl; empty: none
+  std::optional<TextOptions> text;     //!< --text: the constraint is this text, extruded
   ConstraintOptions constraint;
   std::size_t seed_count = 0;          //!< --seeds K; 0 when not given or `all`
   bool seed_surface = false;           //!< --seed-surface: the mesh's surface, sampled, is the start
@@ -60,6 +62,8 @@ struct GrowCommand : FileOptions {
   // Options whose default comes from the mesh when they are not given.
   bool spacing_given = false, up_given = false, spawn_given = false, seeds_given = false;
   bool particles_given = false, radius_given = false, base_radius_given = false, tip_radius_given = false;
+
+  bool has_mesh() const { return !mesh_path.empty() || text; }
 };
 
 //! `dla3d colonize [options]`: grow a tree by space colonization and write its files.

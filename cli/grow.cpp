@@ -6,6 +6,8 @@
 
 #include "dla/mesh/constraint.h"
 #include "dla/mesh/mesh.h"
+#include "dla/mesh/text.h"
+#include "dla/core/hash.h"
 #include "dla/io/run_report.h"
 
 #include <unistd.h>
@@ -42,21 +44,34 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
   std::unique_ptr<MeshConstraint> constraint;
   TriangleMesh scene_mesh;  // the scene's mesh when it is more than the constraint's
   std::uint64_t input_hash = 0;
+  const std::string mesh_name = command.text ? "the text '" + command.text->text + "'" : command.mesh_path;
   {
     check_writable(file_names(command).front());  // before a mesh's set-up and a long run
     if (!command.checkpoint_path.empty()) check_writable(command.checkpoint_path);
-    if (!command.mesh_path.empty()) {
-      const TriangleMesh mesh = read_mesh(command.mesh_path, &input_hash);
+    if (command.has_mesh()) {
+      TriangleMesh mesh;
+      std::vector<Vec3> letter_seeds;
+      if (command.text) {
+        TextMesh text = text_mesh(*command.text);
+        mesh = std::move(text.mesh);
+        letter_seeds = std::move(text.glyph_seeds);
+        // The text's own hash: the same words in another font are another mesh.
+        input_hash = fnv1a({reinterpret_cast<const char*>(mesh.vertices.data()), mesh.vertices.size() * sizeof(Vec3)});
+      } else {
+        mesh = read_mesh(command.mesh_path, &input_hash);
+      }
       if (resumed && resumed->input_hash != input_hash)
-        throw InvalidInput(command.mesh_path + " has changed since the checkpoint was written: the run cannot go on");
+        throw InvalidInput(mesh_name + " has changed since the checkpoint was written: the run cannot go on");
       const Box box = bounding_box(mesh);
-      if (!command.spacing_given) options.spacing = default_spacing(box);
-      if (!command.up_given) pov.up = longest_axis(box);
+      // Text is long and thin: a hundredth of its em leaves strokes some 17 spacings wide.
+      if (!command.spacing_given) options.spacing = command.text ? command.text->size / 100 : default_spacing(box);
+      // Text reads upright with y up; a scan stands on its longest axis.
+      if (!command.up_given) pov.up = command.text ? Axis::y : longest_axis(box);
       detail::require_in("spacing", options.spacing, kMinSpacing, kMaxSpacing);
       try {
         constraint = std::make_unique<MeshConstraint>(mesh, command.constraint, options.spacing);
       } catch (const InvalidInput& e) {
-        throw InvalidInput(command.mesh_path + ": " + e.what());
+        throw InvalidInput(mesh_name + ": " + e.what());
       }
       // From the skin inside: thin parts (horns, fingers) get walkers by their surface. To fill
       // the volume, or to grow from seeds lining the skin, from anywhere in the volume: the
@@ -80,8 +95,10 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
                                : constraint->sample_intersection(entering, options.rng_seed);
           options.seeds = command.seed_count ? farthest_apart(cover, command.seed_count) : cover;
         } catch (const InvalidInput& e) {
-          throw InvalidInput(command.mesh_path + ": " + e.what());
+          throw InvalidInput(mesh_name + ": " + e.what());
         }
+      } else if (command.text && !command.seeds_given && !command.seed_count) {
+        options.seeds = letter_seeds;  // each letter is a volume of its own: one seed in each
       } else if (!command.seeds_given) {
         options.seeds = constraint->place_seeds(command.seed_count ? command.seed_count : 1, options.rng_seed);
       }
@@ -90,7 +107,7 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
     check_memory(options.particles);
     // Only once every option is known good: bad input gets its one line and nothing else.
     if (constraint && !command.quiet)
-      std::fprintf(stderr, "dla3d: %s: %s triangles; %s; spacing %g\n", command.mesh_path.c_str(),
+      std::fprintf(stderr, "dla3d: %s: %s triangles; %s; spacing %g\n", mesh_name.c_str(),
                    with_commas(static_cast<double>(constraint->repair_report().input_triangles)).c_str(),
                    constraint->repair_report().summary().c_str(), options.spacing);
   }
@@ -147,7 +164,7 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
                                                  : nullptr);
   record.write_seconds = std::chrono::duration<double>(Clock::now() - write_start).count();
   if (command.formats.json)
-    write_run_report(cluster, options, command.look, pov, record, output + ".json", constraint.get(), command.mesh_path);
+    write_run_report(cluster, options, command.look, pov, record, output + ".json", constraint.get(), mesh_name);
   if (!cluster.complete) save(cluster);  // after the files: they matter more
 
   const std::string resume_hint =

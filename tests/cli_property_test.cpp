@@ -68,6 +68,8 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--seeds", {"1", "2", "3", "all", "0", "-1", "1000", "x"}},
       {"--seed-paint", {"red", "ff0000", "'#ff0000,0.5'", "red,0", "blue", "pink", "red,1", "red,x", "''"}},
       {"--seed-mesh", {"rod.stl", "box.off", "ball.stl", "missing.stl", "noise.stl"}},
+      {"--text", {"DLA", "'A B'", "O", "'L\\nI'", "''", "' '"}},
+      {"--font", {"/usr/share/fonts/truetype/dejavu/DejaVuSerif-Bold.ttf", "missing.ttf", "noise.stl"}},
       {"--scene-mesh", {}},
       {"--no-scene-mesh", {}},
       {"--spawn", {"sphere", "disk", "box", "inside", "radial", "surface", "cube"}},

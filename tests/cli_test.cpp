@@ -710,6 +710,33 @@ TEST(Cli, SeedSurfaceStartsFromTheWholeSurface) {
                        "--stl ball.stl --seed-surface --seed-at 0,0,0", "--stl ball.stl --seed-surface --side both"});
 }
 
+TEST(Cli, TextGrowsInEachLetter) {
+  ScratchDir dir;
+  const CliRun run = dla3d(dir, "--text DLA -n 600 -o text --formats csv,json,pov");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("dla3d: the text 'DLA': "), std::string::npos) << run.err;
+  EXPECT_NE(run.err.find("spacing 1\n"), std::string::npos) << run.err;  // a hundredth of the em
+  const dla::Cluster grown = dla::read_csv(dir / "text.csv");
+  ASSERT_EQ(grown.seed_count, 3u);  // one in each letter
+  std::vector<std::size_t> per_seed(3, 0);
+  for (const dla::Particle& p : grown.particles) {
+    ++per_seed[static_cast<std::size_t>(p.seed)];
+    EXPECT_GT(p.position.z(), 0.0);
+    EXPECT_LT(p.position.z(), 25.0);
+  }
+  for (const std::size_t n : per_seed) EXPECT_GT(n, 20u) << "every letter grows";
+  EXPECT_NE(read_file(dir / "text.pov").find("#declare DLA_Sky = y;"), std::string::npos) << "upright";
+  const CliRun lines = dla3d(dir, "-q --text 'A\\nB' --seeds 2 -n 100 -o lines --formats csv");
+  ASSERT_EQ(lines.exit_code, 0) << lines.err;
+  EXPECT_EQ(dla::read_csv(dir / "lines.csv").seed_count, 2u);
+  const CliRun missing = dla3d(dir, "-q -o bad --text DLA --font missing.ttf");
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_EQ(std::count(missing.err.begin(), missing.err.end(), '\n'), 1) << missing.err;
+  dla::write_stl(dla::make_sphere(dla::Vec3::Zero(), 10.0, 12, 24), dir / "ball.stl");
+  expect_refused(dir, {"--text DLA --stl ball.stl", "--font x.ttf", "--text ''", "--text '  '",
+                       "--text DLA --side both --seeds 2", "--text DLA --spacing 0"});
+}
+
 TEST(Cli, SeedsAllIsTheWholeSurface) {
   ScratchDir dir;
   dla::write_stl(dla::make_sphere(dla::Vec3::Zero(), 10.0, 12, 24), dir / "ball.stl");

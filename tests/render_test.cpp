@@ -7,6 +7,7 @@
 #include "dla/models/growth.h"
 #include "dla/io/pov_writer.h"
 #include "dla/mesh/constraint.h"
+#include "dla/mesh/text.h"
 #include "dla/mesh/shapes.h"
 #include "dla/mesh/surface_distance.h"
 #include "mesh_util.h"
@@ -222,6 +223,21 @@ TEST(Render, PovRayShowsGrowthFromPaintAndFromARodEntering) {
     ScratchDir dir;
     expect_framed_render(grow(o, constraint), dir, &constraint.mesh());
   }
+}
+
+TEST(Render, PovRayShowsGrowthInText) {
+  TextOptions words;
+  words.text = "DLA";
+  const TextMesh text = text_mesh(words);
+  const MeshConstraint constraint(text.mesh, {}, 1.0);
+  GrowthOptions o;
+  o.particles = 6000;
+  o.spawn = SpawnMode::surface;
+  o.seeds = text.glyph_seeds;
+  PovOptions upright;
+  upright.up = Axis::y;
+  ScratchDir dir;
+  expect_framed_render(grow(o, constraint), dir, &constraint.mesh(), upright);
 }
 
 // POV-Ray's epsilons are absolute and it drops what lies beyond 10^7: a tiny or a huge spacing,
