@@ -282,8 +282,13 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
           ->type_name("TEXT")->group(meshes)->excludes(stl_option);
   CLI::Option* font_option =
       app.add_option("--font", font, "--text's font: a TrueType or OpenType file")->capture_default_str()->group(meshes);
-  app.add_option("--side", side, "inside, outside or both (the mesh is only a wall; not closed)")
+  app.add_option("--side", side, "inside, outside, both (the mesh is only a wall; not closed) or surface (over "
+                                 "it, both sides, in a shell)")
       ->capture_default_str()->group(meshes);
+  CLI::Option* shell_option =
+      app.add_option("--shell", g.constraint.shell, "keep growth within T spacings of the surface, on its side, "
+                                                    "[1, 1000]: frost, lichen; with --side surface, default 3")
+          ->type_name("T")->group(meshes);
   app.add_option("--constraint", constraint_mode, "a branch crossing the mesh: reject (walk on) or clip (end at it)")
       ->capture_default_str()->group(meshes);
   std::string seeds, seed_paint;
@@ -772,6 +777,10 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     if (g.seed_count == 0) throw InvalidInput("--seeds 0: there must be a seed");
   }
   if (!fill_option->count() && app.count("--fill-distance")) throw InvalidInput("--fill-distance is for --fill");
+  if (shell_option->count()) {
+    if (!g.has_mesh()) throw InvalidInput("--shell keeps growth near a mesh's surface: give one with --stl");
+    detail::require_in("--shell", g.constraint.shell, 1.0, 1000.0);
+  }
   if (!g.has_mesh()) {
     validate(options);
     if (spawns_from_mesh(options.spawn))

@@ -77,10 +77,12 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
       // the volume, or to grow from seeds lining the skin, from anywhere in the volume: the
       // skin, covered, would stop walkers from the surface long before the inside is full.
       const bool whole_surface = command.seed_surface && !command.seed_paint;
+      // In a shell, anywhere in it: walkers reach the structure over the surface.
       if (!command.spawn_given)
-        options.spawn = command.constraint.side != Side::inside ? SpawnMode::sphere
-                        : options.fill > 0.0 || whole_surface   ? SpawnMode::inside
-                                                                : SpawnMode::surface;
+        options.spawn = constraint->shell() > 0.0                ? SpawnMode::inside
+                        : command.constraint.side != Side::inside ? SpawnMode::sphere
+                        : options.fill > 0.0 || whole_surface     ? SpawnMode::inside
+                                                                  : SpawnMode::surface;
       if (command.seed_surface || command.seed_paint || !command.seed_mesh_paths.empty()) {
         std::vector<TriangleMesh> entering;
         for (const std::string& path : command.seed_mesh_paths) entering.push_back(read_mesh(path));

@@ -18,6 +18,7 @@ std::string_view to_string(Side side) {
     case Side::inside: return "inside";
     case Side::outside: return "outside";
     case Side::both: return "both";
+    case Side::surface: return "surface";
   }
   return "?";
 }
@@ -31,7 +32,7 @@ std::string_view to_string(ConstraintMode mode) {
 }
 
 Side parse_side(std::string_view word) {
-  constexpr Side values[] = {Side::inside, Side::outside, Side::both};
+  constexpr Side values[] = {Side::inside, Side::outside, Side::both, Side::surface};
   return detail::parse_word(word, values, "side");
 }
 
@@ -64,11 +65,13 @@ double distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const V
 
 namespace {
 
+bool solid(Side side) { return side == Side::inside || side == Side::outside; }
+
 TriangleMesh repaired(const TriangleMesh& mesh, Side side, RepairReport& report) {
   RepairOptions options;
-  options.close_holes = side != Side::both;
+  options.close_holes = solid(side);
   TriangleMesh out = repair_mesh(mesh, options, &report);
-  if (side != Side::both && !report.closed)
+  if (solid(side) && !report.closed)
     throw InvalidInput("the mesh does not bound a volume even after hole filling (" + report.summary() +
                        "), so it has no inside: use --side both to take it as a wall");
   return out;
@@ -99,13 +102,34 @@ MeshConstraint::MeshConstraint(const TriangleMesh& mesh, const ConstraintOptions
     moment += v * (a + b + c) / 4.0;
   }
   centroid_ = volume > 0.0 && std::isfinite(volume) ? Vec3(moment / volume) : center_;
+  const double layers = options.side == Side::surface && options.shell == 0.0 ? kShellSpacings : options.shell;
+  if (layers != 0.0) {
+    detail::require_in("--shell", layers, 1.0, 1000.0);
+    shell_thickness_ = layers * spacing;
+    // Voxels of half a spacing: walkers stray at most 0.43 spacings past the layer.
+    const int on = options.side == Side::inside ? 1 : options.side == Side::outside ? -1 : 0;
+    shell_ = std::make_unique<ShellBand>(mesh_, inside_, on, shell_thickness_, 0.5 * spacing);
+    if (shell_->voxel_count() == 0) throw InvalidInput("the shell holds no room to grow in");
+    distance_ = std::make_unique<SurfaceDistance>(mesh_);
+  }
 }
 
-bool MeshConstraint::on_growth_side(const Vec3& p) const {
+bool MeshConstraint::in_shell(const Vec3& p) const {
+  if (distance_->distance(p) > shell_thickness_) return false;
   switch (options_.side) {
     case Side::inside: return inside_.contains(p);
     case Side::outside: return !inside_.contains(p);
-    case Side::both: return true;
+    default: return true;
+  }
+}
+
+bool MeshConstraint::on_growth_side(const Vec3& p) const {
+  if (shell_) return in_shell(p);
+  switch (options_.side) {
+    case Side::inside: return inside_.contains(p);
+    case Side::outside: return !inside_.contains(p);
+    case Side::both:
+    case Side::surface: return true;
   }
   return true;
 }
@@ -116,12 +140,13 @@ BranchCheck MeshConstraint::check_branch(const Vec3& from, const Vec3& to) const
   // the surface.
   const double margin = gap_ / length;
   const double t = hits_.first_hit(from, to, 0.0, 1.0 + margin);
-  if (t < 0.0) return {true, false, to};
+  if (t < 0.0) return {!shell_ || in_shell(to), false, to};
   if (options_.mode == ConstraintMode::reject) return {false, false, to};
   const double end = t - margin;
   // A stub shorter than half a spacing would pile particles onto one another at the surface.
   if (end * length < 0.5 * spacing_) return {false, false, to};
-  return {true, true, from + end * (to - from)};
+  const Vec3 clipped = from + end * (to - from);
+  return {!shell_ || in_shell(clipped), true, clipped};
 }
 
 bool MeshConstraint::encloses(const Vec3& p) const {
@@ -130,6 +155,7 @@ bool MeshConstraint::encloses(const Vec3& p) const {
 }
 
 Vec3 MeshConstraint::draw_inside(Rng& rng) const {
+  if (shell_) return shell_->draw(rng);
   constexpr int max_draws = 1'000'000;
   for (int draw = 0; draw < max_draws; ++draw) {
     Vec3 p;
@@ -244,6 +270,7 @@ std::string colors_used(const std::vector<Vec3>& colors) {
 }  // namespace
 
 Vec3 MeshConstraint::beside(const Vec3& s, const Vec3& normal) const {
+  if (!solid(options_.side)) return s + 0.5 * spacing_ * normal;  // either side grows
   // The normal's orientation is not trusted: take whichever side is the growing one.
   for (const double side : {0.5, -0.5}) {
     const Vec3 p = s + side * spacing_ * normal;
@@ -254,7 +281,7 @@ Vec3 MeshConstraint::beside(const Vec3& s, const Vec3& normal) const {
 
 std::vector<Vec3> MeshConstraint::sample_surface(std::uint64_t rng_seed, const Paint* paint) const {
   const char* option = paint ? "--seed-paint" : "--seed-surface";
-  if (options_.side == Side::both)
+  if (options_.side == Side::both && !shell_)
     throw InvalidInput(std::string(option) + " needs a growing side to put the seeds on: --side inside or outside");
   if (paint && mesh_.colors.empty())
     throw InvalidInput("the mesh has no vertex colours for --seed-paint: paint it, and save it as PLY, OFF or OBJ with "
@@ -311,7 +338,7 @@ std::vector<Vec3> MeshConstraint::sample_surface(std::uint64_t rng_seed, const P
 
 std::vector<Vec3> MeshConstraint::sample_intersection(const std::vector<TriangleMesh>& others,
                                                       std::uint64_t rng_seed) const {
-  if (options_.side == Side::both)
+  if (options_.side == Side::both && !shell_)
     throw InvalidInput("--seed-mesh needs a growing side to put the seeds on: --side inside or outside");
   // Every piece, weighed by length (curves) or area over a spacing (patches): seeds per spacing.
   struct Piece {
@@ -391,6 +418,18 @@ double MeshConstraint::distance_to_surface(const Vec3& p) const {
 
 std::vector<Vec3> MeshConstraint::place_seeds(std::size_t count, std::uint64_t rng_seed) const {
   if (count == 0) throw InvalidInput("--seeds 0: at least one seed is needed");
+  if (shell_) {
+    // In a layer, depth means nothing: points half a spacing off the surface, far apart.
+    Rng rng(rng_seed, ~std::uint64_t{0});
+    std::vector<Vec3> candidates;
+    for (std::size_t i = 0; i < std::min<std::size_t>(4096, 64 + 64 * count); ++i) candidates.push_back(draw_near_surface(rng));
+    std::vector<Vec3> seeds = farthest_apart(candidates, count);
+    for (std::size_t i = 1; i < seeds.size(); ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if ((seeds[i] - seeds[j]).norm() < 2.0 * spacing_)
+          throw InvalidInput("cannot place " + std::to_string(count) + " seeds on the surface 2 spacings apart");
+    return seeds;
+  }
   if (options_.side == Side::both)
     throw InvalidInput("seeds cannot be placed automatically with --side both: place them with --seed-at");
   if (count > 1000) throw InvalidInput("--seeds " + std::to_string(count) + " is more than 1000");

@@ -91,16 +91,23 @@ void validate(const GrowthOptions& options, const MeshConstraint& constraint) {
   if (options.spacing != constraint.spacing())
     throw InvalidInput("the constraint was built for spacing " + detail::format_number(constraint.spacing()) +
                        ", not " + detail::format_number(options.spacing));
-  if ((options.spawn == SpawnMode::inside || options.spawn == SpawnMode::radial) && side != Side::inside)
+  const bool shell = constraint.shell() > 0.0;
+  if (options.fill != 0.0 && shell) throw InvalidInput("--fill fills the volume a mesh encloses, not a shell over it");
+  // In a shell, `inside` is uniform in the shell.
+  if ((options.spawn == SpawnMode::radial || (options.spawn == SpawnMode::inside && !shell)) && side != Side::inside)
     throw InvalidInput("spawn " + std::string(to_string(options.spawn)) + " needs --side inside, not --side " +
                        std::string(to_string(side)));
-  if (options.spawn == SpawnMode::surface && side == Side::both)
+  if (options.spawn == SpawnMode::surface && side == Side::both && !shell)
     throw InvalidInput("spawn surface needs a growing side, --side inside or outside, not --side both");
   for (std::size_t i = 0; i < options.seeds.size(); ++i)
     if (!constraint.on_growth_side(options.seeds[i]))
       throw InvalidInput("seed " + std::to_string(i + 1) + " at " + point(options.seeds[i]) + " is " +
-                         (side == Side::inside ? "outside" : "inside") + " the mesh, but growth is " +
-                         std::string(to_string(side)) + " it");
+                         (shell ? "not in the shell, " + detail::format_number(constraint.shell()) + " from the surface" +
+                                      (side == Side::inside    ? " inside"
+                                       : side == Side::outside ? " outside"
+                                                               : "")
+                                : std::string(side == Side::inside ? "outside" : "inside") + " the mesh, but growth is " +
+                                      std::string(to_string(side)) + " it"));
 }
 
 Cluster grow(const GrowthOptions& options, const MeshConstraint& constraint, const ProgressFn& progress,

@@ -94,47 +94,8 @@ InsideTest::InsideTest(const TriangleMesh& mesh, double band, double cell) {
     }
   }
 
-  // Every cell centre's winding number, a column at a time: the crossings of the column's
-  // vertical line, from the top down.
-  struct Crossing {
-    std::size_t column;
-    double z;
-    int sign;
-  };
-  std::vector<Crossing> crossings;
-  for (std::size_t t = 0; t < triangles; ++t) {
-    const Vec3 &a = corners_[3 * t], &b = corners_[3 * t + 1], &c = corners_[3 * t + 2];
-    const double x_lo = std::min({a.x(), b.x(), c.x()}), x_hi = std::max({a.x(), b.x(), c.x()});
-    const double y_lo = std::min({a.y(), b.y(), c.y()}), y_hi = std::max({a.y(), b.y(), c.y()});
-    const std::size_t i0 = static_cast<std::size_t>(std::max(0.0, std::ceil((x_lo - origin_.x()) / cell_ - 0.5)));
-    const std::size_t j0 = static_cast<std::size_t>(std::max(0.0, std::ceil((y_lo - origin_.y()) / cell_ - 0.5)));
-    for (std::size_t j = j0; j < ny; ++j) {
-      const double y = origin_.y() + (static_cast<double>(j) + 0.5) * cell_;
-      if (y > y_hi) break;
-      for (std::size_t i = i0; i < nx; ++i) {
-        const double x = origin_.x() + (static_cast<double>(i) + 0.5) * cell_;
-        if (x > x_hi) break;
-        double z;
-        if (const int sign = vertical_crossing(a, b, c, x, y, z)) crossings.push_back({j * nx + i, z, sign});
-      }
-    }
-  }
-  std::sort(crossings.begin(), crossings.end(), [](const Crossing& p, const Crossing& q) {
-    return p.column != q.column ? p.column < q.column : p.z > q.z;
-  });
-  for (std::size_t first = 0; first < crossings.size();) {
-    std::size_t last = first;
-    while (last < crossings.size() && crossings[last].column == crossings[first].column) ++last;
-    const std::size_t column = crossings[first].column;
-    int winding = 0;
-    std::size_t next = first;
-    for (std::size_t k = nz; k-- > 0;) {
-      const double z = origin_.z() + (static_cast<double>(k) + 0.5) * cell_;
-      while (next < last && crossings[next].z > z) winding += crossings[next++].sign;
-      cells_[k * nx * ny + column] = winding > 0 ? Region::inside : Region::outside;
-    }
-    first = last;
-  }
+  const std::vector<bool> inside = inside_centres(origin_, cell_, {nx, ny, nz});
+  for (std::size_t v = 0; v < cells_.size(); ++v) cells_[v] = inside[v] ? Region::inside : Region::outside;
 
   // The band: every cell that may hold a point within `band` of a triangle. The plane test
   // keeps large slanted triangles from claiming their whole bounding box.
@@ -157,6 +118,53 @@ InsideTest::InsideTest(const TriangleMesh& mesh, double band, double cell) {
           cells_[(k * ny + j) * nx + i] = Region::surface;
         }
   }
+}
+
+std::vector<bool> InsideTest::inside_centres(const Vec3& origin, double cell, const std::array<std::size_t, 3>& dims) const {
+  // Every cell centre's winding number, a column at a time: the crossings of the column's
+  // vertical line, from the top down.
+  const std::size_t nx = dims[0], ny = dims[1], nz = dims[2];
+  std::vector<bool> inside(nx * ny * nz, false);
+  struct Crossing {
+    std::size_t column;
+    double z;
+    int sign;
+  };
+  std::vector<Crossing> crossings;
+  for (std::size_t t = 0; 3 * t < corners_.size(); ++t) {
+    const Vec3 &a = corners_[3 * t], &b = corners_[3 * t + 1], &c = corners_[3 * t + 2];
+    const double x_lo = std::min({a.x(), b.x(), c.x()}), x_hi = std::max({a.x(), b.x(), c.x()});
+    const double y_lo = std::min({a.y(), b.y(), c.y()}), y_hi = std::max({a.y(), b.y(), c.y()});
+    const std::size_t i0 = static_cast<std::size_t>(std::max(0.0, std::ceil((x_lo - origin.x()) / cell - 0.5)));
+    const std::size_t j0 = static_cast<std::size_t>(std::max(0.0, std::ceil((y_lo - origin.y()) / cell - 0.5)));
+    for (std::size_t j = j0; j < ny; ++j) {
+      const double y = origin.y() + (static_cast<double>(j) + 0.5) * cell;
+      if (y > y_hi) break;
+      for (std::size_t i = i0; i < nx; ++i) {
+        const double x = origin.x() + (static_cast<double>(i) + 0.5) * cell;
+        if (x > x_hi) break;
+        double z;
+        if (const int sign = vertical_crossing(a, b, c, x, y, z)) crossings.push_back({j * nx + i, z, sign});
+      }
+    }
+  }
+  std::sort(crossings.begin(), crossings.end(), [](const Crossing& p, const Crossing& q) {
+    return p.column != q.column ? p.column < q.column : p.z > q.z;
+  });
+  for (std::size_t first = 0; first < crossings.size();) {
+    std::size_t last = first;
+    while (last < crossings.size() && crossings[last].column == crossings[first].column) ++last;
+    const std::size_t column = crossings[first].column;
+    int winding = 0;
+    std::size_t next = first;
+    for (std::size_t k = nz; k-- > 0;) {
+      const double z = origin.z() + (static_cast<double>(k) + 0.5) * cell;
+      while (next < last && crossings[next].z > z) winding += crossings[next++].sign;
+      inside[k * nx * ny + column] = winding > 0;
+    }
+    first = last;
+  }
+  return inside;
 }
 
 int InsideTest::winding_number(const Vec3& p) const {

@@ -123,7 +123,8 @@ void write_run_report(const Cluster& cluster, const GrowthOptions& o, const Look
     out << "  \"constraint\": {\n    \"mesh\": ";
     out << json::string(mesh_file);
     out << ",\n    \"side\": \"" << to_string(constraint->options().side) << "\",\n    \"mode\": \""
-        << to_string(constraint->options().mode) << "\",\n    \"input_triangles\": ";
+        << to_string(constraint->options().mode) << "\",\n    \"shell_spacings\": ";
+    out.number(constraint->shell() / constraint->spacing()) << ",\n    \"input_triangles\": ";
     out.integer(static_cast<long long>(r.input_triangles)) << ",\n    \"triangles\": ";
     out.integer(static_cast<long long>(constraint->mesh().triangles.size())) << ",\n    \"repair\": ";
     out << json::string(r.summary());

@@ -737,6 +737,27 @@ TEST(Cli, TextGrowsInEachLetter) {
                        "--text DLA --side both --seeds 2", "--text DLA --spacing 0"});
 }
 
+TEST(Cli, ShellGrowsOverTheSurface) {
+  ScratchDir dir;
+  dla::write_stl(dla::make_sphere(dla::Vec3::Zero(), 10.0, 12, 24), dir / "ball.stl");
+  const CliRun run = dla3d(dir, "-q --stl ball.stl --side outside --shell 2 --spacing 0.5 -n 400 -o frost --formats csv,json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string json = read_file(dir / "frost.json");
+  EXPECT_NE(json.find("\"spawn\": \"inside\""), std::string::npos) << "uniform in the shell by default";
+  const dla::Cluster frost = dla::read_csv(dir / "frost.csv");
+  for (const dla::Particle& p : frost.particles) {
+    EXPECT_GT(p.position.norm(), 10.0 * std::cos(3.14159265 / 12) - 1e-3) << p.position.transpose();
+    EXPECT_LT(p.position.norm(), 11.0 + 1e-3) << p.position.transpose();
+  }
+  // An open box, frosted on both sides of its walls.
+  std::filesystem::copy_file(TEST_DATA_DIR "/open_box.off", dir / "box.off");
+  const CliRun open = dla3d(dir, "-q --stl box.off --side surface -n 300 -o open --formats csv");
+  ASSERT_EQ(open.exit_code, 0) << open.err;
+  expect_refused(dir, {"--shell 2", "--stl ball.stl --shell 0.5", "--stl ball.stl --shell 2 --fill 0.5",
+                       "--stl ball.stl --side outside --shell 2 --spawn radial", "--stl ball.stl --shell x",
+                       "--stl ball.stl --side outside --shell 2 --seed-at 0,0,0"});
+}
+
 TEST(Cli, SeedsAllIsTheWholeSurface) {
   ScratchDir dir;
   dla::write_stl(dla::make_sphere(dla::Vec3::Zero(), 10.0, 12, 24), dir / "ball.stl");

@@ -446,6 +446,103 @@ TEST(Constraint, IntersectionSeedsFollowWhereAnotherMeshEnters) {
   EXPECT_THROW(MeshConstraint(make_sphere(Vec3::Zero(), 10.0), wall, 0.5).sample_intersection({rod}, 7), InvalidInput);
 }
 
+TEST(Constraint, ShellBandMatchesBruteForceDistances) {
+  const TriangleMesh sphere = make_sphere(Vec3::Zero(), 8.0);
+  ConstraintOptions outside;
+  outside.side = Side::outside;
+  const MeshConstraint constraint(sphere, outside, 0.5);
+  const ShellBand band(constraint.mesh(), constraint.inside_test(), -1, 1.5, 0.25);
+  const double slack = 0.5 * std::sqrt(3.0) * band.cell_size();  // a voxel's half-diagonal
+  Rng rng(5, 0);
+  int held = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3 p(-11 + 22 * rng.uniform(), -11 + 22 * rng.uniform(), -11 + 22 * rng.uniform());
+    const double d = constraint.distance_to_surface(p);
+    const bool out = testing::generalized_winding_number(constraint.mesh(), p) < 0.5;
+    if (band.holds(p)) {
+      ++held;
+      ASSERT_LE(d, 1.5 + slack) << p.transpose();
+      ASSERT_TRUE(out || d <= slack) << p.transpose();
+    } else if (d <= 1.5 - slack && out && d > slack) {
+      ADD_FAILURE() << "in the layer but not held: " << p.transpose();
+    }
+  }
+  EXPECT_GT(held, 100);
+  for (int i = 0; i < 1000; ++i) {
+    const Vec3 p = band.draw(rng);
+    ASSERT_TRUE(band.holds(p));
+  }
+}
+
+TEST(Constraint, ShellKeepsGrowthOverTheSurface) {
+  const TriangleMesh sphere = make_sphere(Vec3::Zero(), 8.0);
+  for (const Side side : {Side::outside, Side::inside}) {
+    SCOPED_TRACE(std::string(to_string(side)));
+    ConstraintOptions c;
+    c.side = side;
+    c.shell = 3.0;
+    const MeshConstraint constraint(sphere, c, 0.5);
+    EXPECT_DOUBLE_EQ(constraint.shell(), 1.5);
+    GrowthOptions o;
+    o.particles = 1500;
+    o.spacing = 0.5;
+    o.spawn = SpawnMode::inside;  // uniform in the shell
+    o.seeds = constraint.place_seeds(1, o.rng_seed);
+    const Cluster grown = grow(o, constraint);
+    expect_constrained(grown, constraint);
+    for (const Particle& p : grown.particles)
+      ASSERT_LE(constraint.distance_to_surface(p.position), 1.5 + 1e-9) << p.position.transpose();
+    // Over the surface, not a lump: the structure spans much of the sphere.
+    EXPECT_GT(radius_of_gyration(grown), 4.0);
+    o.threads = 2;
+    const Cluster two = grow(o, constraint);
+    ASSERT_EQ(two.particles.size(), grown.particles.size());
+    for (std::size_t i = 0; i < grown.particles.size(); ++i)
+      ASSERT_EQ(two.particles[i].position, grown.particles[i].position) << "particle " << i;
+  }
+  // An open sheet, grown over on both sides.
+  TriangleMesh sheet;
+  sheet.vertices = {{-10, -10, 0}, {10, -10, 0}, {10, 10, 0}, {-10, 10, 0}};
+  sheet.triangles = {{0, 1, 2}, {0, 2, 3}};
+  ConstraintOptions on;
+  on.side = Side::surface;
+  const MeshConstraint leaf(sheet, on, 0.5);
+  EXPECT_DOUBLE_EQ(leaf.shell(), 1.5);  // three spacings by default
+  GrowthOptions o;
+  o.particles = 1500;
+  o.spacing = 0.5;
+  o.spawn = SpawnMode::inside;
+  o.seeds = leaf.place_seeds(2, o.rng_seed);
+  const Cluster frosted = grow(o, leaf);
+  int above = 0, below = 0;
+  for (const Particle& p : frosted.particles) {
+    ASSERT_LE(leaf.distance_to_surface(p.position), 1.5 + 1e-9) << p.position.transpose();
+    above += p.position.z() > 0.25;
+    below += p.position.z() < -0.25;
+  }
+  EXPECT_GT(above, 100);
+  EXPECT_GT(below, 100);
+}
+
+TEST(Constraint, FrostOverTheBust) {
+  DLA_NEED_BUST(path);
+  ConstraintOptions c;
+  c.side = Side::outside;
+  c.shell = 3.0;
+  const MeshConstraint constraint(read_mesh(path), c, 0.4);
+  GrowthOptions o;
+  o.particles = 2000;
+  o.spacing = 0.4;
+  o.spawn = SpawnMode::inside;
+  o.seeds = constraint.place_seeds(1, o.rng_seed);
+  const Cluster frost = grow(o, constraint);
+  for (const Particle& p : frost.particles) {
+    ASSERT_LE(constraint.distance_to_surface(p.position), 1.2 + 1e-9) << p.position.transpose();
+    ASSERT_FALSE(constraint.inside_test().contains(p.position)) << p.position.transpose();
+  }
+  EXPECT_GT(radius_of_gyration(frost), 5.0);
+}
+
 TEST(Constraint, BadSetupsAreClearErrors) {
   const MeshConstraint constraint(make_sphere(Vec3::Zero(), 5.0), {}, 1.0);
   GrowthOptions o;
@@ -465,6 +562,17 @@ TEST(Constraint, BadSetupsAreClearErrors) {
   wall.side = Side::both;
   EXPECT_THROW(grow(o, MeshConstraint(make_open_can(Vec3::Zero(), 5.0, 10.0), wall, 1.0)), InvalidInput);
   EXPECT_THROW(constraint.place_seeds(1000, 1), InvalidInput);  // too many to fit
+  ConstraintOptions thin;
+  thin.shell = 0.5;
+  EXPECT_THROW(MeshConstraint(make_sphere(Vec3::Zero(), 5.0), thin, 1.0), InvalidInput);
+  thin.shell = 2.0;
+  GrowthOptions filling;
+  filling.spacing = 1.0;
+  filling.fill = 0.5;
+  filling.spawn = SpawnMode::inside;
+  const MeshConstraint lined(make_sphere(Vec3::Zero(), 5.0), thin, 1.0);
+  filling.seeds = lined.place_seeds(1, 1);
+  EXPECT_THROW(grow(filling, lined), InvalidInput);  // --fill in a shell
 }
 
 }  // namespace

@@ -240,6 +240,21 @@ TEST(Render, PovRayShowsGrowthInText) {
   expect_framed_render(grow(o, constraint), dir, &constraint.mesh(), upright);
 }
 
+// Frost over a ball: a shell of three spacings outside it.
+TEST(Render, PovRayShowsGrowthOverASurface) {
+  ConstraintOptions frost;
+  frost.side = Side::outside;
+  frost.shell = 3.0;
+  const MeshConstraint constraint(make_sphere(Vec3::Zero(), 10.0), frost, 0.4);
+  GrowthOptions o;
+  o.particles = 4000;
+  o.spacing = 0.4;
+  o.spawn = SpawnMode::inside;
+  o.seeds = constraint.place_seeds(1, 1);
+  ScratchDir dir;
+  expect_framed_render(grow(o, constraint), dir, &constraint.mesh());
+}
+
 // POV-Ray's epsilons are absolute and it drops what lies beyond 10^7: a tiny or a huge spacing,
 // or a structure far from the origin, is written scaled and shifted, and renders the same.
 TEST(Render, PovRayShowsStructuresAtUnusualScales) {

@@ -10,19 +10,23 @@
 #include "dla/mesh/mesh.h"
 #include "dla/mesh/mesh_repair.h"
 #include "dla/mesh/paint.h"
+#include "dla/mesh/shell.h"
+#include "dla/mesh/surface_distance.h"
 #include "dla/core/random.h"
 #include "dla/mesh/surface_intersector.h"
 
+#include <memory>
 #include <string_view>
 #include <vector>
 
 namespace dla {
 
-//! Which side of the surface the structure grows on (`--side inside|outside|both`).
+//! Which side of the surface the structure grows on (`--side inside|outside|both|surface`).
 enum class Side {
   inside,   //!< within a closed surface (a vessel, a bust); holes are closed first
   outside,  //!< around a closed object; holes are closed first
   both,     //!< the surface is only a wall, open or closed, and is used as it is (an open can)
+  surface,  //!< over the surface, on both sides, in a layer `shell` thick (frost on a leaf)
 };
 
 //! What a branch that crosses the surface does (`--constraint reject|clip`).
@@ -39,7 +43,14 @@ ConstraintMode parse_constraint_mode(std::string_view word);
 struct ConstraintOptions {
   Side side = Side::inside;                      //!< where the structure grows
   ConstraintMode mode = ConstraintMode::reject;  //!< what a crossing branch does
+  //! Growth keeps within this many spacings of the surface, on its side (`--shell T`), in
+  //! [1, 1000]; 0: anywhere on the side, but kShellSpacings for Side::surface.
+  double shell = 0.0;
 };
+
+//! The layer's thickness for Side::surface when none is given: room for branches to cross
+//! one another, thin enough to read as a coat.
+inline constexpr double kShellSpacings = 3.0;
 
 //! The verdict on a new branch.
 struct BranchCheck {
@@ -66,21 +77,29 @@ class MeshConstraint {
   const Vec3& center() const { return center_; }
   double radius() const { return radius_; }
 
-  //! Whether p is on the growing side (an exact test; always true for `both`).
+  //! Whether p is on the growing side, and in the shell if there is one (an exact test; always
+  //! true for `both` without a shell).
   bool on_growth_side(const Vec3& p) const;
 
   //! Whether a walker at p can never stick: on the wrong side of a closed surface and farther
-  //! than the spacing from it. A grid look-up, cheap enough for every step.
+  //! than the spacing from it, or outside the shell's voxels. A grid look-up, cheap enough for
+  //! every step.
   bool lost(const Vec3& p) const {
-    if (options_.side == Side::both) return false;
+    if (shell_) return !shell_->holds(p);
+    if (options_.side == Side::both || options_.side == Side::surface) return false;
     const Region region = inside_.region(p);
     return region == (options_.side == Side::inside ? Region::outside : Region::inside);
   }
 
-  //! Tests the branch from a particle to a new one against the surface (Embree).
+  //! The shell's thickness in mesh units; 0 without one. Walkers in a shell step at most this
+  //! far, and a step that would leave its voxels is not taken.
+  double shell() const { return shell_thickness_; }
+
+  //! Tests the branch from a particle to a new one against the surface (Embree), and the new
+  //! particle against the shell (its exact distance to the surface).
   BranchCheck check_branch(const Vec3& from, const Vec3& to) const;
 
-  //! A point uniform in the enclosed volume (`--spawn inside`).
+  //! A point uniform in the enclosed volume (`--spawn inside`); with a shell, in the shell.
   Vec3 draw_inside(Rng& rng) const;
   //! A point on the segment from the volume's centroid to a point of the surface, both
   //! uniform (`--spawn radial`, Bourke's figure 5): thin features get walkers in proportion to
@@ -118,6 +137,7 @@ class MeshConstraint {
   //! s moved half a spacing along ±normal to the growing side; not finite if neither side is.
   Vec3 beside(const Vec3& s, const Vec3& normal) const;
   bool encloses(const Vec3& p) const;  // inside, by the grid where it can tell
+  bool in_shell(const Vec3& p) const;  // exact: within the shell's thickness, on its side
 
   ConstraintOptions options_;
   double spacing_;
@@ -131,6 +151,9 @@ class MeshConstraint {
   std::vector<double> area_prefix_;  // cumulative triangle areas, to sample the surface
   InsideTest inside_;
   SurfaceIntersector hits_;
+  double shell_thickness_ = 0.0;
+  std::unique_ptr<ShellBand> shell_;              // with a shell: where walkers may go
+  std::unique_ptr<SurfaceDistance> distance_;     // with a shell: the exact test for particles
 };
 
 //! `count` of `points`, far apart: the one nearest their mean first, then each the farthest

@@ -6,6 +6,7 @@
 
 #include "dla/mesh/mesh.h"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -33,6 +34,10 @@ class InsideTest {
 
   //! winding_number(p) > 0.
   bool contains(const Vec3& p) const { return winding_number(p) > 0; }
+
+  //! contains() at the centre of every cell of a grid (x fastest, then y, then z), by one
+  //! sweep of vertical lines: for a grid of one's own (ShellBand's).
+  std::vector<bool> inside_centres(const Vec3& origin, double cell, const std::array<std::size_t, 3>& dims) const;
 
   //! The cell's answer for p, a look-up; `outside` beyond the grid.
   Region region(const Vec3& p) const {

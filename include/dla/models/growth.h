@@ -421,14 +421,26 @@ class Aggregation {
                           "carries them away");
       x = launch(rng, sight, reads, turned);
     };
+    // In a shell, steps reach at most its thickness, and half as far after each step refused at
+    // its edge (down to the near step): a walker in a narrow part still moves.
+    const double shell = constraint_ ? constraint_->shell() : 0.0;
+    double reach = shell;
+    const auto refused = [&] {
+      ++stats.lost;
+      if (++lost == max_lost)
+        throw GrowthError("walker " + std::to_string(k + 1) + " had " + std::to_string(max_lost) +
+                          " steps refused at the shell's edge: the shell is too thin to move in");
+      reach = std::max(near_step_, 0.5 * reach);
+    };
     for (;;) {
       if (reads) pause_.check();
       if (++steps % kStopCheckSteps == 0 && stop_ && stop_->load(std::memory_order_relaxed)) throw Stopped{};
       ++stats.steps;
       const Vec3 offset = x - center;
       const double r2 = offset.squaredNorm();
-      // Walkers put on the return sphere sit on it up to rounding: they count as inside.
-      if (r2 > return_radius * return_radius * (1.0 + 1e-9)) {
+      // Walkers put on the return sphere sit on it up to rounding: they count as inside. In a
+      // shell, there is no return through free space: walkers far away walk on in the shell.
+      if (shell == 0.0 && r2 > return_radius * return_radius * (1.0 + 1e-9)) {
         if (!drifting()) {
           const ReturnPoint back = return_to_sphere(offset, return_radius, rng, opt_.dimensions);
           if (back.returned) {
@@ -462,7 +474,17 @@ class Aggregation {
       // Outside the sphere around every particle, its distance is a bound the index may not beat.
       const double free = std::max(probe(x, reads).distance, std::sqrt(r2) - sight.cluster_radius) - contact_;
       if (free > near_step_) {
-        x += jump(rng, free, drift);
+        if (shell == 0.0) {
+          x += jump(rng, free, drift);
+          continue;
+        }
+        const Vec3 next = x + jump(rng, std::min(free, reach), drift);
+        if (constraint_->lost(next)) {
+          refused();
+          continue;
+        }
+        x = next;
+        reach = shell;
         continue;
       }
 
@@ -481,6 +503,10 @@ class Aggregation {
         }
       });
       if (touched < 0) {
+        if (shell != 0.0 && constraint_->lost(x + step)) {
+          refused();
+          continue;
+        }
         x += step;
         continue;
       }

@@ -1,0 +1,48 @@
+#pragma once
+//! \file shell.h
+//! The layer over a surface that growth keeps to (`--shell T`): frost, lichen or rust creeping
+//! over a model. A voxel grid says, for every walk step, whether a walker is in the layer; the
+//! exact test, by the distance to the nearest triangle, is for new particles only. See
+//! docs/constraints.md#growth-over-a-surface.
+
+#include "dla/core/random.h"
+#include "dla/mesh/inside_test.h"
+#include "dla/mesh/mesh.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace dla {
+
+class ShellBand {
+ public:
+  //! The voxels, of `cell` or larger (the grid stays within about 16 million), whose centres
+  //! lie within `thickness` of `mesh` and, when `side` is +1 or -1, inside (+1) or outside
+  //! (-1) of it by `inside` (0: either side).
+  ShellBand(const TriangleMesh& mesh, const InsideTest& inside, int side, double thickness, double cell);
+
+  //! Whether p's voxel is in the layer: a look-up, for every step.
+  bool holds(const Vec3& p) const {
+    const Vec3 f = (p - origin_) / cell_;
+    if (!(f.x() >= 0.0 && f.y() >= 0.0 && f.z() >= 0.0 && f.x() < dims_[0] && f.y() < dims_[1] && f.z() < dims_[2]))
+      return false;
+    const std::size_t i = static_cast<std::size_t>(f.x()), j = static_cast<std::size_t>(f.y()),
+                      k = static_cast<std::size_t>(f.z());
+    return held_[(k * static_cast<std::size_t>(dims_[1]) + j) * static_cast<std::size_t>(dims_[0]) + i];
+  }
+
+  //! A point uniform in the layer's voxels.
+  Vec3 draw(Rng& rng) const;
+
+  double cell_size() const { return cell_; }
+  std::size_t voxel_count() const { return voxels_.size(); }
+
+ private:
+  Vec3 origin_;
+  double cell_ = 1.0;
+  double dims_[3] = {0, 0, 0};
+  std::vector<bool> held_;
+  std::vector<std::uint32_t> voxels_;  // the held ones, to draw from
+};
+
+}  // namespace dla
