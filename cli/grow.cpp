@@ -100,7 +100,10 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
           throw InvalidInput(mesh_name + ": " + e.what());
         }
       } else if (command.text && !command.seeds_given && !command.seed_count) {
-        options.seeds = letter_seeds;  // each letter is a volume of its own: one seed in each
+        // Each letter is a volume of its own: a seed deep in each, or as many on the surface.
+        options.seeds = command.constraint.side == Side::inside && constraint->shell() == 0.0
+                            ? letter_seeds
+                            : constraint->place_seeds(letter_seeds.size(), options.rng_seed);
       } else if (!command.seeds_given) {
         options.seeds = constraint->place_seeds(command.seed_count ? command.seed_count : 1, options.rng_seed);
       }

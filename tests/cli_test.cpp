@@ -729,6 +729,9 @@ TEST(Cli, TextGrowsInEachLetter) {
   const CliRun lines = dla3d(dir, "-q --text 'A\\nB' --seeds 2 -n 100 -o lines --formats csv");
   ASSERT_EQ(lines.exit_code, 0) << lines.err;
   EXPECT_EQ(dla::read_csv(dir / "lines.csv").seed_count, 2u);
+  const CliRun vines = dla3d(dir, "-q --text DLA --side outside --shell 3 -n 300 -o vines --formats csv");
+  ASSERT_EQ(vines.exit_code, 0) << vines.err;
+  EXPECT_EQ(dla::read_csv(dir / "vines.csv").seed_count, 3u);  // as many on the surface
   const CliRun missing = dla3d(dir, "-q -o bad --text DLA --font missing.ttf");
   EXPECT_EQ(missing.exit_code, 1);
   EXPECT_EQ(std::count(missing.err.begin(), missing.err.end(), '\n'), 1) << missing.err;
@@ -779,6 +782,9 @@ TEST(Cli, SeedPaintGrowsFromThePaintedPart) {
   EXPECT_GT(painted.seed_count, 30u);  // the cap is some 310 units² (less its blended rim)
   EXPECT_EQ(painted.particles.size(), painted.seed_count + 300);
   for (std::size_t i = 0; i < painted.seed_count; ++i) EXPECT_GT(painted.particles[i].position.z(), 3.5) << i;
+  ASSERT_EQ(dla3d(dir, "-q --stl painted.ply --spacing 0.5 --seed-surface --seed-paint ff0000 -n 300 -o surface "
+                       "--formats csv").exit_code, 0);
+  EXPECT_EQ(read_file(dir / "surface.csv"), read_file(dir / "painted.csv")) << "the painted part of the surface";
   ASSERT_EQ(dla3d(dir, "-q --stl painted.ply --spacing 0.5 --seed-paint red,0.1 --seeds 2 -n 100 -o two --formats csv")
                 .exit_code, 0);
   EXPECT_EQ(dla::read_csv(dir / "two.csv").seed_count, 2u);

@@ -255,6 +255,40 @@ TEST(Render, PovRayShowsGrowthOverASurface) {
   expect_framed_render(grow(o, constraint), dir, &constraint.mesh());
 }
 
+// Bourke's rotation, growth until a ball is filled, and the ball's whole surface as the start.
+TEST(Render, PovRayShowsRotationFillAndSurfaceSeeds) {
+  GrowthOptions turning;
+  turning.particles = 2000;
+  turning.spawn = SpawnMode::disk;
+  turning.spawn_axis = Axis::x;
+  turning.rotate_axis = Axis::z;
+  turning.rotate_degrees = 90.0;
+  ScratchDir spiral;
+  expect_framed_render(grow(turning), spiral);
+
+  const MeshConstraint ball(make_sphere(Vec3::Zero(), 10.0), {}, 0.5);
+  GrowthOptions filling;
+  filling.particles = 100000;
+  filling.spacing = 0.5;
+  filling.spawn = SpawnMode::inside;
+  filling.fill = 0.3;
+  filling.seeds = ball.place_seeds(1, 1);
+  const Cluster filled = grow(filling, ball);
+  EXPECT_GE(filled.filled, 0.3);
+  ScratchDir full;
+  expect_framed_render(filled, full, &ball.mesh());
+
+  ConstraintOptions around;
+  around.side = Side::outside;
+  const MeshConstraint skin(make_sphere(Vec3::Zero(), 10.0), around, 0.5);
+  GrowthOptions furry;
+  furry.particles = 3000;
+  furry.spacing = 0.5;
+  furry.seeds = skin.sample_surface(1);
+  ScratchDir fur;
+  expect_framed_render(grow(furry, skin), fur, &skin.mesh());
+}
+
 // POV-Ray's epsilons are absolute and it drops what lies beyond 10^7: a tiny or a huge spacing,
 // or a structure far from the origin, is written scaled and shifted, and renders the same.
 TEST(Render, PovRayShowsStructuresAtUnusualScales) {
