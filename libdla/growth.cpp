@@ -102,10 +102,11 @@ void validate(const GrowthOptions& options, const MeshConstraint& constraint) {
   for (std::size_t i = 0; i < options.seeds.size(); ++i)
     if (!constraint.on_growth_side(options.seeds[i]))
       throw InvalidInput("seed " + std::to_string(i + 1) + " at " + point(options.seeds[i]) + " is " +
-                         (shell ? "not in the shell, " + detail::format_number(constraint.shell()) + " from the surface" +
-                                      (side == Side::inside    ? " inside"
-                                       : side == Side::outside ? " outside"
-                                                               : "")
+                         (shell ? "not in the shell (within " + detail::format_number(constraint.shell()) +
+                                      " of the surface" +
+                                      (side == Side::inside    ? ", inside it)"
+                                       : side == Side::outside ? ", outside it)"
+                                                               : ")")
                                 : std::string(side == Side::inside ? "outside" : "inside") + " the mesh, but growth is " +
                                       std::string(to_string(side)) + " it"));
 }

@@ -51,21 +51,18 @@ InsideTest::InsideTest(const TriangleMesh& mesh, double band, double cell) {
   const std::size_t triangles = mesh.triangles.size();
 
   // The voxel grid: the box, a band and a cell wider on every side.
-  const Vec3 lo = box.min.array() - (band + cell), hi = box.max.array() + (band + cell);
-  const Vec3 size = hi - lo;
-  constexpr double max_cells = 16.0 * 1024 * 1024;
-  cell_ = std::max(cell, std::cbrt(size.prod() / max_cells));
-  origin_ = lo;
-  for (int a = 0; a < 3; ++a) dims_[a] = std::max(1.0, std::ceil(size[a] / cell_));
-  const std::size_t nx = static_cast<std::size_t>(dims_[0]), ny = static_cast<std::size_t>(dims_[1]),
-                    nz = static_cast<std::size_t>(dims_[2]);
-  cells_.assign(nx * ny * nz, Region::outside);
+  grid_ = VoxelGrid(box, band + cell, cell);
+  const double side = grid_.cell;  // of a cell
+  const Vec3& origin = grid_.origin;
+  const std::size_t nx = grid_.dims[0], ny = grid_.dims[1];
+  const double dims[3] = {static_cast<double>(grid_.dims[0]), static_cast<double>(grid_.dims[1]),
+                          static_cast<double>(grid_.dims[2])};
 
   // Buckets in xy of about four cells, for the exact test.
-  bucket_ = 4.0 * cell_;
-  bucket_origin_ = origin_;
-  bucket_dims_[0] = static_cast<int>(std::ceil(dims_[0] / 4.0));
-  bucket_dims_[1] = static_cast<int>(std::ceil(dims_[1] / 4.0));
+  bucket_ = 4.0 * side;
+  bucket_origin_ = origin;
+  bucket_dims_[0] = static_cast<int>(std::ceil(dims[0] / 4.0));
+  bucket_dims_[1] = static_cast<int>(std::ceil(dims[1] / 4.0));
   const auto bucket_range = [&](std::size_t t, int axis) {
     const double a = corners_[3 * t][axis], b = corners_[3 * t + 1][axis], c = corners_[3 * t + 2][axis];
     const double lo_f = (std::min({a, b, c}) - bucket_origin_[axis]) / bucket_;
@@ -94,36 +91,51 @@ InsideTest::InsideTest(const TriangleMesh& mesh, double band, double cell) {
     }
   }
 
-  const std::vector<bool> inside = inside_centres(origin_, cell_, {nx, ny, nz});
+  const std::vector<bool> inside = inside_centres(grid_);
+  cells_.resize(inside.size());
   for (std::size_t v = 0; v < cells_.size(); ++v) cells_[v] = inside[v] ? Region::inside : Region::outside;
 
   // The band: every cell that may hold a point within `band` of a triangle. The plane test
   // keeps large slanted triangles from claiming their whole bounding box.
-  const double reach = band + 0.5 * std::sqrt(3.0) * cell_;
+  const double reach = band + 0.5 * std::sqrt(3.0) * side;
   for (std::size_t t = 0; t < triangles; ++t) {
     const Vec3 &a = corners_[3 * t], &b = corners_[3 * t + 1], &c = corners_[3 * t + 2];
     const Vec3 normal = (b - a).cross(c - a).normalized();
     std::array<std::size_t, 3> from{}, to{};
     for (int axis = 0; axis < 3; ++axis) {
-      const double l = (std::min({a[axis], b[axis], c[axis]}) - band - origin_[axis]) / cell_;
-      const double h = (std::max({a[axis], b[axis], c[axis]}) + band - origin_[axis]) / cell_;
-      from[axis] = static_cast<std::size_t>(std::clamp(std::floor(l), 0.0, dims_[axis] - 1));
-      to[axis] = static_cast<std::size_t>(std::clamp(std::floor(h), 0.0, dims_[axis] - 1));
+      const double l = (std::min({a[axis], b[axis], c[axis]}) - band - origin[axis]) / side;
+      const double h = (std::max({a[axis], b[axis], c[axis]}) + band - origin[axis]) / side;
+      from[axis] = static_cast<std::size_t>(std::clamp(std::floor(l), 0.0, dims[axis] - 1));
+      to[axis] = static_cast<std::size_t>(std::clamp(std::floor(h), 0.0, dims[axis] - 1));
     }
     for (std::size_t k = from[2]; k <= to[2]; ++k)
       for (std::size_t j = from[1]; j <= to[1]; ++j)
         for (std::size_t i = from[0]; i <= to[0]; ++i) {
-          const Vec3 center = origin_ + cell_ * Vec3(i + 0.5, j + 0.5, k + 0.5);
+          const Vec3 center = grid_.center(i, j, k);
           if (normal.allFinite() && std::abs(normal.dot(center - a)) > reach) continue;
           cells_[(k * ny + j) * nx + i] = Region::surface;
         }
   }
 }
 
-std::vector<bool> InsideTest::inside_centres(const Vec3& origin, double cell, const std::array<std::size_t, 3>& dims) const {
+VoxelGrid::VoxelGrid(const Box& box, double margin, double min_cell) {
+  const Vec3 lo = box.min.array() - margin, hi = box.max.array() + margin;
+  const Vec3 extent = hi - lo;
+  constexpr double max_cells = 16.0 * 1024 * 1024;
+  cell = std::max(min_cell, std::cbrt(extent.prod() / max_cells));
+  origin = lo;
+  for (int a = 0; a < 3; ++a) {
+    limits_[a] = std::max(1.0, std::ceil(extent[a] / cell));
+    dims[a] = static_cast<std::size_t>(limits_[a]);
+  }
+}
+
+std::vector<bool> InsideTest::inside_centres(const VoxelGrid& grid) const {
   // Every cell centre's winding number, a column at a time: the crossings of the column's
   // vertical line, from the top down.
-  const std::size_t nx = dims[0], ny = dims[1], nz = dims[2];
+  const Vec3& origin = grid.origin;
+  const double cell = grid.cell;
+  const std::size_t nx = grid.dims[0], ny = grid.dims[1], nz = grid.dims[2];
   std::vector<bool> inside(nx * ny * nz, false);
   struct Crossing {
     std::size_t column;

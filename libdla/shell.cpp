@@ -8,19 +8,12 @@
 namespace dla {
 
 ShellBand::ShellBand(const TriangleMesh& mesh, const InsideTest& inside, int side, double thickness, double cell) {
-  const Box box = bounding_box(mesh);
-  const Vec3 lo = box.min.array() - (thickness + cell), hi = box.max.array() + (thickness + cell);
-  const Vec3 size = hi - lo;
-  constexpr double max_cells = 16.0 * 1024 * 1024;
-  cell_ = std::max(cell, std::cbrt(size.prod() / max_cells));
-  origin_ = lo;
-  for (int a = 0; a < 3; ++a) dims_[a] = std::max(1.0, std::ceil(size[a] / cell_));
-  const std::size_t nx = static_cast<std::size_t>(dims_[0]), ny = static_cast<std::size_t>(dims_[1]),
-                    nz = static_cast<std::size_t>(dims_[2]);
+  grid_ = VoxelGrid(bounding_box(mesh), thickness + cell, cell);
+  const std::size_t nx = grid_.dims[0], ny = grid_.dims[1];
   // Which voxel centres lie within `thickness` of a triangle. Cheap bounds first: a centre
   // already near one, or farther than that from the triangle's plane or its bounding sphere,
   // needs no exact distance.
-  std::vector<bool> near(nx * ny * nz, false);
+  std::vector<bool> near(grid_.size(), false);
   for (const auto& t : mesh.triangles) {
     const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
     const Vec3 normal = (b - a).cross(c - a).normalized();
@@ -28,24 +21,25 @@ ShellBand::ShellBand(const TriangleMesh& mesh, const InsideTest& inside, int sid
     const double sphere = std::max({(a - middle).norm(), (b - middle).norm(), (c - middle).norm()}) + thickness;
     std::size_t from[3], to[3];
     for (int axis = 0; axis < 3; ++axis) {
-      const double l = (std::min({a[axis], b[axis], c[axis]}) - thickness - origin_[axis]) / cell_ - 0.5;
-      const double h = (std::max({a[axis], b[axis], c[axis]}) + thickness - origin_[axis]) / cell_ - 0.5;
-      from[axis] = static_cast<std::size_t>(std::clamp(std::ceil(l), 0.0, dims_[axis] - 1));
-      to[axis] = static_cast<std::size_t>(std::clamp(std::floor(h), 0.0, dims_[axis] - 1));
+      const double last = static_cast<double>(grid_.dims[axis] - 1);
+      const double l = (std::min({a[axis], b[axis], c[axis]}) - thickness - grid_.origin[axis]) / grid_.cell - 0.5;
+      const double h = (std::max({a[axis], b[axis], c[axis]}) + thickness - grid_.origin[axis]) / grid_.cell - 0.5;
+      from[axis] = static_cast<std::size_t>(std::clamp(std::ceil(l), 0.0, last));
+      to[axis] = static_cast<std::size_t>(std::clamp(std::floor(h), 0.0, last));
     }
     for (std::size_t k = from[2]; k <= to[2]; ++k)
       for (std::size_t j = from[1]; j <= to[1]; ++j)
         for (std::size_t i = from[0]; i <= to[0]; ++i) {
           const std::size_t v = (k * ny + j) * nx + i;
           if (near[v]) continue;
-          const Vec3 center = origin_ + cell_ * Vec3(i + 0.5, j + 0.5, k + 0.5);
+          const Vec3 center = grid_.center(i, j, k);
           if ((center - middle).squaredNorm() > sphere * sphere) continue;
           if (normal.allFinite() && std::abs(normal.dot(center - a)) > thickness) continue;
           if (distance_to_triangle(center, a, b, c) <= thickness) near[v] = true;
         }
   }
   held_.assign(near.size(), false);
-  const std::vector<bool> in = side != 0 ? inside.inside_centres(origin_, cell_, {nx, ny, nz}) : std::vector<bool>();
+  const std::vector<bool> in = side != 0 ? inside.inside_centres(grid_) : std::vector<bool>();
   for (std::size_t v = 0; v < near.size(); ++v) {
     if (!near[v] || (side != 0 && in[v] != (side > 0))) continue;
     held_[v] = true;
@@ -54,10 +48,10 @@ ShellBand::ShellBand(const TriangleMesh& mesh, const InsideTest& inside, int sid
 }
 
 Vec3 ShellBand::draw(Rng& rng) const {
-  const std::size_t nx = static_cast<std::size_t>(dims_[0]), ny = static_cast<std::size_t>(dims_[1]);
+  const std::size_t nx = grid_.dims[0], ny = grid_.dims[1];
   const std::size_t v = voxels_[std::min(voxels_.size() - 1, static_cast<std::size_t>(rng.uniform() * voxels_.size()))];
   const std::size_t i = v % nx, j = v / nx % ny, k = v / (nx * ny);
-  return origin_ + cell_ * Vec3(i + rng.uniform(), j + rng.uniform(), k + rng.uniform());
+  return grid_.origin + grid_.cell * Vec3(i + rng.uniform(), j + rng.uniform(), k + rng.uniform());
 }
 
 }  // namespace dla

@@ -608,6 +608,9 @@ TEST(Cli, DropAndBallisticWriteTheSameFilesAsGrowth) {
   ASSERT_EQ(inside.exit_code, 0) << inside.err;
   for (const dla::Particle& p : dla::read_csv(dir / "held.csv").particles) ASSERT_LT(p.position.norm(), 10.0);
   EXPECT_NE(read_file(dir / "held.json").find("\"mesh\": \"ball.stl\""), std::string::npos);
+  const CliRun layered = dla3d(dir, "drop -q -o layered --stl ball.stl --side surface -n 50");
+  EXPECT_EQ(layered.exit_code, 2) << "shells are for DLA: " << layered.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "layered.csv"));
 
   const CliRun flown = dla3d(dir, "ballistic -o lines -n 2000 --dimensions 2 --formats csv,json,svg");
   ASSERT_EQ(flown.exit_code, 0) << flown.err;

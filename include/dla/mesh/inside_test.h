@@ -13,6 +13,33 @@
 
 namespace dla {
 
+//! A box, widened by a margin on every side, cut into cubic cells of `cell` or larger so that
+//! there are at most about 16 million: the grids of InsideTest and ShellBand.
+struct VoxelGrid {
+  VoxelGrid() = default;
+  VoxelGrid(const Box& box, double margin, double cell);
+
+  Vec3 origin = Vec3::Zero();
+  double cell = 1.0;
+  std::array<std::size_t, 3> dims{1, 1, 1};  //!< cells along x, y and z
+
+  std::size_t size() const { return dims[0] * dims[1] * dims[2]; }
+  //! The cell holding p (x fastest, then y, then z), or size() beyond the grid.
+  std::size_t index(const Vec3& p) const {
+    const Vec3 f = (p - origin) / cell;
+    if (!(f.x() >= 0.0 && f.y() >= 0.0 && f.z() >= 0.0 && f.x() < limits_[0] && f.y() < limits_[1] && f.z() < limits_[2]))
+      return size();
+    return (static_cast<std::size_t>(f.z()) * dims[1] + static_cast<std::size_t>(f.y())) * dims[0] +
+           static_cast<std::size_t>(f.x());
+  }
+  Vec3 center(std::size_t i, std::size_t j, std::size_t k) const {
+    return origin + cell * Vec3(static_cast<double>(i) + 0.5, static_cast<double>(j) + 0.5, static_cast<double>(k) + 0.5);
+  }
+
+ private:
+  double limits_[3] = {1, 1, 1};  // dims as doubles, for the look-up
+};
+
 //! What a cell of the inside grid holds.
 enum class Region : std::uint8_t {
   outside,  //!< every point of the cell is outside, farther than the band from the surface
@@ -37,19 +64,15 @@ class InsideTest {
 
   //! contains() at the centre of every cell of a grid (x fastest, then y, then z), by one
   //! sweep of vertical lines: for a grid of one's own (ShellBand's).
-  std::vector<bool> inside_centres(const Vec3& origin, double cell, const std::array<std::size_t, 3>& dims) const;
+  std::vector<bool> inside_centres(const VoxelGrid& grid) const;
 
   //! The cell's answer for p, a look-up; `outside` beyond the grid.
   Region region(const Vec3& p) const {
-    const Vec3 f = (p - origin_) / cell_;
-    if (!(f.x() >= 0.0 && f.y() >= 0.0 && f.z() >= 0.0 && f.x() < dims_[0] && f.y() < dims_[1] && f.z() < dims_[2]))
-      return Region::outside;
-    const std::size_t i = static_cast<std::size_t>(f.x()), j = static_cast<std::size_t>(f.y()),
-                      k = static_cast<std::size_t>(f.z());
-    return cells_[(k * static_cast<std::size_t>(dims_[1]) + j) * static_cast<std::size_t>(dims_[0]) + i];
+    const std::size_t i = grid_.index(p);
+    return i < cells_.size() ? cells_[i] : Region::outside;
   }
 
-  double cell_size() const { return cell_; }
+  double cell_size() const { return grid_.cell; }
   std::size_t cell_count() const { return cells_.size(); }
 
  private:
@@ -59,10 +82,7 @@ class InsideTest {
   double bucket_ = 1.0;
   int bucket_dims_[2] = {0, 0};
   std::vector<std::uint32_t> bucket_start_, bucket_triangles_;
-  // The voxel grid.
-  Vec3 origin_;
-  double cell_ = 1.0;
-  double dims_[3] = {0, 0, 0};
+  VoxelGrid grid_;
   std::vector<Region> cells_;
 };
 

@@ -23,24 +23,18 @@ class ShellBand {
 
   //! Whether p's voxel is in the layer: a look-up, for every step.
   bool holds(const Vec3& p) const {
-    const Vec3 f = (p - origin_) / cell_;
-    if (!(f.x() >= 0.0 && f.y() >= 0.0 && f.z() >= 0.0 && f.x() < dims_[0] && f.y() < dims_[1] && f.z() < dims_[2]))
-      return false;
-    const std::size_t i = static_cast<std::size_t>(f.x()), j = static_cast<std::size_t>(f.y()),
-                      k = static_cast<std::size_t>(f.z());
-    return held_[(k * static_cast<std::size_t>(dims_[1]) + j) * static_cast<std::size_t>(dims_[0]) + i];
+    const std::size_t i = grid_.index(p);
+    return i < held_.size() && held_[i];
   }
 
   //! A point uniform in the layer's voxels.
   Vec3 draw(Rng& rng) const;
 
-  double cell_size() const { return cell_; }
+  double cell_size() const { return grid_.cell; }
   std::size_t voxel_count() const { return voxels_.size(); }
 
  private:
-  Vec3 origin_;
-  double cell_ = 1.0;
-  double dims_[3] = {0, 0, 0};
+  VoxelGrid grid_;
   std::vector<bool> held_;
   std::vector<std::uint32_t> voxels_;  // the held ones, to draw from
 };

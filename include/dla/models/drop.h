@@ -187,6 +187,8 @@ inline void validate(const DropOptions& o, const MeshConstraint& constraint) {
   if (o.spacing != constraint.spacing())
     throw InvalidInput("the constraint was built for spacing " + detail::format_number(constraint.spacing()) +
                        ", not " + detail::format_number(o.spacing));
+  if (constraint.shell() > 0.0)
+    throw InvalidInput("drops fall through space, not over a surface: --side surface and shells are for DLA");
   const Side side = constraint.options().side;
   if (o.zone == DropZone::mesh && side != Side::inside)
     throw InvalidInput("the mesh zone drops inside the mesh: it needs --side inside, not --side " + std::string(to_string(side)));
