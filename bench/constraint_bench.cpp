@@ -1,7 +1,8 @@
 // Growth in the scanned bust (Debian's libcgal-demo; the README's bust.stl) against the same
 // N unconstrained, with the same two seeds and spacing, and the unit costs of the two mesh
 // calls the walk makes: the Embree branch test (once per contact) and the grid look-up for
-// lost walkers (once per step). Run:
+// lost walkers (once per step); and growth over the bust in a shell (--side outside --shell 3),
+// with the shell's set-up. Run:
 //   build/bench/dla_constraint_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 // The share of time in each call is its count per particle (a counter here) times its unit
 // cost, over the time per particle (docs/performance.md).
@@ -12,12 +13,13 @@
 
 #include <benchmark/benchmark.h>
 
+#include <chrono>
 #include <filesystem>
 #include <memory>
 
 namespace {
 
-constexpr double kSpacing = 0.2;  // dla3d's default for the bust: its longest side / 200
+constexpr double kSpacing = 0.2;  // half dla3d's default for the bust (its longest side / 100)
 
 const dla::MeshConstraint* bust() {
   static const std::unique_ptr<dla::MeshConstraint> constraint = [] {
@@ -83,11 +85,38 @@ void lost_lookup(benchmark::State& state) {
   benchmark::DoNotOptimize(lost);
 }
 
+// Frost: a shell of three spacings outside the bust, walkers started anywhere in it.
+void grow_in_shell(benchmark::State& state) {
+  if (!bust()) return state.SkipWithError("the bust is missing");
+  dla::ConstraintOptions frost;
+  frost.side = dla::Side::outside;
+  frost.shell = 3.0;
+  const auto start = std::chrono::steady_clock::now();
+  const dla::MeshConstraint shell(dla::read_mesh(BUST_OFF_PATH), frost, kSpacing);
+  const double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  dla::GrowthOptions o;
+  o.particles = static_cast<std::size_t>(state.range(0));
+  o.spacing = kSpacing;
+  o.spawn = dla::SpawnMode::inside;
+  o.seeds = shell.place_seeds(2, o.rng_seed);
+  dla::WalkStats stats;
+  for (auto _ : state) {
+    ++o.rng_seed;
+    stats = dla::grow_with<dla::GridIndex>(o, {}, &shell).stats;
+  }
+  const double n = static_cast<double>(o.particles);
+  state.counters["particles_per_s"] = benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["steps_per_particle"] = static_cast<double>(stats.steps) / n;
+  state.counters["refused_per_particle"] = static_cast<double>(stats.lost) / n;
+  state.counters["setup_s"] = setup;
+}
+
 }  // namespace
 
 BENCHMARK(grow_in_bust)->Name("bust/constrained")->Arg(100'000)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(grow_unconstrained)->Name("bust/unconstrained")->Arg(100'000)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 BENCHMARK(branch_test)->Name("bust/branch_test");
 BENCHMARK(lost_lookup)->Name("bust/lost_lookup");
+BENCHMARK(grow_in_shell)->Name("bust/shell")->Arg(30'000)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
 BENCHMARK_MAIN();

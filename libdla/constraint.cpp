@@ -107,8 +107,9 @@ MeshConstraint::MeshConstraint(const TriangleMesh& mesh, const ConstraintOptions
     detail::require_in("--shell", layers, 1.0, 1000.0);
     shell_thickness_ = layers * spacing;
     // Voxels of half a spacing: walkers stray at most 0.43 spacings past the layer.
-    const int on = options.side == Side::inside ? 1 : options.side == Side::outside ? -1 : 0;
-    shell_ = std::make_unique<ShellBand>(mesh_, inside_, on, shell_thickness_, 0.5 * spacing);
+    const Layer layer = options.side == Side::inside ? Layer::inside : options.side == Side::outside ? Layer::outside
+                                                                                                      : Layer::both;
+    shell_ = std::make_unique<ShellBand>(mesh_, inside_, layer, shell_thickness_, 0.5 * spacing);
     if (shell_->voxel_count() == 0) throw InvalidInput("the shell holds no room to grow in");
     distance_ = std::make_unique<SurfaceDistance>(mesh_);
   }

@@ -7,7 +7,7 @@
 
 namespace dla {
 
-ShellBand::ShellBand(const TriangleMesh& mesh, const InsideTest& inside, int side, double thickness, double cell) {
+ShellBand::ShellBand(const TriangleMesh& mesh, const InsideTest& inside, Layer layer, double thickness, double cell) {
   grid_ = VoxelGrid(bounding_box(mesh), thickness + cell, cell);
   const std::size_t nx = grid_.dims[0], ny = grid_.dims[1];
   // Which voxel centres lie within `thickness` of a triangle. Cheap bounds first: a centre
@@ -39,9 +39,9 @@ ShellBand::ShellBand(const TriangleMesh& mesh, const InsideTest& inside, int sid
         }
   }
   held_.assign(near.size(), false);
-  const std::vector<bool> in = side != 0 ? inside.inside_centres(grid_) : std::vector<bool>();
+  const std::vector<bool> in = layer != Layer::both ? inside.inside_centres(grid_) : std::vector<bool>();
   for (std::size_t v = 0; v < near.size(); ++v) {
-    if (!near[v] || (side != 0 && in[v] != (side > 0))) continue;
+    if (!near[v] || (layer != Layer::both && in[v] != (layer == Layer::inside))) continue;
     held_[v] = true;
     voxels_.push_back(static_cast<std::uint32_t>(v));
   }

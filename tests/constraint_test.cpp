@@ -451,7 +451,7 @@ TEST(Constraint, ShellBandMatchesBruteForceDistances) {
   ConstraintOptions outside;
   outside.side = Side::outside;
   const MeshConstraint constraint(sphere, outside, 0.5);
-  const ShellBand band(constraint.mesh(), constraint.inside_test(), -1, 1.5, 0.25);
+  const ShellBand band(constraint.mesh(), constraint.inside_test(), Layer::outside, 1.5, 0.25);
   const double slack = 0.5 * std::sqrt(3.0) * band.cell_size();  // a voxel's half-diagonal
   Rng rng(5, 0);
   int held = 0;

@@ -14,12 +14,14 @@
 
 namespace dla {
 
+//! Which side of the surface the layer lies on.
+enum class Layer { inside, outside, both };
+
 class ShellBand {
  public:
   //! The voxels, of `cell` or larger (the grid stays within about 16 million), whose centres
-  //! lie within `thickness` of `mesh` and, when `side` is +1 or -1, inside (+1) or outside
-  //! (-1) of it by `inside` (0: either side).
-  ShellBand(const TriangleMesh& mesh, const InsideTest& inside, int side, double thickness, double cell);
+  //! lie within `thickness` of `mesh`, on the `layer` side of it by `inside`.
+  ShellBand(const TriangleMesh& mesh, const InsideTest& inside, Layer layer, double thickness, double cell);
 
   //! Whether p's voxel is in the layer: a look-up, for every step.
   bool holds(const Vec3& p) const {
