@@ -110,7 +110,9 @@ MeshConstraint::MeshConstraint(const TriangleMesh& mesh, const ConstraintOptions
     const Layer layer = options.side == Side::inside ? Layer::inside : options.side == Side::outside ? Layer::outside
                                                                                                       : Layer::both;
     shell_ = std::make_unique<ShellBand>(mesh_, inside_, layer, shell_thickness_, 0.5 * spacing);
-    if (shell_->voxel_count() == 0) throw InvalidInput("the shell holds no room to grow in");
+    if (shell_->voxel_count() == 0)
+      throw InvalidInput("the shell, " + detail::format_number(shell_thickness_) + " thick, holds no voxel of the " +
+                         detail::format_number(shell_->cell_size()) + " the mesh's size allows: use a larger spacing");
     distance_ = std::make_unique<SurfaceDistance>(mesh_);
   }
 }

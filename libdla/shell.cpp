@@ -7,7 +7,28 @@
 
 namespace dla {
 
+namespace {
+
+//! The voxels the triangles' boxes, widened by `thickness`, cover in all: the set-up's work.
+double voxel_visits(const TriangleMesh& mesh, double thickness, double cell) {
+  double visits = 0.0;
+  for (const auto& t : mesh.triangles) {
+    const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
+    const Vec3 extent = a.cwiseMax(b).cwiseMax(c) - a.cwiseMin(b).cwiseMin(c);
+    visits += ((extent.array() + 2.0 * thickness) / cell + 1.0).prod();
+  }
+  return visits;
+}
+
+}  // namespace
+
 ShellBand::ShellBand(const TriangleMesh& mesh, const InsideTest& inside, Layer layer, double thickness, double cell) {
+  // A thick shell over many triangles gets coarser voxels, so the set-up stays a few seconds
+  // (10^9 visits) rather than growing with the cube of the thickness.
+  constexpr double max_visits = 1e9;
+  for (double visits = voxel_visits(mesh, thickness, cell); visits > max_visits;
+       visits = voxel_visits(mesh, thickness, cell))
+    cell *= 1.05 * std::cbrt(visits / max_visits);
   grid_ = VoxelGrid(bounding_box(mesh), thickness + cell, cell);
   const std::size_t nx = grid_.dims[0], ny = grid_.dims[1];
   // Which voxel centres lie within `thickness` of a triangle. Cheap bounds first: a centre

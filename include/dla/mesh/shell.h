@@ -19,8 +19,9 @@ enum class Layer { inside, outside, both };
 
 class ShellBand {
  public:
-  //! The voxels, of `cell` or larger (the grid stays within about 16 million), whose centres
-  //! lie within `thickness` of `mesh`, on the `layer` side of it by `inside`.
+  //! The voxels, of `cell` or larger (the grid stays within about 16 million, and a thick
+  //! shell's set-up within a few seconds), whose centres lie within `thickness` of `mesh`, on
+  //! the `layer` side of it by `inside`.
   ShellBand(const TriangleMesh& mesh, const InsideTest& inside, Layer layer, double thickness, double cell);
 
   //! Whether p's voxel is in the layer: a look-up, for every step.
