@@ -100,10 +100,12 @@ int grow(const GrowCommand& command, const std::vector<std::string>& args, const
           throw InvalidInput(mesh_name + ": " + e.what());
         }
       } else if (command.text && !command.seeds_given && !command.seed_count) {
-        // Each letter is a volume of its own: a seed deep in each, or as many on the surface.
-        options.seeds = command.constraint.side == Side::inside && constraint->shell() == 0.0
-                            ? letter_seeds
-                            : constraint->place_seeds(letter_seeds.size(), options.rng_seed);
+        // Each letter is a volume of its own: a seed deep in each, or in a shell (whose parts
+        // around letters far apart do not meet) or around the text, half a spacing off its front.
+        options.seeds = letter_seeds;
+        if (command.constraint.side != Side::inside || constraint->shell() > 0.0)
+          for (Vec3& seed : options.seeds)
+            seed.z() = command.text->depth + (command.constraint.side == Side::inside ? -0.5 : 0.5) * options.spacing;
       } else if (!command.seeds_given) {
         options.seeds = constraint->place_seeds(command.seed_count ? command.seed_count : 1, options.rng_seed);
       }

@@ -217,8 +217,11 @@ TextMesh text_mesh(const TextOptions& options) {
   TextMesh result;
   double pen_x = 0.0, pen_y = 0.0;
   FT_UInt previous = 0;
+  constexpr std::size_t max_characters = 10'000;  // a page: more is no longer a sculpture
+  std::size_t characters = 0;
   for (std::size_t at = 0; at < options.text.size();) {
     const char32_t code = next_code_point(options.text, at);
+    if (++characters > max_characters) throw InvalidInput("the text has more than 10,000 characters");
     if (code == U'\n') {
       pen_x = 0.0;
       pen_y -= face->height;

@@ -734,7 +734,9 @@ TEST(Cli, TextGrowsInEachLetter) {
   EXPECT_EQ(dla::read_csv(dir / "lines.csv").seed_count, 2u);
   const CliRun vines = dla3d(dir, "-q --text DLA --side outside --shell 3 -n 300 -o vines --formats csv");
   ASSERT_EQ(vines.exit_code, 0) << vines.err;
-  EXPECT_EQ(dla::read_csv(dir / "vines.csv").seed_count, 3u);  // as many on the surface
+  const dla::Cluster vines_grown = dla::read_csv(dir / "vines.csv");
+  ASSERT_EQ(vines_grown.seed_count, 3u);  // one off the front of each letter
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_DOUBLE_EQ(vines_grown.particles[i].position.z(), 25.5);
   const CliRun missing = dla3d(dir, "-q -o bad --text DLA --font missing.ttf");
   EXPECT_EQ(missing.exit_code, 1);
   EXPECT_EQ(std::count(missing.err.begin(), missing.err.end(), '\n'), 1) << missing.err;

@@ -97,6 +97,7 @@ TEST(TextMesh, BadTextAndFontsAreClearErrors) {
   EXPECT_THROW(text("\xff"), InvalidInput);      // not UTF-8
   EXPECT_THROW(text("\xe2\x82"), InvalidInput);  // cut short
   EXPECT_THROW(text("\xf3\xa0\x80\x80"), InvalidInput);  // a character DejaVu does not have
+  EXPECT_THROW(text(std::string(10'001, 'x')), InvalidInput);
   TextOptions options;
   options.text = "DLA";
   options.font = "/nonexistent/font.ttf";

@@ -29,8 +29,8 @@ struct TextMesh {
 };
 
 //! Throws IOError if the font cannot be read, and InvalidInput for text with nothing to draw
-//! (empty, or only spaces), a character the font lacks, or a size or depth that is not
-//! positive and finite.
+//! (empty, or only spaces) or more than 10,000 characters, a character the font lacks, or a
+//! size or depth that is not positive and finite.
 TextMesh text_mesh(const TextOptions& options);
 
 }  // namespace dla

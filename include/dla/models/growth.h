@@ -197,6 +197,8 @@ class Aggregation {
 
   //! Every this many steps a walk looks at the stop flag: ~0.1-1 ms of walking.
   static constexpr std::uint64_t kStopCheckSteps = 4096;
+  // Walkers in a shell start afresh after this many steps, this many times at most.
+  static constexpr std::uint64_t kShellRestartSteps = 1'000'000, kMaxShellRestarts = 64;
 
   //! Calls `progress` after walker k's particle, every 256 particles and at the end; false
   //! when it asks to stop.
@@ -429,13 +431,23 @@ class Aggregation {
       ++stats.lost;
       if (++lost == max_lost)
         throw GrowthError("walker " + std::to_string(k + 1) + " had " + std::to_string(max_lost) +
-                          " steps refused at the shell's edge: the shell is too thin to move in");
+                          " steps refused at the shell's edge: the shell is too thin to move in, or walkers start "
+                          "in parts of it that the structure does not reach");
       reach = std::max(near_step_, 0.5 * reach);
     };
     for (;;) {
       if (reads) pause_.check();
       if (++steps % kStopCheckSteps == 0 && stop_ && stop_->load(std::memory_order_relaxed)) throw Stopped{};
       ++stats.steps;
+      // A shell's parts need not meet (around letters far apart): a walker that has not
+      // reached the structure in a million steps starts afresh.
+      if (shell != 0.0 && steps % kShellRestartSteps == 0) {
+        if (steps / kShellRestartSteps == kMaxShellRestarts)
+          throw GrowthError("walker " + std::to_string(k + 1) + " walked " + std::to_string(steps) +
+                            " steps in the shell without reaching the structure: parts of the shell do not meet it "
+                            "(seed each, or use a thicker shell)");
+        relaunch();
+      }
       const Vec3 offset = x - center;
       const double r2 = offset.squaredNorm();
       // Walkers put on the return sphere sit on it up to rounding: they count as inside. In a
