@@ -198,7 +198,7 @@ Vec3 MeshConstraint::draw_near_surface(Rng& rng) const {
   constexpr int max_draws = 1'000'000;
   for (int draw = 0; draw < max_draws; ++draw) {
     Vec3 normal;
-    const Vec3 p = beside(surface_point(rng, &normal), normal);
+    const Vec3 p = beside(surface_point(rng, &normal), normal, rng);
     if (p.allFinite()) return p;  // else a degenerate triangle
   }
   throw GrowthError("no start beside the mesh surface in a million draws");
@@ -272,8 +272,8 @@ std::string colors_used(const std::vector<Vec3>& colors) {
 
 }  // namespace
 
-Vec3 MeshConstraint::beside(const Vec3& s, const Vec3& normal) const {
-  if (!solid(options_.side)) return s + 0.5 * spacing_ * normal;  // either side grows
+Vec3 MeshConstraint::beside(const Vec3& s, const Vec3& normal, Rng& rng) const {
+  if (!solid(options_.side)) return s + (rng.uniform() < 0.5 ? 0.5 : -0.5) * spacing_ * normal;  // either side grows
   // The normal's orientation is not trusted: take whichever side is the growing one.
   for (const double side : {0.5, -0.5}) {
     const Vec3 p = s + side * spacing_ * normal;
@@ -331,7 +331,7 @@ std::vector<Vec3> MeshConstraint::sample_surface(std::uint64_t rng_seed, const P
     if (paint && !paint->matches((1 - u - v) * mesh_.colors[tri[0]] + u * mesh_.colors[tri[1]] + v * mesh_.colors[tri[2]]))
       continue;
     const Vec3 &a = mesh_.vertices[tri[0]], &b = mesh_.vertices[tri[1]], &c = mesh_.vertices[tri[2]];
-    darts.throw_at(beside(a + u * (b - a) + v * (c - a), (b - a).cross(c - a).normalized()));
+    darts.throw_at(beside(a + u * (b - a) + v * (c - a), (b - a).cross(c - a).normalized(), rng));
   }
   if (darts.points.empty())
     throw InvalidInput("the painted part of the mesh is too small for a seed at a spacing of " +
@@ -385,7 +385,7 @@ std::vector<Vec3> MeshConstraint::sample_intersection(const std::vector<Triangle
       u = 1.0 - u;
       v = 1.0 - v;
     }
-    darts.throw_at(beside(piece.a + u * (piece.b - piece.a) + v * (piece.c - piece.a), piece.normal));
+    darts.throw_at(beside(piece.a + u * (piece.b - piece.a) + v * (piece.c - piece.a), piece.normal, rng));
   }
   return std::move(darts.points);
 }

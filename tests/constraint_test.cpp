@@ -512,7 +512,7 @@ TEST(Constraint, ShellKeepsGrowthOverTheSurface) {
   o.particles = 1500;
   o.spacing = 0.5;
   o.spawn = SpawnMode::inside;
-  o.seeds = leaf.place_seeds(2, o.rng_seed);
+  o.seeds = {Vec3(-5, 0, 0.25), Vec3(5, 0, -0.25)};  // one on each side: branches cannot cross the sheet
   const Cluster frosted = grow(o, leaf);
   int above = 0, below = 0;
   for (const Particle& p : frosted.particles) {
@@ -522,6 +522,11 @@ TEST(Constraint, ShellKeepsGrowthOverTheSurface) {
   }
   EXPECT_GT(above, 100);
   EXPECT_GT(below, 100);
+  // Seeds placed on a surface that grows on both sides go to either side.
+  int up = 0;
+  for (const Vec3& seed : leaf.place_seeds(20, 3)) up += seed.z() > 0.0;
+  EXPECT_GT(up, 2);
+  EXPECT_LT(up, 18);
 }
 
 TEST(Constraint, FrostOverTheBust) {

@@ -134,8 +134,9 @@ class MeshConstraint {
 
  private:
   Vec3 surface_point(Rng& rng, Vec3* normal) const;
-  //! s moved half a spacing along ±normal to the growing side; not finite if neither side is.
-  Vec3 beside(const Vec3& s, const Vec3& normal) const;
+  //! s moved half a spacing along ±normal to the growing side (to either, at random, when both
+  //! grow); not finite if neither side is.
+  Vec3 beside(const Vec3& s, const Vec3& normal, Rng& rng) const;
   bool encloses(const Vec3& p) const;  // inside, by the grid where it can tell
   bool in_shell(const Vec3& p) const;  // exact: within the shell's thickness, on its side
 
