@@ -547,6 +547,20 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   CLI::App* analyze_command = app.add_subcommand(
       "analyze", "print the fractal dimension of a grown structure (by gyration and by mass-radius) as JSON");
   analyze_command->add_option("csv", line.analyze_csv, "a CSV that dla3d wrote")->required();
+  FramesCommand& fr = line.frames;
+  CLI::App* frames_command = app.add_subcommand(
+      "frames", "write the structure a CSV holds as it grew, K files of each format (PREFIX_0001.glb ...): "
+                "growth for tools without an age attribute (docs/animation.md)");
+  frames_command->get_formatter()->column_width(34);
+  frames_command->add_option("csv", fr.csv_path, "a CSV that dla3d wrote")->required();
+  long long frame_count = static_cast<long long>(fr.count);
+  frames_command->add_option("--count", frame_count, "frames, 1-100000: frame k of K holds the seeds and k/K of the "
+                                                     "other particles, in attach order")->capture_default_str();
+  FileWords frames_words;
+  frames_words.formats = "glb";
+  add_file_options(*frames_command, fr, frames_words);
+  frames_command->get_option("--output")->description("prefix of the files written, each PREFIX_NNNN.EXT; "
+                                                      "default: the CSV's, without .csv");
   app.require_subcommand(0, 1);
 
   std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them last first
@@ -698,6 +712,21 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   }
   if (analyze_command->parsed()) {
     line.kind = CommandLine::Kind::analyze;
+    return line;
+  }
+  if (frames_command->parsed()) {
+    line.kind = CommandLine::Kind::frames;
+    if (frame_count < 1 || frame_count > 100000)
+      throw InvalidInput("--count " + std::to_string(frame_count) + " is not a number of frames in 1-100000");
+    fr.count = static_cast<std::size_t>(frame_count);
+    if (!frames_command->count("--output")) {
+      fr.output = fr.csv_path;
+      if (fr.output.size() > 4 && fr.output.compare(fr.output.size() - 4, 4, ".csv") == 0) fr.output.resize(fr.output.size() - 4);
+    }
+    parse_file_words(fr, frames_words);
+    if (fr.formats.json) throw InvalidInput("--formats json: frames have no run to report; leave json out");
+    // svg and png need 2D growth, which only the CSV tells: frames() checks them.
+    check_file_options(fr, frames_words, 2, false);
     return line;
   }
   if (resume_option->count()) {

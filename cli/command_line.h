@@ -118,6 +118,13 @@ struct BallisticCommand : FileOptions {
   BallisticOptions options;
 };
 
+//! `dla3d frames PREFIX.csv --count K`: the structure a CSV holds as it grew, in K files of
+//! each format (PREFIX_0001.glb ...), for tools that cannot reveal growth by its age.
+struct FramesCommand : FileOptions {
+  std::string csv_path;
+  std::size_t count = 30;  //!< frames: frame k of K holds the seeds and k/K of the rest
+};
+
 //! What the command line asks for.
 struct CommandLine {
   enum class Kind {
@@ -129,6 +136,7 @@ struct CommandLine {
     resume,    //!< --resume FILE, with only -q and --threads beside it
     convert,   //!< dla3d convert IN OUT.stl
     analyze,   //!< dla3d analyze PREFIX.csv
+    frames,    //!< dla3d frames PREFIX.csv: `frames` holds the options
     print,     //!< --help or --version: `text` goes to stdout, exit 0
   };
   Kind kind = Kind::grow;
@@ -137,6 +145,7 @@ struct CommandLine {
   EdenCommand eden;
   DropCommand drop;
   BallisticCommand ballistic;
+  FramesCommand frames;
   std::string resume_path;
   bool threads_given = false;  //!< with --resume: grow.options.threads replaces the checkpoint's
   std::string convert_in, convert_out;

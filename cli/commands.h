@@ -44,6 +44,10 @@ int ballistic(const BallisticCommand& command, const std::vector<std::string>& a
 //! `dla3d convert IN OUT.stl`: the project's own mesh reading, to make bust.stl at setup.
 int convert(const std::string& in, const std::string& out, bool quiet);
 
+//! `dla3d frames PREFIX.csv --count K`: K files of each format, frame k holding the seeds and
+//! k/K of the other particles. Returns 0, or 128 + the signal when stopped between frames.
+int frames(const FramesCommand& command, const StopFlag& stop, const volatile std::sig_atomic_t& stop_signal);
+
 //! `dla3d analyze PREFIX.csv`: the fractal dimension of a grown structure, as JSON on stdout.
 int analyze(const std::string& path);
 

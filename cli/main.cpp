@@ -42,6 +42,9 @@ int run(const std::vector<std::string>& args) {
     case Kind::print: std::fputs(line.text.c_str(), stdout); return 0;
     case Kind::convert: return dla::cli::convert(line.convert_in, line.convert_out, line.grow.quiet);
     case Kind::analyze: return dla::cli::analyze(line.analyze_csv);
+    case Kind::frames:
+      catch_stop_signals();
+      return dla::cli::frames(line.frames, stop_requested, stop_signal);
     case Kind::grow: break;
     case Kind::colonize:
       catch_stop_signals();

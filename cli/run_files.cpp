@@ -51,7 +51,7 @@ std::vector<std::string> file_names(const FileOptions& files) {
   const Formats& f = files.formats;
   const std::string& o = files.output;
   std::vector<std::string> names;
-  if (f.pov) names.insert(names.end(), {o + ".pov", o + ".inc"});
+  if (f.pov) names.insert(names.end(), {o + ".pov", o + ".inc", o + "_growth.inc"});
   if (f.csv) names.push_back(o + ".csv");
   if (f.ply) names.push_back(o + ".ply");
   if (f.glb) names.push_back(o + ".glb");

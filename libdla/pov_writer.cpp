@@ -106,7 +106,11 @@ std::vector<Vec3> vertex_normals(const TriangleMesh& mesh) {
   return normals;
 }
 
-void write_mesh(detail::Text& out, const TriangleMesh& mesh, const SceneFrame& frame) {
+//! PREFIX_mesh.inc: DLA_Mesh, apart from the structure, which comes from PREFIX.inc or, in a
+//! growth frame, from PREFIX_growth.inc.
+void write_mesh(const TriangleMesh& mesh, const SceneFrame& frame, const std::string& path) {
+  detail::OutputFile out(path);
+  out << "// dla3d " << version << " constraint mesh: DLA_Mesh, shown by DLA_ShowMesh in the .pov.\n";
   out << "#declare DLA_Mesh = mesh2 {\n  vertex_vectors { ";
   out.integer(static_cast<long long>(mesh.vertices.size()));
   for (const Vec3& v : mesh.vertices) {
@@ -130,6 +134,7 @@ void write_mesh(detail::Text& out, const TriangleMesh& mesh, const SceneFrame& f
     out.integer(t[2]) << '>';
   }
   out << " }\n}\n";
+  out.commit();
 }
 
 //! Writes the arguments of DLA_R for particle i: its place along its strand, its subtree's
@@ -161,8 +166,8 @@ class RadiusArguments {
   const Attributes& attributes_;
 };
 
-void write_geometry(const Cluster& cluster, const TriangleMesh* mesh, const SceneFrame& frame, const Look& look,
-                    const PovOptions& options, const std::string& path) {
+void write_geometry(const Cluster& cluster, const SceneFrame& frame, const Look& look, const PovOptions& options,
+                    const std::string& path) {
   const auto& ps = cluster.particles;
   const RadiusArguments radius(cluster, look);
   const bool colored = look.options.color_by != ColorBy::none;
@@ -176,12 +181,10 @@ void write_geometry(const Cluster& cluster, const TriangleMesh* mesh, const Scen
   out << "// dla3d " << version << " geometry: ";
   out.integer(static_cast<long long>(ps.size())) << " particles in ";
   out.integer(static_cast<long long>(count_strands(cluster)))
-      << " strands.\n// Declares DLA_Structure" << (mesh ? " and DLA_Mesh" : "")
-      << "; uses DLA_R" << (options.style == PovStyle::blob ? ", DLA_BlobRadius" : "")
+      << " strands.\n// Declares DLA_Structure; uses DLA_R" << (options.style == PovStyle::blob ? ", DLA_BlobRadius" : "")
       << (colored ? " and DLA_Paint" : "") << " from the .pov.\n"
       << "// DLA_R(F, P, B, S): F the place along the strand (1 at its start, 0 at its tip), P the particles\n"
          "// in the subtree, B and S the distances to the mesh and to the seeds (1: the largest).\n";
-  if (mesh) write_mesh(out, *mesh, frame);
   if (options.style == PovStyle::blob) {
     out << "#declare DLA_Structure = blob {\n  threshold DLA_BlobThreshold\n";
     write_in_order(out, ps.size(), kChunk, detail::format_threads(), [&](detail::Text& text, std::size_t begin, std::size_t end) {
@@ -251,6 +254,163 @@ void write_geometry(const Cluster& cluster, const TriangleMesh* mesh, const Scen
   out.commit();
 }
 
+//! Writes `#declare NAME = array[n] {...}` with value(text, i) for each particle, eight a line.
+template <class Value>
+void write_array(detail::OutputFile& out, const char* name, std::size_t n, Value&& value) {
+  out << "#declare " << name << " = array[";
+  out.integer(static_cast<long long>(n)) << "] {";
+  write_in_order(out, n, kChunk, detail::format_threads(), [&](detail::Text& text, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (i > 0) text << ',';
+      if (i % 8 == 0) text << "\n  ";
+      else text << ' ';
+      value(text, i);
+    }
+  });
+  out << "\n}\n";
+}
+
+//! PREFIX_growth.inc, read instead of PREFIX.inc when DLA_Show < 1: the tree as arrays, and the
+//! scene code that builds DLA_Structure from its first DLA_N particles. The attributes the
+//! radius depends on (the subtrees, the strands and the places along them) are those of the
+//! structure at that moment, by the rules compute_attributes() follows, so a branch thickens as
+//! it grows if the radius model says so; the distances to the mesh and the seeds, which do not
+//! change, keep the finished structure's scale.
+void write_growth(const Cluster& cluster, const SceneFrame& frame, const Look& look, const PovOptions& options,
+                  const std::string& path) {
+  const auto& ps = cluster.particles;
+  const Attributes& a = look.attributes;
+  const bool colored = look.options.color_by != ColorBy::none, boundary = a.boundary_reach > 0;
+  const ColorScale color(cluster, a, look.options.color_by);
+  detail::OutputFile out(path);
+  out << "// dla3d " << version << " growth: the tree, from which DLA_Structure is built as it was when a\n"
+         "// fraction DLA_Show of the particles had attached. Read by the .pov when DLA_Show < 1.\n"
+         "#declare DLA_GrowthParticles = ";
+  out.integer(static_cast<long long>(ps.size())) << ";\n#declare DLA_GrowthSeeds = ";
+  out.integer(static_cast<long long>(cluster.seed_count)) << ";\n";
+  write_array(out, "DLA_Position", ps.size(), [&](detail::Text& text, std::size_t i) { vector(text, ps[i].position, frame); });
+  write_array(out, "DLA_Parent", ps.size(), [&](detail::Text& text, std::size_t i) { text.integer(ps[i].parent); });
+  if (boundary)
+    write_array(out, "DLA_Boundary", ps.size(), [&](detail::Text& text, std::size_t i) {
+      text.fixed(a.boundary_distance[i] / a.boundary_reach, 3);
+    });
+  write_array(out, "DLA_SeedDistance", ps.size(), [&](detail::Text& text, std::size_t i) {
+    text.fixed(a.seed_reach > 0 ? a.seed_distance(ps[i].position) / a.seed_reach : 0.0, 3);
+  });
+  if (colored) write_array(out, "DLA_Value", ps.size(), [&](detail::Text& text, std::size_t i) { text.fixed(color(i), 4); });
+
+  const auto radius = [&](const char* i) {
+    return std::string("DLA_R(DLA_Place[") + i + "], DLA_Descendants[" + i + "] + 1, " +
+           (boundary ? std::string("DLA_Boundary[") + i + "]" : std::string("0")) + ", DLA_SeedDistance[" + i + "])";
+  };
+  const auto paint = [&](const char* i) {
+    return colored ? std::string(" texture { DLA_Paint(DLA_Value[") + i + "]) }" : std::string();
+  };
+  out << "\n// The attributes of the first DLA_N particles, by dla3d's rules (docs/look.md): the particles\n"
+         "// in each subtree; at a branch point the strand goes on into the child with the largest subtree\n"
+         "// (ties: the earliest); each particle's place along its strand, 1 at its start and 0 at its tip.\n"
+         "#declare DLA_N = DLA_GrowthSeeds + floor(min(max(DLA_Show, 0), 1) * (DLA_GrowthParticles - DLA_GrowthSeeds) + 0.5);\n"
+         "#declare DLA_Descendants = array[DLA_N];\n"
+         "#declare DLA_Heavy = array[DLA_N];\n"
+         "#declare DLA_Step = array[DLA_N];\n"
+         "#declare DLA_Place = array[DLA_N];\n"
+         "#for (DLA_I, 0, DLA_N - 1)\n"
+         "  #declare DLA_Descendants[DLA_I] = 0;\n"
+         "  #declare DLA_Heavy[DLA_I] = -1;\n"
+         "  #declare DLA_Step[DLA_I] = 0;\n"
+         "#end\n"
+         "#for (DLA_I, DLA_N - 1, 0, -1)\n"
+         "  #declare DLA_P = DLA_Parent[DLA_I];\n"
+         "  #if (DLA_P >= 0) #declare DLA_Descendants[DLA_P] = DLA_Descendants[DLA_P] + DLA_Descendants[DLA_I] + 1; #end\n"
+         "#end\n"
+         "#for (DLA_I, 0, DLA_N - 1)\n"
+         "  #declare DLA_P = DLA_Parent[DLA_I];\n"
+         "  #if (DLA_P >= 0)\n"
+         "    #if (DLA_Heavy[DLA_P] < 0)\n"
+         "      #declare DLA_Heavy[DLA_P] = DLA_I;\n"
+         "    #elseif (DLA_Descendants[DLA_I] > DLA_Descendants[DLA_Heavy[DLA_P]])\n"
+         "      #declare DLA_Heavy[DLA_P] = DLA_I;\n"
+         "    #end\n"
+         "  #end\n"
+         "#end\n"
+         "// DLA_Step: first the particles after each one to its strand's tip, then its own place.\n"
+         "#for (DLA_I, DLA_N - 1, 0, -1)\n"
+         "  #declare DLA_P = DLA_Parent[DLA_I];\n"
+         "  #if (DLA_P >= 0) #if (DLA_Heavy[DLA_P] = DLA_I) #declare DLA_Step[DLA_P] = DLA_Step[DLA_I] + 1; #end #end\n"
+         "#end\n"
+         "#for (DLA_I, 0, DLA_N - 1)\n"
+         "  #declare DLA_P = DLA_Parent[DLA_I];\n"
+         "  #declare DLA_K = 0;\n"
+         "  #if (DLA_P >= 0) #declare DLA_K = (DLA_Heavy[DLA_P] = DLA_I ? DLA_Step[DLA_P] + 1 : 1); #end\n"
+         "  #declare DLA_End = DLA_K + DLA_Step[DLA_I];\n"
+         "  #declare DLA_Step[DLA_I] = DLA_K;\n"
+         "  #declare DLA_Place[DLA_I] = (DLA_End > 0 ? 1 - DLA_K / DLA_End : 1);\n"
+         "#end\n\n";
+  if (options.style == PovStyle::blob) {
+    out << "#declare DLA_Structure = blob {\n"
+           "  threshold DLA_BlobThreshold\n"
+           "  #for (DLA_I, 0, DLA_N - 1)\n"
+           "    sphere { DLA_Position[DLA_I], DLA_BlobRadius(" << radius("DLA_I") << "), 1" << paint("DLA_I") << " }\n"
+           "  #end\n"
+           "}\n";
+  } else {
+    out << "// A sphere at each seed, and a sphere_sweep along each strand, from its tip up to its start:\n"
+           "// a strand leaving a branch point starts there, inside its parent's branch.\n"
+           "#declare DLA_Structure = union {\n"
+           "  #for (DLA_I, 0, DLA_GrowthSeeds - 1)\n"
+           "    sphere { DLA_Position[DLA_I], " << radius("DLA_I") << paint("DLA_I") << " }\n"
+           "  #end\n"
+           "  #for (DLA_T, DLA_GrowthSeeds, DLA_N - 1)\n"
+           "    #if (DLA_Descendants[DLA_T] = 0)\n"
+           "      #declare DLA_J = DLA_T;\n"
+           "      #declare DLA_Count = 1;\n"
+           "      #declare DLA_Up = true;\n"
+           "      #while (DLA_Up)\n"
+           "        #declare DLA_Up = false;\n"
+           "        #declare DLA_P = DLA_Parent[DLA_J];\n"
+           "        #if (DLA_P >= 0) #if (DLA_Heavy[DLA_P] = DLA_J)\n"
+           "          #declare DLA_J = DLA_P;\n"
+           "          #declare DLA_Count = DLA_Count + 1;\n"
+           "          #declare DLA_Up = true;\n"
+           "        #end #end\n"
+           "      #end\n"
+           "      #declare DLA_P = DLA_Parent[DLA_J];\n"
+           "      sphere_sweep { linear_spline, DLA_Count + (DLA_P >= 0 ? 1 : 0)\n"
+           "        #declare DLA_I = DLA_T;\n"
+           "        #while (DLA_I != DLA_J)\n"
+           "          , DLA_Position[DLA_I], " << radius("DLA_I") << "\n"
+           "          #declare DLA_I = DLA_Parent[DLA_I];\n"
+           "        #end\n"
+           "        , DLA_Position[DLA_J], " << radius("DLA_J") << "\n"
+           "        #if (DLA_P >= 0) , DLA_Position[DLA_P], min(" << radius("DLA_P") << ", " << radius("DLA_J") << ") #end\n"
+           "       " << paint("DLA_J") << "\n"
+           "      }\n"
+           "    #end\n"
+           "  #end\n"
+           "}\n";
+  }
+  // The finished structure's tips have their no-overlap scale in PREFIX_tips.inc; the tips of
+  // a moment get half a spacing.
+  out << "\n// DLA_Tip at the tips of the moment, each with a scale of half a spacing.\n"
+         "#if (DLA_ShowTips)\n"
+         "  #declare DLA_TipCount = 0;\n"
+         "  #for (DLA_T, DLA_GrowthSeeds, DLA_N - 1)\n"
+         "    #if (DLA_Descendants[DLA_T] = 0) #declare DLA_TipCount = DLA_TipCount + 1; #end\n"
+         "  #end\n"
+         "  #if (DLA_TipCount > 0)\n"
+         "    #declare DLA_Tips = #if (DLA_TipCount > 1) union #else object #end {\n"
+         "      #for (DLA_T, DLA_GrowthSeeds, DLA_N - 1)\n"
+         "        #if (DLA_Descendants[DLA_T] = 0)\n"
+         "          DLA_Tip(DLA_Position[DLA_T], vnormalize(DLA_Position[DLA_T] - DLA_Position[DLA_Parent[DLA_T]]), ";
+  out.number(0.5 * cluster.spacing * frame.scale, 7) << ")\n"
+         "        #end\n"
+         "      #end\n"
+         "    }\n"
+         "  #end\n"
+         "#end\n";
+  out.commit();
+}
+
 //! PREFIX_tips.inc: DLA_TipCount, and DLA_Tips, a DLA_Tip call at every tip with the largest
 //! scale at which copies do not overlap (instances.h). Each range of particles starts at its
 //! first tip's gap.
@@ -312,7 +472,10 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
   const std::string include = prefix + ".inc";
   const auto [center, extent] = bounding_sphere(cluster, mesh);
   const SceneFrame frame = scene_frame(cluster.spacing, center);
-  write_geometry(cluster, mesh, frame, used, options, include);
+  write_geometry(cluster, frame, used, options, include);
+  const std::string growth = prefix + "_growth.inc", mesh_include = prefix + "_mesh.inc";
+  write_growth(cluster, frame, used, options, growth);
+  if (mesh) write_mesh(*mesh, frame, mesh_include);
   const std::string tips = prefix + "_tips.inc";
   if (options.tips) write_tips(cluster, frame, used, tips);
 
@@ -324,7 +487,10 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
   out.integer(static_cast<long long>(cluster.particles.size()))
       << " particles. Render with: povray +W1280 +H960 +A " << comment_text(file_name(prefix)) << ".pov\n";
   out << "#version 3.7;\n"
-         "global_settings { assumed_gamma 1.0 }\n\n";
+         "global_settings { assumed_gamma 1.0 }\n\n"
+         "// Growth: the structure as it was when this fraction of its particles had attached. An\n"
+         "// animation follows the clock from 0 to 1: povray +KFF60 renders 60 frames of growth.\n"
+         "#ifndef (DLA_Show) #declare DLA_Show = (clock_on ? clock : 1); #end\n\n";
   if (!frame.identity()) {
     // POV-Ray's fixed epsilons: the scene is in other units than the CSV and PLY.
     out << "// Scene units: POV-Ray works best near a unit of 1, so the coordinates here are the\n"
@@ -429,16 +595,22 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
          "}\n"
          "light_source { DLA_Center + 3 * DLA_Distance * <-0.6, 1.0, -0.8> color rgb 1.0 }\n"
          "light_source { DLA_Center + 3 * DLA_Distance * <0.8, 0.3, -0.4> color rgb 0.3 shadowless }\n\n"
-         "#include \""
-      << file_name(include) << "\"\nobject { DLA_Structure texture { DLA_Texture } }\n";
+         "#if (DLA_Show < 1)\n"
+         "  #include \"" << file_name(growth) << "\"  // the structure (and tips) at DLA_Show\n"
+         "#else\n"
+         "  #include \"" << file_name(include) << "\"\n";
   // POV-Ray skips what #if leaves out: the tips are read only when shown.
   if (options.tips)
-    out << "#if (DLA_ShowTips)\n  #include \"" << file_name(tips) << "\"\n"
-        << "  #if (DLA_TipCount > 0) object { DLA_Tips texture { DLA_TipTexture } } #end\n#end\n";
+    out << "  #if (DLA_ShowTips) #include \"" << file_name(tips) << "\" #end\n";
   else
-    out << "#if (DLA_ShowTips) #error \"DLA_ShowTips needs " << file_name(tips)
+    out << "  #if (DLA_ShowTips) #error \"DLA_ShowTips needs " << file_name(tips)
         << ": grow again with tips in dla3d's --formats\" #end\n";
-  if (mesh) out << "#if (DLA_ShowMesh) object { DLA_Mesh texture { DLA_MeshTexture } no_shadow } #end\n";
+  out << "#end\n"
+         "object { DLA_Structure texture { DLA_Texture } }\n"
+         "#if (DLA_ShowTips) #if (DLA_TipCount > 0) object { DLA_Tips texture { DLA_TipTexture } } #end #end\n";
+  if (mesh)
+    out << "#if (DLA_ShowMesh)\n  #include \"" << file_name(mesh_include) << "\"\n"
+        << "  object { DLA_Mesh texture { DLA_MeshTexture } no_shadow }\n#end\n";
   out.commit();
 }
 

@@ -21,6 +21,7 @@
 #include "test_util.h"
 
 #include "dla/io/checkpoint.h"
+#include "dla/io/csv_writer.h"
 #include "dla/models/growth.h"
 #include "dla/mesh/mesh.h"
 #include "dla/mesh/shapes.h"
@@ -199,6 +200,15 @@ const std::map<std::string, std::vector<std::string>>& ballistic_table() {
   return table;
 }
 
+//! `dla3d frames`' own option, drawn as the table's; its Output and Look options are the
+//! table's.
+const std::map<std::string, std::vector<std::string>>& frames_table() {
+  static const std::map<std::string, std::vector<std::string>> table = {
+      {"--count", {"3", "1", "0", "100001", "-2", "x", "2.5"}},
+  };
+  return table;
+}
+
 //! The long option names `dla3d [colonize] --help` lists.
 std::set<std::string> options_of_help(const ScratchDir& dir, const std::string& subcommand = "") {
   const std::string command = "cd '" + dir.path().string() + "' && '" DLA3D_PATH "' " + subcommand + " --help > help.txt";
@@ -232,6 +242,7 @@ void make_inputs(const ScratchDir& dir) {
   GrowthOptions o;
   o.particles = 60;
   Cluster part = grow(o);
+  write_csv(part, dir / "grown.csv");  // for dla3d frames
   part.complete = false;
   write_checkpoint({{"-n", "120", "-q", "-o", "resumed"}, 0, part}, dir / "saved.ck");
 }
@@ -411,14 +422,43 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
     if (tips.find("#declare DLA_TipCount = ") == std::string::npos || !balanced(tips, '{', '}'))
       return prefix + "_tips.inc does not declare its tips";
   }
-  if (!balanced(inc, '{', '}') || !balanced(pov, '{', '}')) return "the POV-Ray files' braces do not pair";
+  if (pov.find("#include \"" + name + "_growth.inc\"") == std::string::npos)
+    return prefix + ".pov does not include its _growth.inc";
+  if (!balanced(inc, '{', '}') || !balanced(pov, '{', '}') ||
+      !balanced(read_file(dir / (prefix + "_growth.inc")), '{', '}'))
+    return "the POV-Ray files' braces do not pair";
   // POV-Ray's command line does not take every file name: the scene is copied to a plain one.
   const std::filesystem::path folder = dir.path() / std::filesystem::path(prefix).parent_path();
   std::filesystem::copy_file(folder / (name + ".pov"), folder / "render_scene.pov");
   const std::string render = "cd '" + folder.string() + "' && '" + std::string(POVRAY_PATH) +
                              "' +Irender_scene.pov +Orender.png +W32 +H24 -D -V > povray.log 2>&1";
-  if (std::string(POVRAY_PATH).find("NOTFOUND") == std::string::npos && std::system(render.c_str()) != 0)
-    return "POV-Ray cannot render " + prefix + ".pov: " + read_file((folder / "povray.log").string());
+  if (std::string(POVRAY_PATH).find("NOTFOUND") == std::string::npos) {
+    if (std::system(render.c_str()) != 0)
+      return "POV-Ray cannot render " + prefix + ".pov: " + read_file((folder / "povray.log").string());
+    // A frame of growth: the scene's own code builds it from PREFIX_growth.inc.
+    const std::string growth = "cd '" + folder.string() + "' && '" + std::string(POVRAY_PATH) +
+                               "' +Irender_scene.pov +Ogrowth.png +W32 +H24 -D -V Declare=DLA_Show=0.5 > povray.log 2>&1";
+    if (std::system(growth.c_str()) != 0)
+      return "POV-Ray cannot render half the growth of " + prefix + ".pov: " + read_file((folder / "povray.log").string());
+  }
+  return "";
+}
+
+//! Checks the files of a `dla3d frames` run that exited 0: `count` of each of `formats`,
+//! numbered from PREFIX_0001, none empty; returns what is wrong.
+std::string check_frames(const ScratchDir& dir, const std::string& prefix, std::size_t count, const std::string& formats) {
+  const std::map<std::string, std::vector<std::string>> endings = {
+      {"pov", {".pov", ".inc", "_growth.inc"}}, {"csv", {".csv"}}, {"ply", {".ply"}}, {"glb", {".glb"}},
+      {"obj", {".obj"}}, {"tips", {"_tips.ply"}}, {"svg", {".svg"}}, {"png", {".png"}}};
+  std::istringstream words(formats);
+  std::string format;
+  while (std::getline(words, format, ','))
+    for (std::size_t k = 1; k <= count; ++k)
+      for (const std::string& ending : endings.at(format)) {
+        std::string number = std::to_string(k);
+        number.insert(0, std::max<std::size_t>(4, std::to_string(count).size()) - number.size(), '0');
+        if (read_file(dir / (prefix + "_" + number + ending)).empty()) return prefix + "_" + number + ending + " is missing";
+      }
   return "";
 }
 
@@ -441,6 +481,9 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
   for (const std::string& name : options_of_help(root, "ballistic"))
     EXPECT_TRUE(ballistic_table().count(name) || option_table().count(name))
         << name << " is in dla3d ballistic --help but not in the property test's tables";
+  for (const std::string& name : options_of_help(root, "frames"))
+    EXPECT_TRUE(frames_table().count(name) || option_table().count(name))
+        << name << " is in dla3d frames --help but not in the property test's tables";
   // What the other models share with DLA: the Output and Look options (and help).
   const std::vector<const char*> shared = {"--output", "--ply-format", "--formats", "--png-scale", "--png-bands", "--radius", "--base-radius",
                                            "--tip-radius", "--pipe-exponent", "--color-by", "--look", "--tube-sides",
@@ -452,7 +495,7 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
     return model_flags;
   };
   const std::vector<std::string> eden_flags = flags_of(eden_table()), drop_flags = flags_of(drop_table()),
-                                 ballistic_flags = flags_of(ballistic_table());
+                                 ballistic_flags = flags_of(ballistic_table()), frames_flags = flags_of(frames_table());
   colonize_flags.insert(colonize_flags.end(), shared.begin(), shared.end());
   // A model's own table, else the shared options' values in DLA's.
   const auto values_of = [&](const std::string& flag, const std::map<std::string, std::vector<std::string>>* table)
@@ -469,19 +512,22 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
   std::map<int, int> exits;
   for (int run = 0; run < runs; ++run) {
     // A few options, mostly valid values: an invalid one ends most runs at once. One run in
-    // four is space colonization, one in eight Eden growth, one in sixteen random drops and one
-    // in sixteen ballistic aggregation.
+    // four is space colonization, one in eight Eden growth, one in sixteen random drops, one
+    // in sixteen ballistic aggregation and one in sixteen the frames of a grown CSV.
     const std::size_t model = pick(16);
-    const bool colonizing = model < 4, eden = model == 4 || model == 5, dropping = model == 6, flying = model == 7;
+    const bool colonizing = model < 4, eden = model == 4 || model == 5, dropping = model == 6, flying = model == 7,
+               framing = model == 8;
     const std::map<std::string, std::vector<std::string>>* table = colonizing ? &colonize_table()
                                                                   : eden      ? &eden_table()
                                                                   : dropping  ? &drop_table()
                                                                   : flying    ? &ballistic_table()
+                                                                  : framing   ? &frames_table()
                                                                               : nullptr;
     const std::vector<std::string>& model_flags = colonizing ? colonize_flags
                                                   : eden     ? eden_flags
                                                   : dropping ? drop_flags
                                                   : flying   ? ballistic_flags
+                                                  : framing  ? frames_flags
                                                              : flags;
     std::string args;
     bool particles_given = false, output_given = false;
@@ -498,7 +544,9 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
       output_given = output_given || flag == "--output";
     }
     // A resume takes no -n: leave it alone so that some resumes are valid.
-    if (!particles_given && args.find("--resume") == std::string::npos) args = " -n " + std::to_string(20 + pick(150)) + args;
+    if (!particles_given && !framing && args.find("--resume") == std::string::npos)
+      args = " -n " + std::to_string(20 + pick(150)) + args;
+    if (framing) args = " frames " + std::string(pick(8) == 0 ? "out.csv" : "grown.csv") + args;
     if (colonizing) {
       if (args.find("--attractors ") == std::string::npos) args = " --attractors " + std::to_string(50 + pick(1000)) + args;
       args = " colonize" + args;
@@ -512,7 +560,7 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
     make_inputs(dir);
     std::filesystem::create_directory(dir.path() / "dir");
     const std::set<std::string> inputs = {"ball.stl",   "box.off",  "noise.stl", "out.csv",  "points.csv", "paint.ply",
-                                          "points.ply", "saved.ck", "mask.txt",  "rod.stl", "dir"};
+                                          "points.ply", "saved.ck", "mask.txt",  "rod.stl", "dir",  "grown.csv"};
     // The bound: far above what any of these takes (under the sanitizers too); `timeout`
     // kills a hang with 137 and the assertion below names the command.
     const testing::CliRun result = testing::dla3d(dir, command, "timeout -s KILL 120");
@@ -530,12 +578,17 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
     switch (result.exit_code) {
       case 0: {
         if (command.find("--help") != std::string::npos || command.find("--version") != std::string::npos) break;
-        std::string prefix = command.find("--resume saved.ck") != std::string::npos ? "resumed" : "dla";
+        std::string prefix = command.find("--resume saved.ck") != std::string::npos ? "resumed" : framing ? "grown" : "dla";
         if (output_given) {
           const std::size_t at = command.rfind("--output ");
           std::string value = command.substr(at + 9, command.find(" -", at + 9) - at - 9);
           if (value.front() == '\'') value = value.substr(1, value.size() - 2);
           if (prefix != "resumed") prefix = value;
+        }
+        if (framing) {
+          ASSERT_EQ(check_frames(dir, prefix, std::stoul(last_value(command, "--count", "30")),
+                                 last_value(command, "--formats", "glb")), "");
+          break;
         }
         ASSERT_EQ(check_files(dir, prefix, last_value(command, "--formats", "pov,csv,ply,json")), "");
         break;

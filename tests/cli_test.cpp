@@ -94,13 +94,14 @@ TEST(Cli, GrowsInAMeshWithAHoleAndConvertsIt) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   EXPECT_NE(run.err.find("box.stl: 10 triangles; merged"), std::string::npos) << run.err;
   EXPECT_NE(run.err.find("closed 1 hole"), std::string::npos) << run.err;
-  EXPECT_NE(read_file(dir / "in.inc").find("DLA_Mesh = mesh2"), std::string::npos);
+  EXPECT_NE(read_file(dir / "in_mesh.inc").find("DLA_Mesh = mesh2"), std::string::npos);
   const std::string json = read_file(dir / "in.json");
   EXPECT_NE(json.find("\"side\": \"inside\""), std::string::npos) << json;
   EXPECT_NE(json.find("\"spawn\": \"surface\""), std::string::npos) << json;
   ASSERT_EQ(dla3d(dir, "--stl box.stl --seeds 2 -n 800 -o again --spacing 0.5 -q --no-scene-mesh").exit_code, 0);
   EXPECT_EQ(read_file(dir / "in.csv"), read_file(dir / "again.csv"));
-  EXPECT_EQ(read_file(dir / "again.inc").find("mesh2"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir / "again_mesh.inc"));
+  EXPECT_EQ(read_file(dir / "again.pov").find("DLA_Mesh"), std::string::npos);
 }
 
 TEST(Cli, TheMainJobGrowsTwoSeedsInTheBust) {
@@ -384,6 +385,42 @@ TEST(Cli, AnalyzeMeasuresAGrownStructure) {
   EXPECT_NE(bad.err.find("is not a dla3d CSV"), std::string::npos) << bad.err;
 }
 
+// dla3d frames: K numbered files of each format, frame k the seeds and the first k/K of the
+// rest in attach order; the last is the whole structure, byte for byte in the CSV.
+TEST(Cli, FramesWriteTheStructureAsItGrew) {
+  ScratchDir dir;
+  ASSERT_EQ(dla3d(dir, "-n 500 -q -o grown --formats csv,glb --seed-at 0,0,0 --seed-at 30,0,0").exit_code, 0);
+  const CliRun run = dla3d(dir, "frames grown.csv --count 4 --formats csv,ply,glb");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("wrote 4 frames of growth, grown_0001.* to grown_0004.*"), std::string::npos) << run.err;
+  const dla::Cluster whole = dla::read_csv(dir / "grown.csv");
+  for (int k = 1; k <= 4; ++k) {
+    SCOPED_TRACE(k);
+    const std::string frame = "grown_000" + std::to_string(k);
+    for (const char* ext : {".ply", ".glb"}) EXPECT_FALSE(read_file(dir / (frame + ext)).empty()) << ext;
+    const dla::Cluster part = dla::read_csv(dir / (frame + ".csv"));
+    ASSERT_EQ(part.particles.size(), 2u + 500u * k / 4);
+    EXPECT_EQ(part.seed_count, 2u);
+    for (std::size_t i = 0; i < part.particles.size(); ++i) {
+      EXPECT_EQ(part.particles[i].position, whole.particles[i].position);
+      EXPECT_EQ(part.particles[i].parent, whole.particles[i].parent);
+    }
+  }
+  EXPECT_EQ(read_file(dir / "grown_0004.csv"), read_file(dir / "grown.csv"));
+  EXPECT_EQ(read_file(dir / "grown_0004.glb"), read_file(dir / "grown.glb"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "grown_0005.csv"));
+  // -o names them; glb by default.
+  ASSERT_EQ(dla3d(dir, "frames grown.csv --count 2 -o film -q").exit_code, 0);
+  EXPECT_FALSE(read_file(dir / "film_0002.glb").empty());
+  EXPECT_FALSE(std::filesystem::exists(dir / "film_0001.csv"));
+  for (const char* bad : {"frames grown.csv --count 0", "frames grown.csv --formats json", "frames grown.csv --formats svg",
+                          "frames grown.csv --radius boundary", "frames"}) {
+    const CliRun refused = dla3d(dir, bad);
+    EXPECT_EQ(refused.exit_code, 2) << bad;
+    EXPECT_EQ(refused.err.rfind("dla3d: error: ", 0), 0u) << refused.err;
+  }
+}
+
 TEST(Cli, HelpAndVersion) {
   ScratchDir dir;
   EXPECT_EQ(dla3d(dir, "--help").exit_code, 0);
@@ -481,7 +518,7 @@ TEST(Cli, ColonizeGrowsInAVesselAndReadsItsAttractorsFromAFile) {
   for (const dla::Particle& p : tree.particles)
     ASSERT_TRUE((p.position.array() > lo.array()).all() && (p.position.array() < hi.array()).all());
   EXPECT_NE(read_file(dir / "vessel.json").find("\"vessel\": \"box.stl\""), std::string::npos);
-  EXPECT_NE(read_file(dir / "vessel.inc").find("DLA_Mesh"), std::string::npos) << "the vessel shows in the scene";
+  EXPECT_NE(read_file(dir / "vessel_mesh.inc").find("DLA_Mesh"), std::string::npos) << "the vessel shows in the scene";
 
   // dla3d's own CSV as attractors, a sample of 300; the root is the lowest of them.
   ASSERT_EQ(dla3d(dir, "colonize -q -o again --attractors-from vessel.csv --attractors 300").exit_code, 0);

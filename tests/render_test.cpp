@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <cstdlib>
@@ -22,6 +23,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <vector>
 
 namespace dla {
 namespace {
@@ -63,6 +65,37 @@ Image read_ppm(const std::string& path) {
   return image;
 }
 
+// Runs POV-Ray on dir/scene.pov at 160x120 with `options`, into scene.ppm (or, animated,
+// sceneN.ppm); a failure that shows its log when it fails.
+bool run_povray(const ScratchDir& dir, const std::string& options) {
+  const std::string command = "cd '" + dir.path().string() + "' && '" + std::string(POVRAY_PATH) +
+                              "' +Iscene.pov +Oscene.ppm +FP +W160 +H120 -D -V " + options + " > povray.log 2>&1";
+  if (std::system(command.c_str()) == 0) return true;
+  ADD_FAILURE() << read_file(dir / "povray.log");
+  return false;
+}
+
+// Renders dir/scene.pov (run_povray); an empty image when it fails.
+Image render(const ScratchDir& dir, const std::string& options) {
+  if (!run_povray(dir, options)) return {};
+  Image image = read_ppm(dir / "scene.ppm");
+  if (image.width != 160) ADD_FAILURE() << "no image: " << read_file(dir / "povray.log");
+  return image;
+}
+
+// Which pixels differ from the background (the top left corner's colour).
+std::vector<bool> structure_pixels(const Image& image) {
+  std::vector<bool> lit(static_cast<std::size_t>(image.width) * image.height, false);
+  if (image.width == 0) return lit;
+  const std::array<int, 3> background = image.at(0, 0);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const std::array<int, 3> p = image.at(x, y);
+      lit[static_cast<std::size_t>(y) * image.width + x] = p != background;
+    }
+  return lit;
+}
+
 // Writes the scene, applies `edit` to the .pov (a user's change to a switch), renders it at
 // 160x120 and checks what it shows; returns the number of pixels of structure.
 int expect_framed_render(const Cluster& cluster, const ScratchDir& dir, const TriangleMesh* mesh = nullptr,
@@ -79,17 +112,8 @@ int expect_framed_render(const Cluster& cluster, const ScratchDir& dir, const Tr
     edit(pov);
     std::ofstream(dir / "scene.pov") << pov;
   }
-  const std::string command = "cd '" + dir.path().string() + "' && '" + povray +
-                              "' +Iscene.pov +Oscene.ppm +FP +W160 +H120 -D -V +A0.3 > povray.log 2>&1";
-  if (std::system(command.c_str()) != 0) {
-    ADD_FAILURE() << read_file(dir / "povray.log");
-    return 0;
-  }
-  const Image image = read_ppm(dir / "scene.ppm");
-  if (image.width != 160) {
-    ADD_FAILURE() << "no image: " << read_file(dir / "povray.log");
-    return 0;
-  }
+  const Image image = render(dir, "+A0.3");
+  if (image.width != 160) return 0;
 
   const std::array<int, 3> background = image.at(0, 0);
   int lit = 0, x0 = image.width, x1 = -1, y0 = image.height, y1 = -1;
@@ -190,6 +214,77 @@ TEST(Render, PovRayShowsTheStructure3D) {
   GrowthOptions o;
   o.particles = 1500;
   expect_framed_render(grow(o), dir);
+}
+
+// DLA_Show renders the structure as it was part way: at a quarter, fewer pixels of structure.
+// Under the pipe model, whose radii only grow with the subtrees, each of them is structure in
+// the finished picture too. (The taper's radius is relative to its strand: a side branch that
+// later becomes the main line's end gets finer.) Just short of 1 the scene is built from
+// PREFIX_growth.inc by the scene's own code, and shows what PREFIX.inc does, up to rounding.
+TEST(Render, GrowthFramesShowTheStructureAsItGrew) {
+  GrowthOptions o;
+  o.particles = 2000;
+  const Cluster c = grow(o);
+  const auto count = [](const std::vector<bool>& pixels) { return std::count(pixels.begin(), pixels.end(), true); };
+  for (const char* model : {"taper", "pipe"}) {
+    SCOPED_TRACE(model);
+    std::map<std::string, std::vector<bool>> lit;
+    for (const char* show : {"0.25", "0.99999", "1"}) {
+      ScratchDir dir;
+      write_pov(c, dir / "scene");
+      std::string pov = read_file(dir / "scene.pov");
+      set("DLA_Show", show)(pov);
+      set("DLA_RadiusModel", std::string("\"") + model + "\"")(pov);
+      std::ofstream(dir / "scene.pov") << pov;
+      lit[show] = structure_pixels(render(dir, "-A"));
+    }
+    std::size_t early_only = 0, differ = 0;
+    for (std::size_t i = 0; i < lit["1"].size(); ++i) {
+      early_only += lit["0.25"][i] && !lit["1"][i];
+      differ += lit["0.99999"][i] != lit["1"][i];
+    }
+    EXPECT_GT(count(lit["0.25"]), 100);
+    EXPECT_LT(count(lit["0.25"]), count(lit["1"]) * 3 / 4);
+    if (std::string(model) == "pipe") {
+      EXPECT_EQ(early_only, 0u);
+    }
+    EXPECT_LT(differ, lit["1"].size() / 500) << "PREFIX_growth.inc draws what PREFIX.inc does";
+  }
+}
+
+// An animation follows the clock: three frames, each with more structure than the one before;
+// every radius model, the blob look and the tips of the moment render part way.
+TEST(Render, AnAnimationRendersGrowth) {
+  GrowthOptions o;
+  o.particles = 1500;
+  const Cluster c = grow(o);
+  {
+    ScratchDir dir;
+    write_pov(c, dir / "scene");
+    ASSERT_TRUE(run_povray(dir, "-A +KFF3"));
+    std::vector<long> lit;
+    for (const char* frame : {"scene1.ppm", "scene2.ppm", "scene3.ppm"}) {
+      const std::vector<bool> pixels = structure_pixels(read_ppm(dir / frame));
+      lit.push_back(std::count(pixels.begin(), pixels.end(), true));
+    }
+    EXPECT_LT(lit[0], lit[1]);
+    EXPECT_LT(lit[1], lit[2]);
+  }
+  for (const char* model : {"taper", "pipe", "seed-distance", "uniform"}) {
+    SCOPED_TRACE(model);
+    ScratchDir dir;
+    PovOptions options;
+    options.tips = true;
+    expect_framed_render(c, dir, nullptr, options, nullptr, [&](std::string& pov) {
+      set("DLA_RadiusModel", std::string("\"") + model + "\"")(pov);
+      set("DLA_Show", "0.6")(pov);
+      set("DLA_ShowTips", "on")(pov);
+    });
+  }
+  ScratchDir dir;
+  PovOptions blob;
+  blob.style = PovStyle::blob;
+  expect_framed_render(c, dir, nullptr, blob, nullptr, set("DLA_Show", "0.6"));
 }
 
 TEST(Render, PovRayShowsTheStructureInTheBust) {

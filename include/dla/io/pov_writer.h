@@ -1,9 +1,10 @@
 #pragma once
 //! \file pov_writer.h
 //! POV-Ray scene: PREFIX.pov (camera, lights, look) that includes PREFIX.inc (the geometry:
-//! one sphere_sweep per strand, or a blob of spheres, and a DLA_Tip at every tip). The radius
-//! model, the radii and the colours are switches at the top of the .pov. See docs/formats.md
-//! and docs/look.md.
+//! one sphere_sweep per strand, or a blob of spheres), PREFIX_mesh.inc (the constraint mesh),
+//! and, for a frame of growth (DLA_Show < 1), PREFIX_growth.inc instead of PREFIX.inc. The
+//! radius model, the radii, the colours and DLA_Show are switches at the top of the .pov. See
+//! docs/formats.md and docs/look.md.
 
 #include "dla/look/look.h"
 #include "dla/mesh/mesh.h"
@@ -40,10 +41,11 @@ struct PovOptions {
 //! character: POV-Ray's #include cannot name such a file (spaces and other characters work).
 void validate_pov_prefix(const std::string& prefix);
 
-//! Writes PREFIX.pov and PREFIX.inc (and PREFIX_tips.inc with `options.tips`); the .pov
-//! includes them by their file names, so they stay side by side. The look gives the radius
+//! Writes PREFIX.pov, PREFIX.inc and PREFIX_growth.inc (and PREFIX_mesh.inc with a mesh,
+//! PREFIX_tips.inc with `options.tips`); the .pov includes them by their file names, so they
+//! stay side by side. The look gives the radius
 //! model and range (switchable in the .pov: the .inc carries what every model needs) and the
-//! colour; without one, the default look. With a `mesh` (the constraint), the .inc also holds
+//! colour; without one, the default look. With a `mesh` (the constraint), PREFIX_mesh.inc holds
 //! it as a smooth mesh2, shown as glass and framed with the structure. A structure whose
 //! spacing is far from 1, or that lies far from the origin, is written scaled and shifted (the
 //! .pov says so). Throws IOError if a file cannot be written.
