@@ -1,5 +1,7 @@
 #include "command_line.h"
 
+#include "dla/io/html_writer.h"
+
 #include "dla/version.h"
 
 #include <CLI/CLI.hpp>
@@ -40,12 +42,16 @@ Formats parse_formats(const std::string& text) {
   while (std::getline(in, word, ',')) {
     bool* format = word == "pov" ? &formats.pov : word == "csv" ? &formats.csv : word == "ply" ? &formats.ply
                  : word == "json" ? &formats.json : word == "glb" ? &formats.glb : word == "obj" ? &formats.obj
-                 : word == "tips" ? &formats.tips : word == "svg" ? &formats.svg : word == "png" ? &formats.png : nullptr;
+                 : word == "tips" ? &formats.tips : word == "svg" ? &formats.svg : word == "png" ? &formats.png
+                 : word == "html" ? &formats.html : nullptr;
     if (!format)
-      throw InvalidInput("--formats '" + text + "': '" + word + "' is not one of pov, csv, ply, json, glb, obj, tips, svg, png");
+      throw InvalidInput("--formats '" + text + "': '" + word + "' is not one of pov, csv, ply, json, glb, obj, tips, svg, png, html");
     *format = any = true;
   }
-  if (!any) throw InvalidInput("--formats is empty: name at least one of pov, csv, ply, json, glb, obj, tips, svg, png");
+  if (!any) throw InvalidInput("--formats is empty: name at least one of pov, csv, ply, json, glb, obj, tips, svg, png, html");
+  if (formats.html && !has_web_viewer())
+    throw InvalidInput("--formats html: this dla3d was built without npm, which fetches the web viewer's three.js; "
+                       "install npm and build again");
   return formats;
 }
 
@@ -80,7 +86,7 @@ void add_file_options(CLI::App& app, FileOptions& f, FileWords& w) {
   // the checkpoints that name it. Not in --help.
   app.add_flag_callback("--binary", [&w] { w.ply_format = "binary"; })->group("");
   app.add_option("--formats", w.formats, "files to write, a comma list of pov, csv, ply, json, glb, obj, tips "
-                                        "(PREFIX_tips.ply, and with pov PREFIX_tips.inc), svg and png (2D)")->capture_default_str()->group(outputs);
+                                        "(PREFIX_tips.ply, and with pov PREFIX_tips.inc), svg and png (2D), html (the web viewer)")->capture_default_str()->group(outputs);
   app.add_option("--png-scale", f.png.pixels_per_spacing, "png: pixels a spacing, [1e-6, 64]")
       ->capture_default_str()->group(outputs);
   app.add_option("--png-bands", f.png.bands, "png: times the white, grey, black bands cycle over the attach "

@@ -31,7 +31,7 @@ inline constexpr double kMeshBaseRadius = 3.0, kMeshTipRadius = 0.05;
 //! The files a run writes (`--formats`), each as PREFIX.EXT (tips: PREFIX_tips.ply).
 struct Formats {
   bool pov = true, csv = true, ply = true, json = true;
-  bool glb = false, obj = false, tips = false, svg = false, png = false;
+  bool glb = false, obj = false, tips = false, svg = false, png = false, html = false;
 };
 
 //! What every growth model's files are and look like: the Output and Look options.

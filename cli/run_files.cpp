@@ -7,6 +7,7 @@
 #include "dla/mesh/surface_distance.h"
 #include "dla/io/png_writer.h"
 #include "dla/io/svg_writer.h"
+#include "dla/io/html_writer.h"
 
 #include <malloc.h>
 
@@ -59,6 +60,7 @@ std::vector<std::string> file_names(const FileOptions& files) {
   if (f.tips) names.push_back(o + "_tips.ply");
   if (f.svg) names.push_back(o + ".svg");
   if (f.png) names.push_back(o + ".png");
+  if (f.html) names.push_back(o + ".html");
   if (f.json) names.push_back(o + ".json");
   return names;
 }
@@ -111,6 +113,13 @@ void write_files(const Cluster& cluster, const FileOptions& files, const PovOpti
   });
   write(formats.svg, [&] { write_svg(cluster, look, output + ".svg"); });
   write(formats.png, [&] { write_png(cluster, output + ".png", files.png); });
+  write(formats.html, [&] {
+    HtmlOptions html;
+    html.up = pov.up;
+    const std::size_t slash = output.find_last_of('/');
+    html.title = "dla3d: " + (slash == std::string::npos ? output : output.substr(slash + 1));
+    write_html(cluster, look, output + ".html", html, scene_mesh);
+  });
   if (formats.pov) write_pov(cluster, output, pov, scene_mesh, &look);
   for (std::future<void>& writer : writers) writer.get();
 }

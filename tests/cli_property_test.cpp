@@ -86,8 +86,8 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--output", {"out", "'with space'", "'we\"ird'", "'back\\slash'", "sub/out", "''", "dir/"}},
       {"--ply-format", {"binary", "ascii", "text"}},
       {"--binary", {}},
-      {"--formats", {"pov,csv,ply,json", "glb,obj,tips,json", "csv,svg,json", "png,csv,json", "json", "''", "pov,jpg",
-                     "glb,,obj"}},
+      {"--formats", {"pov,csv,ply,json", "glb,obj,tips,json", "csv,svg,json", "png,csv,json", "html,json", "json", "''",
+                     "pov,jpg", "glb,,obj"}},
       {"--png-scale", {"2", "0.5", "64", "1e-6", "0", "65", "nan", "-1"}},
       {"--png-bands", {"8", "1", "1000000", "0", "-1", "x"}},
       {"--radius", {"taper", "pipe", "boundary", "seed-distance", "uniform", "wavy"}},
@@ -377,6 +377,13 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
       return prefix + "_tips.ply's body is not its header's size";
   }
 
+  if (wants("html")) {
+    const std::string html = read_file(dir / (prefix + ".html"));
+    if (html.rfind("<!DOCTYPE html>", 0) != 0 || html.size() < 8 || html.compare(html.size() - 8, 8, "</html>\n") != 0)
+      return prefix + ".html is not whole";
+    if (html.find("{\"particles\": " + std::to_string(particles) + ",") == std::string::npos)
+      return prefix + ".html does not hold the " + std::to_string(particles) + " particles";
+  }
   if (wants("glb")) {
     const std::string glb = read_file(dir / (prefix + ".glb"));
     std::uint32_t head[3] = {0, 0, 0};
@@ -449,7 +456,7 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
 std::string check_frames(const ScratchDir& dir, const std::string& prefix, std::size_t count, const std::string& formats) {
   const std::map<std::string, std::vector<std::string>> endings = {
       {"pov", {".pov", ".inc", "_growth.inc"}}, {"csv", {".csv"}}, {"ply", {".ply"}}, {"glb", {".glb"}},
-      {"obj", {".obj"}}, {"tips", {"_tips.ply"}}, {"svg", {".svg"}}, {"png", {".png"}}};
+      {"obj", {".obj"}}, {"tips", {"_tips.ply"}}, {"svg", {".svg"}}, {"png", {".png"}}, {"html", {".html"}}};
   std::istringstream words(formats);
   std::string format;
   while (std::getline(words, format, ','))

@@ -1,7 +1,8 @@
 #pragma once
-// The real clients the tests hand dla3d's files to: Blender (headless) and the Khronos
-// glTF-Validator (node, from tests/clients/package.json). Both are optional: a test that needs
-// one skips, by name, when it is missing (the README's client step installs them; CI does).
+// The real clients the tests hand dla3d's files to: Blender (headless), the Khronos
+// glTF-Validator and Chromium driven by Playwright (node, from tests/clients/package.json).
+// All are optional: a test that needs one skips, by name, when it is missing (the README's
+// client step installs them; CI does).
 
 #include "test_util.h"
 
@@ -39,6 +40,20 @@ inline std::string validate_glb(const std::string& glb) {
   std::filesystem::remove(log);
   return status == 0 ? "" : report.empty() ? "the validator did not run" : report;
 }
+
+//! The web viewer's runner (Playwright driving Debian's Chromium), or "" if node, the npm
+//! package or Chromium is missing.
+inline std::string page_viewer() {
+  if (find_program("node").empty() || find_program("chromium").empty() ||
+      !std::filesystem::exists(TEST_CLIENTS_DIR "/node_modules/playwright-core"))
+    return "";
+  return TEST_CLIENTS_DIR "/view_page.mjs";
+}
+
+#define DLA_NEED_CHROMIUM()                                                                       \
+  if (::dla::testing::page_viewer().empty())                                                     \
+  GTEST_SKIP() << "Chromium or Playwright is missing: install Debian's chromium and run npm ci --prefix " \
+                  "tests/clients (the README's client step)"
 
 #define DLA_NEED_GLTF_VALIDATOR()                                                                 \
   if (::dla::testing::gltf_validator().empty())                                                  \

@@ -1,17 +1,25 @@
 // dla3d's files in the programs artists open them with: Debian's Blender imports the .glb, the
 // .obj and the .ply with the counts and bounds written, and the Khronos glTF-Validator finds no
-// error in the .glb. Each test skips, by name, when its client is missing (tests/clients.h).
+// error in the .glb, and Chromium opens the web viewer. Each test skips, by name, when its client is missing (tests/clients.h).
 
+#include "cli_util.h"
 #include "clients.h"
+#include "mesh_util.h"
+#include "png_util.h"
+#include "dla/mesh/shapes.h"
 #include "dla/models/growth.h"
 #include "dla/io/mesh_writers.h"
 #include "dla/io/ply_writer.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
+#include <string>
+#include <tuple>
 
 namespace dla {
 namespace {
@@ -157,6 +165,77 @@ TEST(GltfValidator, FindsNoErrorInTheGlb) {
   lone.particles.push_back({Vec3::Zero(), -1, 0});
   write_glb(lone, make_look(lone, {}), dir / "empty.glb");
   EXPECT_EQ(testing::validate_glb(dir / "empty.glb"), "") << "a structure with no branch";
+}
+
+//! Pixels of a screenshot that differ from the viewer's background (#0a0d12) by more than
+//! antialiasing's faint edge; with `glass` (a mesh in the page), only the bright ones: the
+//! structure uncoloured, not the dim glass.
+long structure_pixels(const testing::Picture& shot, bool glass = false) {
+  long lit = 0;
+  for (std::size_t y = 0; y < shot.height; ++y)
+    for (std::size_t x = 0; x < shot.width; ++x) {
+      const std::array<int, 3> p = shot.at(x, y);
+      lit += glass ? std::max({p[0], p[1], p[2]}) > 150 : std::abs(p[0] - 0x0a) + std::abs(p[1] - 0x0d) + std::abs(p[2] - 0x12) > 30;
+    }
+  return lit;
+}
+
+//! Opens PAGE in Chromium (view_page.mjs) and returns its JSON line; screenshots go to `dir`.
+std::string open_page(const ScratchDir& dir, const std::string& page) {
+  const std::string command = "node '" + testing::page_viewer() + "' '" + (dir / page) + "' '" +
+                              dir.path().string() + "' > chromium.txt 2>&1";
+  const std::string run = "cd '" + dir.path().string() + "' && " + command;
+  EXPECT_EQ(std::system(run.c_str()), 0) << read_file(dir / "chromium.txt");
+  const std::string out = read_file(dir / "chromium.txt");
+  const std::size_t at = out.find("DLA3D ");
+  return at == std::string::npos ? "" : out.substr(at);
+}
+
+// The web viewer in a real browser, offline: the page loads with no console error or request,
+// shows the structure, shows less of it at a quarter of the slider (the count the page gives is
+// exact), replays it with Play, and hides the mesh with its box. Lines for a larger structure,
+// tubes and a mesh for a small one.
+TEST(Chromium, OpensTheWebViewerAndReplaysGrowth) {
+  DLA_NEED_CHROMIUM();
+  ScratchDir dir;
+  write_stl(make_sphere(Vec3::Zero(), 12.0, 12, 24), dir / "ball.stl");
+  ASSERT_EQ(testing::dla3d(dir, "-n 25000 -q -o lines --formats html --color-by age").exit_code, 0);
+  ASSERT_EQ(testing::dla3d(dir, "-n 2000 -q -o tubes --formats html --stl ball.stl --spacing 0.4").exit_code, 0);
+  for (const auto& [page, particles, seeds] : {std::tuple{"lines", 25001, 1}, std::tuple{"tubes", 2001, 1}}) {
+    SCOPED_TRACE(page);
+    const std::string line = open_page(dir, std::string(page) + ".html");
+    ASSERT_FALSE(line.empty());
+    EXPECT_NE(line.find("\"messages\":[]"), std::string::npos) << "console errors or warnings: " << line;
+    EXPECT_NE(line.find("\"refused\":[]"), std::string::npos) << "the page asked the network: " << line;
+    const auto with_commas = [](long n) {
+      std::string s = std::to_string(n);
+      for (int at = static_cast<int>(s.size()) - 3; at > 0; at -= 3) s.insert(static_cast<std::size_t>(at), ",");
+      return s;
+    };
+    const long quarter = seeds + std::lround(0.25 * (particles - seeds));
+    EXPECT_NE(line.find("\"full\":\"" + with_commas(particles) + " of "), std::string::npos) << line;
+    EXPECT_NE(line.find("\"quarter\":\"" + with_commas(quarter) + " of "), std::string::npos) << line;
+    const auto shown = [&](const std::string& key) {
+      const std::size_t at = line.find("\"" + key + "\":\"");
+      std::string digits;
+      for (std::size_t i = at + key.size() + 4; at != std::string::npos && i < line.size() && line[i] != ' '; ++i)
+        if (line[i] != ',') digits += line[i];
+      return digits.empty() ? -1L : std::atol(digits.c_str());
+    };
+    EXPECT_GT(shown("playing"), quarter) << "Play did not replay on from the slider: " << line;
+    const bool glass = std::string(page) == "tubes";
+    const long full = structure_pixels(testing::read_png(dir / "full.png"), glass);
+    const long part = structure_pixels(testing::read_png(dir / "quarter.png"), glass);
+    EXPECT_GT(full, 640 * 400 / 100) << "the canvas is (nearly) blank";
+    EXPECT_GT(part, 100);
+    EXPECT_LT(part, full * 3 / 4) << "a quarter grown shows as much";
+    if (glass) {
+      EXPECT_NE(line.find("\"mesh_toggles\":true"), std::string::npos) << line;
+      EXPECT_GT(structure_pixels(testing::read_png(dir / "full.png")),
+                structure_pixels(testing::read_png(dir / "no_mesh.png")) + 640 * 400 / 20)
+          << "the mesh's box does not hide the glass";
+    }
+  }
 }
 
 }  // namespace

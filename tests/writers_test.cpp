@@ -7,10 +7,10 @@
 #include "dla/io/png_writer.h"
 #include "dla/io/pov_writer.h"
 #include "dla/io/run_report.h"
+#include "png_util.h"
 #include "test_util.h"
 
 #include <gtest/gtest.h>
-#include <png.h>
 
 #include <algorithm>
 #include <cmath>
@@ -198,24 +198,8 @@ TEST(RunReport, RecordsOptionsSeedAndCounts) {
     EXPECT_NE(json.find(expected), std::string::npos) << expected;
 }
 
-struct Picture {
-  std::size_t width = 0, height = 0;
-  std::vector<std::uint8_t> rgb;
-};
-
-// Reads an 8-bit RGB PNG back with libpng.
-Picture read_png(const std::string& path) {
-  Picture picture;
-  png_image image{};
-  image.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&image, path.c_str())) return picture;
-  image.format = PNG_FORMAT_RGB;
-  picture.width = image.width;
-  picture.height = image.height;
-  picture.rgb.resize(PNG_IMAGE_SIZE(image));
-  if (!png_image_finish_read(&image, nullptr, picture.rgb.data(), 0, nullptr)) return {};
-  return picture;
-}
+using testing::Picture;
+using testing::read_png;
 
 TEST(Png, EveryParticleIsADotInItsBandOnTheBackground) {
   GrowthOptions o;

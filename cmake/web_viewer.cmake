@@ -1,0 +1,47 @@
+# The web viewer's script (--formats html): viewer/viewer.js and three.js, bundled by esbuild
+# into one script that libdla holds as text and inlines into every page. three.js and esbuild
+# are pinned in viewer/package.json and viewer/package-lock.json and fetched by npm at build
+# time (docs/animation.md says why three.js). Without npm, dla3d builds without the viewer and
+# --formats html says so.
+find_program(DLA_NPM npm)
+if(DLA_NPM)
+  set(web_viewer_default ON)
+else()
+  set(web_viewer_default OFF)
+  message(STATUS "npm not found: dla3d is built without the web viewer (--formats html)")
+endif()
+option(DLA_WEB_VIEWER "Build the web viewer (--formats html): npm fetches three.js at build time" ${web_viewer_default})
+
+set(viewer_dir ${PROJECT_BINARY_DIR}/viewer)
+set(DLA_VIEWER_SCRIPT_CPP ${PROJECT_BINARY_DIR}/generated/viewer_script.cpp)
+if(DLA_WEB_VIEWER)
+  if(NOT DLA_NPM)
+    message(FATAL_ERROR "DLA_WEB_VIEWER needs npm")
+  endif()
+  add_custom_command(OUTPUT ${viewer_dir}/npm.stamp
+    COMMAND ${CMAKE_COMMAND} -E make_directory ${viewer_dir}
+    COMMAND ${CMAKE_COMMAND} -E copy_if_different ${PROJECT_SOURCE_DIR}/viewer/package.json
+            ${PROJECT_SOURCE_DIR}/viewer/package-lock.json ${viewer_dir}
+    COMMAND ${DLA_NPM} ci --prefix ${viewer_dir} --no-audit --no-fund --loglevel=error
+    COMMAND ${CMAKE_COMMAND} -E touch ${viewer_dir}/npm.stamp
+    DEPENDS ${PROJECT_SOURCE_DIR}/viewer/package.json ${PROJECT_SOURCE_DIR}/viewer/package-lock.json
+    COMMENT "Fetching three.js and esbuild for the web viewer (viewer/package-lock.json)"
+    VERBATIM)
+  add_custom_command(OUTPUT ${viewer_dir}/viewer.bundle.js
+    COMMAND ${CMAKE_COMMAND} -E copy_if_different ${PROJECT_SOURCE_DIR}/viewer/viewer.js ${viewer_dir}/viewer.js
+    COMMAND ${viewer_dir}/node_modules/.bin/esbuild ${viewer_dir}/viewer.js --bundle --minify --format=iife
+            --charset=ascii --legal-comments=eof --log-level=warning --outfile=${viewer_dir}/viewer.bundle.js
+    DEPENDS ${PROJECT_SOURCE_DIR}/viewer/viewer.js ${viewer_dir}/npm.stamp
+    COMMENT "Bundling the web viewer's script with three.js"
+    VERBATIM)
+  add_custom_command(OUTPUT ${DLA_VIEWER_SCRIPT_CPP}
+    COMMAND ${CMAKE_COMMAND} -DIN=${viewer_dir}/viewer.bundle.js -DOUT=${DLA_VIEWER_SCRIPT_CPP}
+            -P ${PROJECT_SOURCE_DIR}/cmake/embed_text.cmake
+    DEPENDS ${viewer_dir}/viewer.bundle.js ${PROJECT_SOURCE_DIR}/cmake/embed_text.cmake
+    VERBATIM)
+else()
+  add_custom_command(OUTPUT ${DLA_VIEWER_SCRIPT_CPP}
+    COMMAND ${CMAKE_COMMAND} -DOUT=${DLA_VIEWER_SCRIPT_CPP} -P ${PROJECT_SOURCE_DIR}/cmake/embed_text.cmake
+    DEPENDS ${PROJECT_SOURCE_DIR}/cmake/embed_text.cmake
+    VERBATIM)
+endif()
