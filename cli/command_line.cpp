@@ -118,7 +118,8 @@ void add_file_options(CLI::App& app, FileOptions& f, FileWords& w) {
   app.add_option("--tube-min-branch", f.look.tubes.min_branch, "glb, obj: leave out branches of fewer particles "
                                                                 "(counting all that grow from them), 1-1000")
       ->capture_default_str()->group(looks);
-  app.add_option("--instances", w.instance_set, "tips: which particles are instancing points, tips or all")
+  app.add_option("--instances", w.instance_set, "tips: which particles get instancing points and the scene's "
+                                                "DLA_Tip, tips or all (object fill)")
       ->capture_default_str()->group(looks);
   w.tips_within = app.add_option("--tips-within", f.instances.within, "tips: only points within this of the mesh's "
                                                                       "surface, in spacings, >= 0")->group(looks);
@@ -137,6 +138,7 @@ void parse_file_words(FileOptions& f, const FileWords& w) {
   f.instances.set = parse_instance_set(w.instance_set);
   f.formats = parse_formats(w.formats);
   f.pov.tips = f.formats.tips;  // the scene reads its tips from PREFIX_tips.inc
+  f.pov.instances = f.instances;  // at the same points as PREFIX_tips.ply
 }
 
 //! Checks the Output and Look options, once their mesh defaults are in.

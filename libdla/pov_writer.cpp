@@ -411,22 +411,31 @@ void write_growth(const Cluster& cluster, const SceneFrame& frame, const Look& l
   out.commit();
 }
 
-//! PREFIX_tips.inc: DLA_TipCount, and DLA_Tips, a DLA_Tip call at every tip with the largest
+//! PREFIX_tips.inc: DLA_TipCount, and DLA_Tips, a DLA_Tip call at every instancing point (the
+//! tips, or with InstanceSet::all every particle: the thesis' object fill) with the largest
 //! scale at which copies do not overlap (instances.h). Each range of particles starts at its
-//! first tip's gap.
-void write_tips(const Cluster& cluster, const SceneFrame& frame, const Look& look, const std::string& path) {
+//! first point's gap.
+void write_tips(const Cluster& cluster, const SceneFrame& frame, const Look& look, const InstanceOptions& instances,
+                const std::string& path) {
   const auto& ps = cluster.particles;
   detail::OutputFile out(path);
-  out << "// dla3d " << version << " tips: DLA_Tip at every tip, shown by DLA_ShowTips in the .pov.\n";
+  out << "// dla3d " << version << " tips: DLA_Tip at every "
+      << (instances.set == InstanceSet::tips ? "tip" : "particle") << ", shown by DLA_ShowTips in the .pov.\n";
   const Attributes& a = look.attributes;
-  const std::vector<float> measured =
-      a.tip_gaps.empty() ? half_gaps(cluster, tip_flags(cluster), detail::format_threads()) : std::vector<float>{};
-  const std::vector<float>& gaps = a.tip_gaps.empty() ? measured : a.tip_gaps;
+  const InstanceSelection selected(cluster, a, instances);
+  const bool every_tip = instances.set == InstanceSet::tips && instances.within == std::numeric_limits<double>::infinity();
+  std::vector<float> measured;
+  if (!every_tip || a.tip_gaps.empty()) {
+    std::vector<bool> chosen(ps.size());
+    for (std::size_t i = 0; i < ps.size(); ++i) chosen[i] = selected(i);
+    measured = half_gaps(cluster, chosen, detail::format_threads());
+  }
+  const std::vector<float>& gaps = measured.empty() && every_tip ? a.tip_gaps : measured;
   std::vector<std::size_t> first_gap{0};
   for (std::size_t begin = 0; begin < ps.size(); begin += kChunk) {
-    std::size_t tips = 0;
-    for (std::size_t i = begin; i < std::min(ps.size(), begin + kChunk); ++i) tips += a.tip(i);
-    first_gap.push_back(first_gap.back() + tips);
+    std::size_t chosen = 0;
+    for (std::size_t i = begin; i < std::min(ps.size(), begin + kChunk); ++i) chosen += selected(i);
+    first_gap.push_back(first_gap.back() + chosen);
   }
   const std::size_t tip_count = first_gap.back();
   out << "#declare DLA_TipCount = ";
@@ -437,7 +446,7 @@ void write_tips(const Cluster& cluster, const SceneFrame& frame, const Look& loo
     write_in_order(out, ps.size(), kChunk, detail::format_threads(), [&](detail::Text& text, std::size_t begin, std::size_t end) {
       std::size_t k = first_gap[begin / kChunk];
       for (std::size_t i = begin; i < end; ++i) {
-        if (!a.tip(i)) continue;
+        if (!selected(i)) continue;
         const Instance tip = instance_at(cluster, a, i, gaps[k++]);
         text << "  DLA_Tip(";
         vector(text, tip.position, frame);
@@ -477,7 +486,7 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
   write_growth(cluster, frame, used, options, growth);
   if (mesh) write_mesh(*mesh, frame, mesh_include);
   const std::string tips = prefix + "_tips.inc";
-  if (options.tips) write_tips(cluster, frame, used, tips);
+  if (options.tips) write_tips(cluster, frame, used, options.instances, tips);
 
   const double unit = cluster.spacing * frame.scale;  // a spacing in scene units
   const bool colored = used.options.color_by != ColorBy::none;
@@ -514,7 +523,8 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
          "  finish { DLA_Finish }\n"
          "}\n"
          "#declare DLA_Background = rgb <0.04, 0.05, 0.07>;\n"
-         "#declare DLA_ShowTips = off;  // on: show DLA_Tip at every tip (a small sphere, or your leaf)"
+         "#declare DLA_ShowTips = off;  // on: show DLA_Tip at every "
+      << (options.instances.set == InstanceSet::tips ? "tip" : "particle") << " (a small sphere, or your leaf)"
       << (options.tips ? "" : "; needs tips in dla3d's --formats") << "\n"
          "#declare DLA_TipTexture = DLA_Texture;\n";
   if (options.style == PovStyle::blob)

@@ -399,20 +399,29 @@ TEST(Instances, TheSameWhetherTheAttributesHoldTheTipsGapsOrNot) {
   write_pov(c, dir / "without", tips, nullptr, &without);
   const std::string inc = read_file(dir / "with_tips.inc");
   ASSERT_EQ(inc, read_file(dir / "without_tips.inc"));
-  // Each DLA_Tip line, in order, is the k-th tip's instance.
-  std::istringstream lines(inc.substr(inc.find("#declare DLA_Tips")));
-  std::string line;
-  std::size_t k = 0;
-  while (std::getline(lines, line)) {
-    if (line.rfind("  DLA_Tip(", 0) != 0) continue;
-    ASSERT_LT(k, stored.size());
-    const double scale = std::stod(line.substr(line.rfind(", ") + 2));
-    ASSERT_NEAR(scale, stored[k].scale, 1e-5 * stored[k].scale) << line;
-    const double x = std::stod(line.substr(std::strlen("  DLA_Tip(<")));
-    ASSERT_NEAR(x, stored[k].position.x(), 0.5e-3 * c.spacing + 1e-9) << line;
-    ++k;
-  }
-  EXPECT_EQ(k, stored.size());
+  // Each DLA_Tip line, in order, is the k-th instance: at the tips, and with --instances all
+  // (the object fill) at every particle.
+  const auto expect_calls = [&](const std::string& text, const std::vector<Instance>& instances) {
+    std::istringstream lines(text.substr(text.find("#declare DLA_Tips")));
+    std::string line;
+    std::size_t k = 0;
+    while (std::getline(lines, line)) {
+      if (line.rfind("  DLA_Tip(", 0) != 0) continue;
+      ASSERT_LT(k, instances.size());
+      const double scale = std::stod(line.substr(line.rfind(", ") + 2));
+      ASSERT_NEAR(scale, instances[k].scale, 1e-5 * instances[k].scale) << line;
+      const double x = std::stod(line.substr(std::strlen("  DLA_Tip(<")));
+      ASSERT_NEAR(x, instances[k].position.x(), 0.5e-3 * c.spacing + 1e-9) << line;
+      ++k;
+    }
+    EXPECT_EQ(k, instances.size());
+  };
+  expect_calls(inc, stored);
+  tips.instances.set = InstanceSet::all;
+  write_pov(c, dir / "all", tips, nullptr, &with);
+  const std::vector<Instance> every = instancing_points(c, with.attributes, tips.instances);
+  ASSERT_EQ(every.size(), c.particles.size());
+  expect_calls(read_file(dir / "all_tips.inc"), every);
 }
 
 TEST(Instances, NearTheBoundaryStayInsideIt) {

@@ -6,6 +6,7 @@
 //! radius model, the radii, the colours and DLA_Show are switches at the top of the .pov. See
 //! docs/formats.md and docs/look.md.
 
+#include "dla/look/instances.h"
 #include "dla/look/look.h"
 #include "dla/mesh/mesh.h"
 
@@ -35,6 +36,9 @@ struct PovOptions {
   //! is on (the CLI: with tips in --formats). At 10^7 it takes a fifth of the scene's bytes,
   //! and measuring the tips' gaps a third of the look's time.
   bool tips = false;
+  //! Which particles PREFIX_tips.inc calls DLA_Tip at: the tips (default), or every particle
+  //! (`--instances all`: the thesis' object fill); `within` keeps those near the mesh.
+  InstanceOptions instances;
 };
 
 //! Throws InvalidInput if the prefix's file name has a double quote, a backslash or a control
