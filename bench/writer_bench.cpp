@@ -7,6 +7,7 @@
 
 #include "dla/io/checkpoint.h"
 #include "dla/io/csv_writer.h"
+#include "dla/io/html_writer.h"
 #include "dla/look/look.h"
 #include "dla/io/ply_writer.h"
 #include "dla/io/pov_writer.h"
@@ -53,7 +54,8 @@ void write_file(benchmark::State& state, Write write) {
   for (auto _ : state) write(tree, prefix);
   state.counters["particles_per_s"] = benchmark::Counter(static_cast<double>(state.range(0)),
                                                          benchmark::Counter::kIsIterationInvariantRate);
-  for (const char* ext : {".csv", ".ply", ".pov", ".inc", ".json", ".ck"}) std::remove((prefix + ext).c_str());
+  for (const char* ext : {".csv", ".ply", ".pov", ".inc", "_growth.inc", ".html", ".json", ".ck"})
+    std::remove((prefix + ext).c_str());
 }
 
 void csv(benchmark::State& state) {
@@ -78,6 +80,10 @@ void pov_look(benchmark::State& state) {
   const dla::Look& look = made_up_look(static_cast<std::size_t>(state.range(0)));
   write_file(state, [&](const dla::Cluster& c, const std::string& p) { dla::write_pov(c, p, {}, nullptr, &look); });
 }
+void html(benchmark::State& state) {
+  const dla::Look& look = made_up_look(static_cast<std::size_t>(state.range(0)));
+  write_file(state, [&](const dla::Cluster& c, const std::string& p) { dla::write_html(c, look, p + ".html"); });
+}
 void json(benchmark::State& state) {
   write_file(state, [](const dla::Cluster& c, const std::string& p) {
     dla::write_run_report(c, {}, {}, {}, {}, p + ".json");
@@ -98,6 +104,7 @@ DLA_WRITER_BENCH(ply_ascii);
 DLA_WRITER_BENCH(ply_binary);
 DLA_WRITER_BENCH(pov);
 DLA_WRITER_BENCH(pov_look);
+DLA_WRITER_BENCH(html);
 DLA_WRITER_BENCH(json);
 DLA_WRITER_BENCH(checkpoint);
 

@@ -5,9 +5,11 @@
 #include "dla/version.h"
 #include "output_file.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
-#include <cstring>
+#include <limits>
 #include <vector>
 
 namespace dla {

@@ -575,6 +575,26 @@ TEST(Cli, EdenStopsOnSigintWithTheClusterSoFar) {
   EXPECT_NE(json.find("\"stopped_by\": \"SIGINT\""), std::string::npos) << json;
 }
 
+// Ctrl-C stops dla3d frames between frames: exit 130, and every frame written is whole.
+TEST(Cli, FramesStopOnSigintBetweenFrames) {
+  ScratchDir dir;
+  ASSERT_EQ(dla3d(dir, "-n 20000 -q -o grown --formats csv").exit_code, 0);
+  const int code = interrupted(dir, "frames grown.csv --count 100000 -q --formats ply", "INT", 0.7);
+  if (code == 0) GTEST_SKIP() << "the run ended before the signal: this machine is too fast for the test";
+  ASSERT_EQ(code, 130) << read_file(dir / "err.txt");
+  EXPECT_NE(read_file(dir / "err.txt").find("stopped by SIGINT after "), std::string::npos) << read_file(dir / "err.txt");
+  std::size_t frames = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("grown_", 0) != 0) continue;
+    ASSERT_EQ(entry.path().extension(), ".ply") << name << ": a temporary file left behind";
+    const std::string ply = read_file(entry.path());
+    ASSERT_NE(ply.find("end_header\n"), std::string::npos) << name;
+    ++frames;
+  }
+  EXPECT_GT(frames, 0u);
+}
+
 TEST(Cli, EdenBadInputIsOneLineAndNoFiles) {
   const char* cases[] = {
       "-n 0", "--dimensions 4", "--lattice square5", "--lattice cubic6 --dimensions 2", "--mode random",
