@@ -271,11 +271,12 @@ void write_array(detail::OutputFile& out, const char* name, std::size_t n, Value
 }
 
 //! PREFIX_growth.inc, read instead of PREFIX.inc when DLA_Show < 1: the tree as arrays, and the
-//! scene code that builds DLA_Structure from its first DLA_N particles. The attributes the
-//! radius depends on (the subtrees, the strands and the places along them) are those of the
-//! structure at that moment, by the rules compute_attributes() follows, so a branch thickens as
-//! it grows if the radius model says so; the distances to the mesh and the seeds, which do not
-//! change, keep the finished structure's scale.
+//! scene code that builds DLA_Structure from its first DLA_N particles. The strands are the
+//! finished structure's, cut at the last particle grown, so they never jump from one branch to
+//! another between frames. The radius follows the structure of the moment: the taper runs along
+//! the part of each strand grown so far and the pipe model counts the subtrees so far, so a
+//! branch only thickens as it grows. The distances to the mesh and the seeds, which do not
+//! change, keep the finished structure's scale. At every particle this is PREFIX.inc.
 void write_growth(const Cluster& cluster, const SceneFrame& frame, const Look& look, const PovOptions& options,
                   const std::string& path) {
   const auto& ps = cluster.particles;
@@ -290,6 +291,12 @@ void write_growth(const Cluster& cluster, const SceneFrame& frame, const Look& l
   out.integer(static_cast<long long>(cluster.seed_count)) << ";\n";
   write_array(out, "DLA_Position", ps.size(), [&](detail::Text& text, std::size_t i) { vector(text, ps[i].position, frame); });
   write_array(out, "DLA_Parent", ps.size(), [&](detail::Text& text, std::size_t i) { text.integer(ps[i].parent); });
+  {
+    std::vector<std::int32_t> next(ps.size(), -1);
+    for (std::size_t i = 0; i < ps.size(); ++i)
+      if (a.continues_strand(i)) next[static_cast<std::size_t>(ps[i].parent)] = static_cast<std::int32_t>(i);
+    write_array(out, "DLA_Next", ps.size(), [&](detail::Text& text, std::size_t i) { text.integer(next[i]); });
+  }
   if (boundary)
     write_array(out, "DLA_Boundary", ps.size(), [&](detail::Text& text, std::size_t i) {
       text.fixed(a.boundary_distance[i] / a.boundary_reach, 3);
@@ -306,45 +313,29 @@ void write_growth(const Cluster& cluster, const SceneFrame& frame, const Look& l
   const auto paint = [&](const char* i) {
     return colored ? std::string(" texture { DLA_Paint(DLA_Value[") + i + "]) }" : std::string();
   };
-  out << "\n// The attributes of the first DLA_N particles, by dla3d's rules (docs/look.md): the particles\n"
-         "// in each subtree; at a branch point the strand goes on into the child with the largest subtree\n"
-         "// (ties: the earliest); each particle's place along its strand, 1 at its start and 0 at its tip.\n"
+  out << "\n// The first DLA_N particles, on the finished structure's strands (DLA_Next: the child that goes\n"
+         "// on with each one's strand, or -1) cut at the last of them: DLA_Step, each one's place on its\n"
+         "// strand from its start; DLA_Last, that of its strand's last particle so far; DLA_Place, the\n"
+         "// taper's 1 at the strand's start to 0 at that particle; and the particles in each subtree.\n"
          "#declare DLA_N = DLA_GrowthSeeds + floor(min(max(DLA_Show, 0), 1) * (DLA_GrowthParticles - DLA_GrowthSeeds) + 0.5);\n"
          "#declare DLA_Descendants = array[DLA_N];\n"
-         "#declare DLA_Heavy = array[DLA_N];\n"
          "#declare DLA_Step = array[DLA_N];\n"
+         "#declare DLA_Last = array[DLA_N];\n"
          "#declare DLA_Place = array[DLA_N];\n"
          "#for (DLA_I, 0, DLA_N - 1)\n"
+         "  #declare DLA_P = DLA_Parent[DLA_I];\n"
          "  #declare DLA_Descendants[DLA_I] = 0;\n"
-         "  #declare DLA_Heavy[DLA_I] = -1;\n"
          "  #declare DLA_Step[DLA_I] = 0;\n"
+         "  #if (DLA_P >= 0) #declare DLA_Step[DLA_I] = (DLA_Next[DLA_P] = DLA_I ? DLA_Step[DLA_P] + 1 : 1); #end\n"
+         "  #declare DLA_Last[DLA_I] = DLA_Step[DLA_I];\n"
          "#end\n"
          "#for (DLA_I, DLA_N - 1, 0, -1)\n"
-         "  #declare DLA_P = DLA_Parent[DLA_I];\n"
-         "  #if (DLA_P >= 0) #declare DLA_Descendants[DLA_P] = DLA_Descendants[DLA_P] + DLA_Descendants[DLA_I] + 1; #end\n"
-         "#end\n"
-         "#for (DLA_I, 0, DLA_N - 1)\n"
          "  #declare DLA_P = DLA_Parent[DLA_I];\n"
          "  #if (DLA_P >= 0)\n"
-         "    #if (DLA_Heavy[DLA_P] < 0)\n"
-         "      #declare DLA_Heavy[DLA_P] = DLA_I;\n"
-         "    #elseif (DLA_Descendants[DLA_I] > DLA_Descendants[DLA_Heavy[DLA_P]])\n"
-         "      #declare DLA_Heavy[DLA_P] = DLA_I;\n"
-         "    #end\n"
+         "    #declare DLA_Descendants[DLA_P] = DLA_Descendants[DLA_P] + DLA_Descendants[DLA_I] + 1;\n"
+         "    #if (DLA_Next[DLA_P] = DLA_I) #declare DLA_Last[DLA_P] = DLA_Last[DLA_I]; #end\n"
          "  #end\n"
-         "#end\n"
-         "// DLA_Step: first the particles after each one to its strand's tip, then its own place.\n"
-         "#for (DLA_I, DLA_N - 1, 0, -1)\n"
-         "  #declare DLA_P = DLA_Parent[DLA_I];\n"
-         "  #if (DLA_P >= 0) #if (DLA_Heavy[DLA_P] = DLA_I) #declare DLA_Step[DLA_P] = DLA_Step[DLA_I] + 1; #end #end\n"
-         "#end\n"
-         "#for (DLA_I, 0, DLA_N - 1)\n"
-         "  #declare DLA_P = DLA_Parent[DLA_I];\n"
-         "  #declare DLA_K = 0;\n"
-         "  #if (DLA_P >= 0) #declare DLA_K = (DLA_Heavy[DLA_P] = DLA_I ? DLA_Step[DLA_P] + 1 : 1); #end\n"
-         "  #declare DLA_End = DLA_K + DLA_Step[DLA_I];\n"
-         "  #declare DLA_Step[DLA_I] = DLA_K;\n"
-         "  #declare DLA_Place[DLA_I] = (DLA_End > 0 ? 1 - DLA_K / DLA_End : 1);\n"
+         "  #declare DLA_Place[DLA_I] = (DLA_Last[DLA_I] > 0 ? 1 - DLA_Step[DLA_I] / DLA_Last[DLA_I] : 1);\n"
          "#end\n\n";
   if (options.style == PovStyle::blob) {
     out << "#declare DLA_Structure = blob {\n"
@@ -354,21 +345,22 @@ void write_growth(const Cluster& cluster, const SceneFrame& frame, const Look& l
            "  #end\n"
            "}\n";
   } else {
-    out << "// A sphere at each seed, and a sphere_sweep along each strand, from its tip up to its start:\n"
-           "// a strand leaving a branch point starts there, inside its parent's branch.\n"
+    out << "// A sphere at each seed, and a sphere_sweep along the part grown of each strand, from its last\n"
+           "// particle so far up to its start: a strand leaving a branch point starts there, inside its\n"
+           "// parent's branch.\n"
            "#declare DLA_Structure = union {\n"
            "  #for (DLA_I, 0, DLA_GrowthSeeds - 1)\n"
            "    sphere { DLA_Position[DLA_I], " << radius("DLA_I") << paint("DLA_I") << " }\n"
            "  #end\n"
            "  #for (DLA_T, DLA_GrowthSeeds, DLA_N - 1)\n"
-           "    #if (DLA_Descendants[DLA_T] = 0)\n"
+           "    #if (DLA_Next[DLA_T] < 0 | DLA_Next[DLA_T] >= DLA_N)\n"
            "      #declare DLA_J = DLA_T;\n"
            "      #declare DLA_Count = 1;\n"
            "      #declare DLA_Up = true;\n"
            "      #while (DLA_Up)\n"
            "        #declare DLA_Up = false;\n"
            "        #declare DLA_P = DLA_Parent[DLA_J];\n"
-           "        #if (DLA_P >= 0) #if (DLA_Heavy[DLA_P] = DLA_J)\n"
+           "        #if (DLA_P >= 0) #if (DLA_Next[DLA_P] = DLA_J)\n"
            "          #declare DLA_J = DLA_P;\n"
            "          #declare DLA_Count = DLA_Count + 1;\n"
            "          #declare DLA_Up = true;\n"

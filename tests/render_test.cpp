@@ -216,10 +216,9 @@ TEST(Render, PovRayShowsTheStructure3D) {
   expect_framed_render(grow(o), dir);
 }
 
-// DLA_Show renders the structure as it was part way: at a quarter, fewer pixels of structure.
-// Under the pipe model, whose radii only grow with the subtrees, each of them is structure in
-// the finished picture too. (The taper's radius is relative to its strand: a side branch that
-// later becomes the main line's end gets finer.) Just short of 1 the scene is built from
+// DLA_Show renders the structure as it was part way: at a quarter, fewer pixels of structure,
+// each of them structure in the finished picture too (branches only thicken as they grow,
+// under the taper and the pipe model). Just short of 1 the scene is built from
 // PREFIX_growth.inc by the scene's own code, and shows what PREFIX.inc does, up to rounding.
 TEST(Render, GrowthFramesShowTheStructureAsItGrew) {
   GrowthOptions o;
@@ -245,9 +244,7 @@ TEST(Render, GrowthFramesShowTheStructureAsItGrew) {
     }
     EXPECT_GT(count(lit["0.25"]), 100);
     EXPECT_LT(count(lit["0.25"]), count(lit["1"]) * 3 / 4);
-    if (std::string(model) == "pipe") {
-      EXPECT_EQ(early_only, 0u);
-    }
+    EXPECT_EQ(early_only, 0u);
     EXPECT_LT(differ, lit["1"].size() / 500) << "PREFIX_growth.inc draws what PREFIX.inc does";
   }
 }

@@ -100,36 +100,37 @@ if (count <= meta.tube_limit) {
   scene.add(tubes.sticks, tubes.joints);
 }
 
-// The branch radii of the first `shown` particles, in spacings. The taper and the pipe model
-// depend on the structure, so they are worked out for the structure of that moment by dla3d's
-// rules (as the POV-Ray scene's frames are: docs/animation.md); the other models' radii do not
-// change as it grows, and come from the page.
-const descendants = new Int32Array(count), heavy = new Int32Array(count), step = new Int32Array(count);
-const grownRadii = new Float32Array(count);
+// The branch radii of the first `shown` particles, in spacings, as the POV-Ray scene's frames
+// have them (docs/animation.md): the strands are the finished structure's, cut at the last
+// particle grown, the taper runs along the part grown, and the pipe model counts the subtrees so
+// far, so a branch only thickens as it grows. The other models' radii do not change as it grows,
+// and come from the page.
+const descendants = new Int32Array(count), last = new Int32Array(count), grownRadii = new Float32Array(count);
+// Each particle's place on its strand from the strand's start: at a branch point the strand goes
+// on into the child with the largest finished subtree (ties: the earliest), as dla3d's rule.
+const next = new Int32Array(count).fill(-1), step = new Int32Array(count);
+{
+  for (let i = count - 1; i >= 0; --i) if (parents[i] >= 0) descendants[parents[i]] += descendants[i] + 1;
+  for (let i = 0; i < count; ++i) {
+    const p = parents[i];
+    if (p >= 0 && (next[p] < 0 || descendants[i] > descendants[next[p]])) next[p] = i;
+  }
+  for (let i = 0; i < count; ++i) step[i] = parents[i] < 0 ? 0 : next[parents[i]] === i ? step[parents[i]] + 1 : 1;
+}
 function radiiAt(shown) {
   const { model, tip, base, exponent } = meta.radius;
   if (model !== 'taper' && model !== 'pipe') return radii;
-  descendants.fill(0, 0, shown);
-  for (let i = shown - 1; i >= 0; --i) if (parents[i] >= 0) descendants[parents[i]] += descendants[i] + 1;
   if (model === 'pipe') {
+    descendants.fill(0, 0, shown);
+    for (let i = shown - 1; i >= 0; --i) if (parents[i] >= 0) descendants[parents[i]] += descendants[i] + 1;
     for (let i = 0; i < shown; ++i) grownRadii[i] = Math.min(tip * Math.pow(descendants[i] + 1, 1 / exponent), Math.max(base, tip));
     return grownRadii;
   }
-  // At a branch point the strand goes on into the child with the largest subtree (ties: the
-  // earliest); each particle's place runs from 1 at its strand's start to 0 at its tip.
-  heavy.fill(-1, 0, shown);
-  for (let i = 0; i < shown; ++i) {
+  last.set(step.subarray(0, shown));
+  for (let i = shown - 1; i >= 0; --i) {
     const p = parents[i];
-    if (p >= 0 && (heavy[p] < 0 || descendants[i] > descendants[heavy[p]])) heavy[p] = i;
-  }
-  step.fill(0, 0, shown);
-  for (let i = shown - 1; i >= 0; --i) if (parents[i] >= 0 && heavy[parents[i]] === i) step[parents[i]] = step[i] + 1;
-  for (let i = 0; i < shown; ++i) {
-    const p = parents[i];
-    const k = p < 0 ? 0 : heavy[p] === i ? step[p] + 1 : 1;
-    const end = k + step[i];
-    step[i] = k;
-    grownRadii[i] = tip + (base - tip) * (end > 0 ? 1 - k / end : 1);
+    if (p >= 0 && next[p] === i) last[p] = last[i];
+    grownRadii[i] = tip + (base - tip) * (last[i] > 0 ? 1 - step[i] / last[i] : 1);
   }
   return grownRadii;
 }
