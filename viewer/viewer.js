@@ -26,6 +26,7 @@ const parents = new Int32Array(embedded('dla-parents'));
 const radii = new Float32Array(embedded('dla-radii'));
 // One byte a particle for each colour attribute, in meta.colorings' order: value / 255.
 const colorings = new Uint8Array(embedded('dla-colors'));
+const meshVertices = meta.mesh ? new Float32Array(embedded('dla-mesh-vertices')) : null;
 
 // The colour map of every dla3d file (viridis, linear RGB), from the writer.
 function colorAt(value, target) {
@@ -53,13 +54,13 @@ scene.add(sun);
 
 // The frame: a sphere around every particle and mesh vertex, seen as the POV-Ray scene sees it.
 const box = new THREE.Box3().setFromArray(positions);
-if (meta.mesh) box.union(new THREE.Box3().setFromArray(new Float32Array(embedded('dla-mesh-vertices'))));
+if (meshVertices) box.union(new THREE.Box3().setFromArray(meshVertices));
 const center = box.getCenter(new THREE.Vector3());
 let reach = 1;
 {
   const p = new THREE.Vector3();
   for (let i = 0; i < positions.length; i += 3) reach = Math.max(reach, p.fromArray(positions, i).distanceTo(center));
-  if (meta.mesh) reach = Math.max(reach, box.getSize(p).length() / 2);
+  if (meshVertices) reach = Math.max(reach, box.getSize(p).length() / 2);
 }
 const camera = new THREE.PerspectiveCamera(40, window.innerWidth / window.innerHeight, reach / 1000, reach * 100);
 camera.up.set(meta.up === 'z' ? 0 : meta.up === 'x' ? 1 : 0, meta.up === 'y' ? 1 : 0, meta.up === 'z' ? 1 : 0);
@@ -154,9 +155,9 @@ function placeTubes(shown) {
 }
 
 let meshObject = null;
-if (meta.mesh) {
+if (meshVertices) {
   const geometry = new THREE.BufferGeometry();
-  geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(embedded('dla-mesh-vertices')), 3));
+  geometry.setAttribute('position', new THREE.BufferAttribute(meshVertices, 3));
   geometry.setIndex(new THREE.BufferAttribute(new Uint32Array(embedded('dla-mesh-triangles')), 1));
   geometry.computeVertexNormals();
   meshObject = new THREE.Mesh(geometry, new THREE.MeshStandardMaterial({
@@ -214,12 +215,12 @@ function show() {
   label.textContent = `${shown.toLocaleString('en')} of ${count.toLocaleString('en')} particles`;
 }
 
-let playing = false, last = 0;
+let playing = false, lastFrame = 0;
 play.addEventListener('click', () => {
   playing = !playing;
   if (playing && Number(slider.value) >= Number(slider.max)) slider.value = 0;
   play.textContent = playing ? 'Pause' : 'Play';
-  last = performance.now();
+  lastFrame = performance.now();
 });
 slider.addEventListener('input', () => { playing = false; play.textContent = 'Play'; show(); });
 coloring.addEventListener('change', paint);
@@ -240,9 +241,9 @@ show();
 renderer.setAnimationLoop((now) => {
   if (playing) {
     // The whole growth in ten seconds.
-    const step = (now - last) / 10000 * Number(slider.max);
-    last = now;
-    slider.value = Math.min(Number(slider.max), Number(slider.value) + Math.max(1, Math.round(step)));
+    const advance = (now - lastFrame) / 10000 * Number(slider.max);
+    lastFrame = now;
+    slider.value = Math.min(Number(slider.max), Number(slider.value) + Math.max(1, Math.round(advance)));
     if (Number(slider.value) >= Number(slider.max)) { playing = false; play.textContent = 'Play'; }
     show();
   }
