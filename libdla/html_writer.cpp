@@ -27,29 +27,15 @@ namespace {
 void base64(detail::Text& out, const void* data, std::size_t size) {
   static constexpr char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   const auto* bytes = static_cast<const unsigned char*>(data);
-  std::string line;
-  line.reserve(4 * 1024);
   std::size_t i = 0;
-  const auto flush = [&] {
-    out << line;
-    line.clear();
-  };
   for (; i + 3 <= size; i += 3) {
     const std::uint32_t v = bytes[i] << 16 | bytes[i + 1] << 8 | bytes[i + 2];
-    line += kDigits[v >> 18];
-    line += kDigits[(v >> 12) & 63];
-    line += kDigits[(v >> 6) & 63];
-    line += kDigits[v & 63];
-    if (line.size() >= 4000) flush();
+    out << kDigits[v >> 18] << kDigits[(v >> 12) & 63] << kDigits[(v >> 6) & 63] << kDigits[v & 63];
   }
   if (i < size) {
     const std::uint32_t v = bytes[i] << 16 | (i + 1 < size ? bytes[i + 1] << 8 : 0);
-    line += kDigits[v >> 18];
-    line += kDigits[(v >> 12) & 63];
-    line += i + 1 < size ? kDigits[(v >> 6) & 63] : '=';
-    line += '=';
+    out << kDigits[v >> 18] << kDigits[(v >> 12) & 63] << (i + 1 < size ? kDigits[(v >> 6) & 63] : '=') << '=';
   }
-  flush();
 }
 
 template <class T>
