@@ -11,13 +11,13 @@
 #include "dla/mesh/shapes.h"
 #include "dla/mesh/surface_distance.h"
 #include "mesh_util.h"
+#include "png_util.h"
 #include "test_util.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -31,68 +31,34 @@ namespace {
 using testing::ScratchDir;
 using testing::read_file;
 
-struct Image {
-  int width = 0, height = 0;
-  std::string rgb;  // 3 bytes a pixel, rows from the top
-  std::array<int, 3> at(int x, int y) const {
-    const std::size_t i = 3 * (static_cast<std::size_t>(y) * width + x);
-    return {static_cast<unsigned char>(rgb[i]), static_cast<unsigned char>(rgb[i + 1]),
-            static_cast<unsigned char>(rgb[i + 2])};
-  }
-};
+using testing::Picture;
+using testing::read_png;
 
-// A binary PPM (P6, maxval 255); header comments are skipped.
-Image read_ppm(const std::string& path) {
-  const std::string data = read_file(path);
-  std::size_t at = 0;
-  const auto token = [&] {
-    for (;;) {
-      while (at < data.size() && std::isspace(static_cast<unsigned char>(data[at]))) ++at;
-      if (at >= data.size() || data[at] != '#') break;
-      while (at < data.size() && data[at] != '\n') ++at;
-    }
-    const std::size_t start = at;
-    while (at < data.size() && !std::isspace(static_cast<unsigned char>(data[at]))) ++at;
-    return data.substr(start, at - start);
-  };
-  Image image;
-  if (token() != "P6") return {};
-  image.width = std::atoi(token().c_str());
-  image.height = std::atoi(token().c_str());
-  if (token() != "255" || image.width <= 0 || image.height <= 0) return {};
-  image.rgb = data.substr(at + 1);
-  if (image.rgb.size() != 3u * image.width * image.height) return {};
-  return image;
-}
-
-// Runs POV-Ray on dir/scene.pov at 160x120 with `options`, into scene.ppm (or, animated,
-// sceneN.ppm); a failure that shows its log when it fails.
+// Runs POV-Ray on dir/scene.pov at 160x120 with `options`, into scene.png (or, animated,
+// sceneN.png); a failure that shows its log when it fails.
 bool run_povray(const ScratchDir& dir, const std::string& options) {
   const std::string command = "cd '" + dir.path().string() + "' && '" + std::string(POVRAY_PATH) +
-                              "' +Iscene.pov +Oscene.ppm +FP +W160 +H120 -D -V " + options + " > povray.log 2>&1";
+                              "' +Iscene.pov +Oscene.png +W160 +H120 -D -V " + options + " > povray.log 2>&1";
   if (std::system(command.c_str()) == 0) return true;
   ADD_FAILURE() << read_file(dir / "povray.log");
   return false;
 }
 
 // Renders dir/scene.pov (run_povray); an empty image when it fails.
-Image render(const ScratchDir& dir, const std::string& options) {
+Picture render(const ScratchDir& dir, const std::string& options) {
   if (!run_povray(dir, options)) return {};
-  Image image = read_ppm(dir / "scene.ppm");
+  Picture image = read_png(dir / "scene.png");
   if (image.width != 160) ADD_FAILURE() << "no image: " << read_file(dir / "povray.log");
   return image;
 }
 
 // Which pixels differ from the background (the top left corner's colour).
-std::vector<bool> structure_pixels(const Image& image) {
-  std::vector<bool> lit(static_cast<std::size_t>(image.width) * image.height, false);
+std::vector<bool> structure_pixels(const Picture& image) {
+  std::vector<bool> lit(image.width * image.height, false);
   if (image.width == 0) return lit;
   const std::array<int, 3> background = image.at(0, 0);
-  for (int y = 0; y < image.height; ++y)
-    for (int x = 0; x < image.width; ++x) {
-      const std::array<int, 3> p = image.at(x, y);
-      lit[static_cast<std::size_t>(y) * image.width + x] = p != background;
-    }
+  for (std::size_t y = 0; y < image.height; ++y)
+    for (std::size_t x = 0; x < image.width; ++x) lit[y * image.width + x] = image.at(x, y) != background;
   return lit;
 }
 
@@ -112,25 +78,26 @@ int expect_framed_render(const Cluster& cluster, const ScratchDir& dir, const Tr
     edit(pov);
     std::ofstream(dir / "scene.pov") << pov;
   }
-  const Image image = render(dir, "+A0.3");
+  const Picture image = render(dir, "+A0.3");
   if (image.width != 160) return 0;
 
   const std::array<int, 3> background = image.at(0, 0);
-  int lit = 0, x0 = image.width, x1 = -1, y0 = image.height, y1 = -1;
-  for (int y = 0; y < image.height; ++y)
-    for (int x = 0; x < image.width; ++x) {
-      const std::array<int, 3> p = image.at(x, y);
+  const int width = static_cast<int>(image.width), height = static_cast<int>(image.height);
+  int lit = 0, x0 = width, x1 = -1, y0 = height, y1 = -1;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const std::array<int, 3> p = image.at(static_cast<std::size_t>(x), static_cast<std::size_t>(y));
       if (std::abs(p[0] - background[0]) + std::abs(p[1] - background[1]) + std::abs(p[2] - background[2]) < 60)
         continue;
       ++lit;
       x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
     }
-  EXPECT_GT(lit, image.width * image.height / 50) << "the image is (nearly) blank";
+  EXPECT_GT(lit, width * height / 50) << "the image is (nearly) blank";
   EXPECT_GT(x0, 0) << "cut at the left";
-  EXPECT_LT(x1, image.width - 1) << "cut at the right";
+  EXPECT_LT(x1, width - 1) << "cut at the right";
   EXPECT_GT(y0, 0) << "cut at the top";
-  EXPECT_LT(y1, image.height - 1) << "cut at the bottom";
-  EXPECT_GT(std::max(x1 - x0, y1 - y0), image.height / 2) << "too small to see";
+  EXPECT_LT(y1, height - 1) << "cut at the bottom";
+  EXPECT_GT(std::max(x1 - x0, y1 - y0), height / 2) << "too small to see";
   return lit;
 }
 
@@ -260,8 +227,8 @@ TEST(Render, AnAnimationRendersGrowth) {
     write_pov(c, dir / "scene");
     ASSERT_TRUE(run_povray(dir, "-A +KFF3"));
     std::vector<long> lit;
-    for (const char* frame : {"scene1.ppm", "scene2.ppm", "scene3.ppm"}) {
-      const std::vector<bool> pixels = structure_pixels(read_ppm(dir / frame));
+    for (const char* frame : {"scene1.png", "scene2.png", "scene3.png"}) {
+      const std::vector<bool> pixels = structure_pixels(read_png(dir / frame));
       lit.push_back(std::count(pixels.begin(), pixels.end(), true));
     }
     EXPECT_LT(lit[0], lit[1]);
