@@ -415,14 +415,8 @@ void write_tips(const Cluster& cluster, const SceneFrame& frame, const Look& loo
       << (instances.set == InstanceSet::tips ? "tip" : "particle") << ", shown by DLA_ShowTips in the .pov.\n";
   const Attributes& a = look.attributes;
   const InstanceSelection selected(cluster, a, instances);
-  const bool every_tip = instances.set == InstanceSet::tips && instances.within == std::numeric_limits<double>::infinity();
   std::vector<float> measured;
-  if (!every_tip || a.tip_gaps.empty()) {
-    std::vector<bool> chosen(ps.size());
-    for (std::size_t i = 0; i < ps.size(); ++i) chosen[i] = selected(i);
-    measured = half_gaps(cluster, chosen, detail::format_threads());
-  }
-  const std::vector<float>& gaps = measured.empty() && every_tip ? a.tip_gaps : measured;
+  const std::vector<float>& gaps = instance_gaps(cluster, a, instances, selected, measured, detail::format_threads());
   std::vector<std::size_t> first_gap{0};
   for (std::size_t begin = 0; begin < ps.size(); begin += kChunk) {
     std::size_t chosen = 0;
