@@ -151,6 +151,18 @@ struct CommandLine {
   std::string convert_in, convert_out;
   std::string analyze_csv;
   std::string text;
+
+  //! The files of the growth run it asks for (grow, colonize, eden, drop, ballistic), else null.
+  const FileOptions* growth_files() const {
+    switch (kind) {
+      case Kind::grow: return &grow;
+      case Kind::colonize: return &colonize;
+      case Kind::eden: return &eden;
+      case Kind::drop: return &drop;
+      case Kind::ballistic: return &ballistic;
+      default: return nullptr;
+    }
+  }
 };
 
 //! The roots a colonize command grows from: its --root-at points; or --roots K on the sphere

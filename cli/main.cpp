@@ -47,17 +47,11 @@ int run(const std::vector<std::string>& args) {
       return dla::cli::frames(line.frames, stop_requested, stop_signal);
     case Kind::grow: break;
     case Kind::colonize:
-      catch_stop_signals();
-      return dla::cli::colonize(line.colonize, args, stop_requested, stop_signal);
     case Kind::eden:
-      catch_stop_signals();
-      return dla::cli::eden(line.eden, args, stop_requested, stop_signal);
     case Kind::drop:
-      catch_stop_signals();
-      return dla::cli::drop(line.drop, args, stop_requested, stop_signal);
     case Kind::ballistic:
       catch_stop_signals();
-      return dla::cli::ballistic(line.ballistic, args, stop_requested, stop_signal);
+      return dla::cli::run_model(line, args, stop_requested, stop_signal);
     case Kind::resume: {
       // The checkpoint's own command, with this thread count and -q: the count changes how
       // fast it goes on, never what it grows.
@@ -73,11 +67,11 @@ int run(const std::vector<std::string>& args) {
       const dla::cli::CommandLine resumed = dla::cli::parse_command_line(command);
       if (resumed.kind != Kind::grow) throw dla::InvalidInput(line.resume_path + ": its command is not a growth run");
       catch_stop_signals();
-      return dla::cli::grow(resumed.grow, command, &checkpoint, stop_requested, stop_signal);
+      return dla::cli::grow(resumed, command, &checkpoint, stop_requested, stop_signal);
     }
   }
   catch_stop_signals();
-  return dla::cli::grow(line.grow, args, nullptr, stop_requested, stop_signal);
+  return dla::cli::grow(line, args, nullptr, stop_requested, stop_signal);
 }
 
 }  // namespace
