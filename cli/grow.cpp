@@ -25,8 +25,7 @@ int grow(const CommandLine& line, const std::vector<std::string>& args, const Ch
   if (!command.quiet && !run->mesh_line.empty()) std::fprintf(stderr, "dla3d: %s\n", run->mesh_line.c_str());
 
   ProgressBar bar(run->total, !command.quiet && isatty(STDERR_FILENO));
-  const Clock::time_point start = Clock::now();
-  Clock::time_point saved = start;
+  Clock::time_point saved = Clock::now();
   // A save that fails (a full disk) is reported once and does not stop the run.
   bool save_failed = false;
   const auto save = [&](const Cluster& so_far) {
@@ -49,21 +48,11 @@ int grow(const CommandLine& line, const std::vector<std::string>& args, const Ch
     }
     return true;
   };
-  Cluster cluster;
-  std::string error;  // why growth failed part way, if it did
-  try {
-    cluster = run->grow(progress, &stop);
-  } catch (const PartialGrowth& e) {
-    cluster = e.partial();
-    error = e.what();
-  }
-  bar.clear();
   RunRecord record;
-  record.grow_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  record.command = command_line(args);
+  std::string error;  // why growth failed part way, if it did
+  const Cluster cluster = grow_recorded(*run, progress, stop, stop_signal, args, record, error);
+  bar.clear();
   const int signal = stop_signal;
-  if (!error.empty()) record.stopped_by = "error: " + error;
-  else if (!cluster.complete) record.stopped_by = signal_name(signal);
   write_run(*run, cluster, run->files, record);
   if (!cluster.complete) save(cluster);  // after the files: they matter more
 
@@ -75,13 +64,7 @@ int grow(const CommandLine& line, const std::vector<std::string>& args, const Ch
                  output.c_str(), grown.c_str());
     return 1;
   }
-  if (!command.quiet) {
-    std::string written;
-    for (const std::string& name : file_names(command)) written += (written.empty() ? "" : " ") + name;
-    const std::string render = command.formats.pov ? "; render: povray +W1280 +H960 +A " + output + ".pov" : "";
-    std::fprintf(stderr, "dla3d: %s\ndla3d: wrote %s%s\n", run->summary(cluster, record).c_str(), written.c_str(),
-                 render.c_str());
-  }
+  if (!command.quiet) print_summary(*run, cluster, run->files, record);
   if (!cluster.complete) {
     std::fprintf(stderr, "dla3d: stopped by %s after %s of %s particles; the files hold them%s\n",
                  signal_name(signal), grown.c_str(), with_commas(static_cast<double>(run->total)).c_str(),

@@ -18,27 +18,15 @@ int run_model(const CommandLine& line, const std::vector<std::string>& args, con
   if (!files.quiet && !run.mesh_line.empty()) std::fprintf(stderr, "dla3d: %s\n", run.mesh_line.c_str());
 
   ProgressBar bar(run.total, !files.quiet && isatty(STDERR_FILENO));
-  const Clock::time_point start = Clock::now();
-  Cluster cluster;
-  std::string error;  // why growth failed part way, if it did
-  try {
-    cluster = run.grow(
-        [&](const Cluster& so_far) {
-          bar.update(so_far.particles.size());
-          return !stop.load();
-        },
-        &stop);
-  } catch (const PartialGrowth& e) {
-    cluster = e.partial();
-    error = e.what();
-  }
-  bar.clear();
+  const auto progress = [&](const Cluster& so_far) {
+    bar.update(so_far.particles.size());
+    return !stop.load();
+  };
   RunRecord record;
-  record.grow_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  record.command = command_line(args);
+  std::string error;  // why growth failed part way, if it did
+  const Cluster cluster = grow_recorded(run, progress, stop, stop_signal, args, record, error);
+  bar.clear();
   const int signal = stop_signal;
-  if (!error.empty()) record.stopped_by = "error: " + error;
-  else if (!cluster.complete) record.stopped_by = signal_name(signal);
   write_run(run, cluster, files, record);
 
   if (!error.empty()) {
@@ -46,13 +34,7 @@ int run_model(const CommandLine& line, const std::vector<std::string>& args, con
                  with_commas(static_cast<double>(cluster.particles.size())).c_str(), run.unit);
     return 1;
   }
-  if (!files.quiet) {
-    std::string written;
-    for (const std::string& name : file_names(files)) written += (written.empty() ? "" : " ") + name;
-    const std::string render = files.formats.pov ? "; render: povray +W1280 +H960 +A " + files.output + ".pov" : "";
-    std::fprintf(stderr, "dla3d: %s\ndla3d: wrote %s%s\n", run.summary(cluster, record).c_str(), written.c_str(),
-                 render.c_str());
-  }
+  if (!files.quiet) print_summary(run, cluster, files, record);
   if (!cluster.complete) {
     std::fprintf(stderr, "dla3d: stopped by %s after %s %s; the files hold them\n", signal_name(signal),
                  with_commas(static_cast<double>(cluster.particles.size())).c_str(), run.unit);

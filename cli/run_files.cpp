@@ -1,5 +1,7 @@
 #include "run_files.h"
 
+#include "model_run.h"
+
 #include "dla/io/csv_writer.h"
 #include "dla/io/mesh_writers.h"
 #include "dla/io/ply_writer.h"
@@ -122,6 +124,32 @@ void write_files(const Cluster& cluster, const FileOptions& files, const PovOpti
   });
   if (formats.pov) write_pov(cluster, output, pov, scene_mesh, &look);
   for (std::future<void>& writer : writers) writer.get();
+}
+
+Cluster grow_recorded(ModelRun& run, const ProgressFn& progress, const StopFlag& stop,
+                      const volatile std::sig_atomic_t& stop_signal, const std::vector<std::string>& args,
+                      RunRecord& record, std::string& error) {
+  const Clock::time_point start = Clock::now();
+  Cluster cluster;
+  try {
+    cluster = run.grow(progress, &stop);
+  } catch (const PartialGrowth& e) {
+    cluster = e.partial();
+    error = e.what();
+  }
+  record.grow_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  record.command = command_line(args);
+  if (!error.empty()) record.stopped_by = "error: " + error;
+  else if (!cluster.complete) record.stopped_by = signal_name(stop_signal);
+  return cluster;
+}
+
+void print_summary(const ModelRun& run, const Cluster& cluster, const FileOptions& files, const RunRecord& record) {
+  std::string written;
+  for (const std::string& name : file_names(files)) written += (written.empty() ? "" : " ") + name;
+  const std::string render = files.formats.pov ? "; render: povray +W1280 +H960 +A " + files.output + ".pov" : "";
+  std::fprintf(stderr, "dla3d: %s\ndla3d: wrote %s%s\n", run.summary(cluster, record).c_str(), written.c_str(),
+               render.c_str());
 }
 
 }  // namespace dla::cli

@@ -93,4 +93,16 @@ Axis longest_axis(const Box& box);
 void write_files(const Cluster& cluster, const FileOptions& files, const PovOptions& pov, int threads,
                  const MeshConstraint* constraint, const TriangleMesh* scene_mesh);
 
+class ModelRun;
+
+//! Grows `run` under `progress`, keeping what grew when growth fails part way (its reason goes
+//! in `error`), and fills `record`: the time taken, the command line `args`, and what stopped
+//! growth (the error, else the signal `stop_signal` holds when the structure is incomplete).
+Cluster grow_recorded(ModelRun& run, const ProgressFn& progress, const StopFlag& stop,
+                      const volatile std::sig_atomic_t& stop_signal, const std::vector<std::string>& args,
+                      RunRecord& record, std::string& error);
+
+//! The summary on stderr: the run's line, then the files written and how to render them.
+void print_summary(const ModelRun& run, const Cluster& cluster, const FileOptions& files, const RunRecord& record);
+
 }  // namespace dla::cli
