@@ -1,0 +1,136 @@
+"""dla3d from Python: every growth model as a function, its options as keyword arguments.
+
+    import dla3d
+    result = dla3d.grow(particles=20000, rng_seed=7)
+    result.positions            # (N, 3) float64, sharing the structure's memory
+    result.write("cluster", formats=["glb", "pov"])
+
+Keyword arguments are the command line's options, with dashes as underscores:
+``dla3d.grow(stl="bust.stl", seeds=2)`` grows what ``dla3d --stl bust.stl --seeds 2`` does,
+checked with the same one-line messages, raised as ValueError. See docs/python.md.
+"""
+
+import numbers
+
+import numpy as np
+
+from . import _core
+from ._core import Result
+
+__all__ = ["grow", "colonize", "drop", "ballistic", "eden", "command_args", "Result", "ensemble"]
+
+# Options of the files, which Result.write() takes instead: a model function writes nothing.
+_WRITE_ONLY = {"output", "o", "formats", "quiet", "q"}
+# The command line's own: from Python a stopped run returns what grew, and help is help().
+_CLI_ONLY = {"checkpoint", "checkpoint_every", "resume", "help", "h", "version"}
+# Options that name a mesh file, and may be given (V, 3) vertices and (F, 3) faces instead.
+_MESH_OPTIONS = {"stl", "collide", "seed_mesh"}
+
+
+def _word(key, value):
+    """One command-line word for a value: numbers exact, vectors comma-separated."""
+    if isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{key}: True or False is a switch, not a value in a list")
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    if isinstance(value, numbers.Real):
+        return repr(float(value))  # the shortest text that reads back as the same double
+    if isinstance(value, str):
+        return value
+    if isinstance(value, (list, tuple, np.ndarray)) and all(isinstance(v, numbers.Real) for v in value):
+        return ",".join(_word(key, v) for v in value)
+    raise ValueError(f"{key}={value!r} is not a number, a string or a list of numbers")
+
+
+def _is_mesh(value):
+    return (isinstance(value, (tuple, list)) and len(value) == 2 and
+            all(isinstance(a, np.ndarray) or hasattr(a, "__array__") for a in value) and
+            np.ndim(value[0]) == 2 and np.ndim(value[1]) == 2)
+
+
+def command_args(model, options):
+    """The command line's words (without "dla3d") for `model` and keyword `options`, and the
+    meshes given as arrays, by the name that stands for each on the command line."""
+    args = [] if model == "grow" else [model]
+    meshes = {}
+    for key, value in options.items():
+        if key in _WRITE_ONLY:
+            raise ValueError(f"{key} is an argument of Result.write(), not of {model}()")
+        if key in _CLI_ONLY:
+            raise ValueError(f"{key} is an option of the dla3d command line, not of {model}()")
+        flag = ("-" if len(key) == 1 else "--") + key.replace("_", "-")
+        if value is None or value is False:
+            continue
+        if value is True:
+            args.append(flag)
+            continue
+        # Options that repeat (seed_at, root_at, seed_mesh) take a list of values.
+        if key in _MESH_OPTIONS and _is_mesh(value):
+            values = [value]
+        elif isinstance(value, np.ndarray) and value.ndim == 2:
+            values = list(value)
+        elif isinstance(value, (list, tuple)) and value and all(
+                isinstance(v, (list, tuple, np.ndarray, str)) for v in value):
+            values = list(value)
+        else:
+            values = [value]
+        for item in values:
+            if key in _MESH_OPTIONS and _is_mesh(item):
+                name = f"<{key} arrays{'' if not meshes else ' ' + str(len(meshes) + 1)}>"
+                meshes[name] = (np.asarray(item[0], dtype=np.float64), np.asarray(item[1], dtype=np.int64))
+                args += [flag, name]
+            else:
+                args += [flag, _word(key, item)]
+    return args, meshes
+
+
+def _refused(model, error):
+    """CLI11's words for an unknown option, as the keyword argument it was."""
+    text = str(error)
+    if text.startswith("The following arguments were not expected"):
+        flags = [w for w in text.split() if w.startswith("-")]
+        name = flags[0].lstrip("-").replace("-", "_") if flags else "an argument"
+        return ValueError(f"{name} is not an option of {model}(): see `dla3d {'' if model == 'grow' else model + ' '}--help`")
+    return error
+
+
+def _run(model, progress, options):
+    if progress is not None and not callable(progress):
+        raise ValueError("progress is not callable: give a function of (done, total)")
+    args, meshes = command_args(model, options)
+    try:
+        return _core.grow_run(args, model, meshes, progress)
+    except ValueError as error:
+        raise _refused(model, error) from None
+
+
+def grow(progress=None, **options):
+    """DLA, as `dla3d [options]`: in or around a mesh (stl="bust.stl", or stl=(V, F) arrays)."""
+    return _run("grow", progress, options)
+
+
+def colonize(progress=None, **options):
+    """Space colonization, as `dla3d colonize [options]`."""
+    return _run("colonize", progress, options)
+
+
+def drop(progress=None, **options):
+    """Random-drop ballistic aggregation, as `dla3d drop [options]`."""
+    return _run("drop", progress, options)
+
+
+def ballistic(progress=None, **options):
+    """Ballistic aggregation, as `dla3d ballistic [options]`."""
+    return _run("ballistic", progress, options)
+
+
+def eden(progress=None, **options):
+    """The Eden model on a lattice, as `dla3d eden [options]`."""
+    return _run("eden", progress, options)
+
+
+def ensemble(model, count, seeds=1, client=None, **options):
+    """Grows `count` clusters on a Dask cluster and measures them: see dla3d.ensemble."""
+    from .ensemble import run_ensemble
+    return run_ensemble(model, count, seeds, client=client, **options)
+

@@ -1,0 +1,267 @@
+"""Ensembles of clusters on Dask: grow many, measure each where it grew, and gather the measures.
+
+    import dla3d
+    summary = dla3d.ensemble("grow", 100, seeds=1, particles=100000)  # a LocalCluster
+    summary["fractal_dimension"]["gyration"]   # {"mean": 2.50, "ci95": 0.006, ...}
+
+From the shell, on any Dask scheduler:
+
+    python3 -m dla3d.ensemble --count 100 -n 100000 --scheduler tcp://HOST:8786
+
+Cluster k grows with the rng seed seeds + k (or seeds[k]), exactly as `dla3d ... --rng-seed S`
+grows it: the same structure, byte for byte. See docs/python.md.
+"""
+
+import argparse
+import hashlib
+import json
+import math
+import os
+import sys
+import tempfile
+import time
+import types
+
+import numpy as np
+
+from . import _core, command_args, _refused
+
+# Student's t at 97.5% for 1-30 degrees of freedom; beyond, the normal 1.96.
+_T975 = [12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.160, 2.145,
+         2.131, 2.120, 2.110, 2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064, 2.060, 2.056, 2.052, 2.048,
+         2.045, 2.042]
+# The fit of Rg against n over the ensemble: the last decade, as `dla3d analyze` fits one cluster.
+_GYRATION_SAMPLES = 40
+
+
+def _interval(values):
+    """Mean, the half-width of its 95% confidence interval (Student's t), and the spread."""
+    values = np.asarray([v for v in values if v is not None and math.isfinite(v)], dtype=float)
+    if len(values) == 0:
+        return {"mean": None, "ci95": None, "std": None, "count": 0}
+    mean = float(values.mean())
+    if len(values) < 2:
+        return {"mean": mean, "ci95": None, "std": None, "count": 1}
+    std = float(values.std(ddof=1))
+    t = _T975[len(values) - 2] if len(values) - 1 <= len(_T975) else 1.96
+    return {"mean": mean, "ci95": t * std / math.sqrt(len(values)), "std": std, "count": int(len(values))}
+
+
+def _numbers(record, prefix=""):
+    """The numbers of a JSON record, flattened to dotted names: the model's statistics."""
+    found = {}
+    for key, value in record.items():
+        name = prefix + key
+        if isinstance(value, dict):
+            found.update(_numbers(value, name + "."))
+        elif isinstance(value, (int, float)) and not isinstance(value, bool):
+            found[name] = value
+    return found
+
+
+def grow_one(model, args, rng_seed, save=None, formats=("csv",)):
+    """Grows one cluster (on a worker) and returns its measures; with `save`, also writes its
+    files as SAVE_SEED.EXT, which are the CLI's for that seed."""
+    result = _core.grow_run(list(args) + ["--rng-seed", str(rng_seed)], model, {}, None)
+    gyration, mass_radius = result.fractal_dimension()
+    n, rg = result.gyration(100, _GYRATION_SAMPLES)
+    with tempfile.TemporaryDirectory() as folder:
+        result.write(os.path.join(folder, "run"), ["json"])
+        with open(os.path.join(folder, "run.json")) as record_file:
+            record = json.load(record_file)
+    if save:
+        result.write(f"{save}_{rng_seed}", list(formats))
+    identity = hashlib.sha256()
+    for array in (result.positions, result.parent, result.seed):
+        identity.update(np.ascontiguousarray(array).tobytes())
+    # What the run measured and counted; its options are the same for every cluster, and its
+    # timings vary with the machine.
+    statistics = {k: v for k, v in _numbers(record).items()
+                  if k != "rng_seed" and not k.startswith(("options.", "look.", "timings."))}
+    return {
+        "rng_seed": rng_seed,
+        "particles": len(result),
+        "complete": result.complete,
+        "sha256": identity.hexdigest(),
+        "fractal_dimension_gyration": gyration,
+        "fractal_dimension_mass_radius": mass_radius,
+        "gyration_n": n.tolist(),
+        "gyration_radius": rg.tolist(),
+        "statistics": statistics,
+    }
+
+
+def summarize(model, args, clusters):
+    """The ensemble's measures, with 95% confidence intervals, from the clusters' own."""
+    clusters = sorted(clusters, key=lambda c: c["rng_seed"])
+    summary = {
+        "model": model,
+        "command": "dla3d " + " ".join(args),
+        "count": len(clusters),
+        "fractal_dimension": {
+            "gyration": _interval(c["fractal_dimension_gyration"] for c in clusters),
+            "mass_radius": _interval(c["fractal_dimension_mass_radius"] for c in clusters),
+        },
+    }
+    # Rg against n where every cluster has the same n (clusters of one size): the mean at each n,
+    # and D from the fit of log Rg = log n / D + c over the last decade.
+    same = [c for c in clusters if c["gyration_n"] == clusters[0]["gyration_n"]]
+    if clusters and len(same) == len(clusters) and len(clusters[0]["gyration_n"]) >= 2:
+        n = np.asarray(clusters[0]["gyration_n"], dtype=float)
+        rg = np.asarray([c["gyration_radius"] for c in clusters])
+        points = [_interval(rg[:, k]) for k in range(len(n))]
+        last_decade = n >= n[-1] / 10
+        mean = np.asarray([p["mean"] for p in points])
+        slope, intercept = np.polyfit(np.log(n[last_decade]), np.log(mean[last_decade]), 1)
+        summary["gyration"] = {
+            "n": n.astype(int).tolist(),
+            "mean": mean.tolist(),
+            "ci95": [p["ci95"] for p in points],
+            "fit": {"dimension": 1.0 / slope, "intercept": intercept, "from_n": int(n[last_decade][0])},
+        }
+    names = sorted({name for c in clusters for name in c["statistics"]})
+    summary["statistics"] = {name: _interval(c["statistics"].get(name) for c in clusters) for name in names}
+    summary["clusters"] = clusters
+    return summary
+
+
+def _seed_list(count, seeds):
+    if isinstance(seeds, int):
+        return [seeds + k for k in range(count)]
+    seeds = [int(s) for s in seeds]
+    if len(seeds) != count:
+        raise ValueError(f"seeds holds {len(seeds)} rng seeds for {count} clusters")
+    return seeds
+
+
+def run_ensemble(model, count, seeds=1, client=None, save=None, formats=("csv",), on_cluster=None, **options):
+    """Grows `count` clusters of `model` with `options` (keyword arguments as for dla3d.grow and
+    the others) on a Dask `client`: None starts a LocalCluster of one single-threaded worker a
+    core; a string is a scheduler's address. Cluster k has the rng seed seeds + k (an int) or
+    seeds[k]. `on_cluster(measures)` sees each cluster's measures as it comes in. Returns the
+    summary: see summarize()."""
+    if "rng_seed" in options:
+        raise ValueError("rng_seed is set per cluster: give the ensemble's seeds instead")
+    args, meshes = command_args(model, options)
+    if meshes:
+        raise ValueError("an ensemble takes meshes as files, which every worker reads")
+    return _run(model, args, count, seeds, client, save, formats, on_cluster)
+
+
+def _run(model, args, count, seeds, client, save, formats, on_cluster, workers=None):
+    if not isinstance(count, int) or count < 1:
+        raise ValueError(f"count {count!r} is not a whole number of clusters, at least 1")
+    seed_list = _seed_list(count, seeds)
+    try:
+        _core.check_args(list(args), model)  # here, once, rather than on every worker
+    except ValueError as error:
+        raise _refused(model, error) from None
+    from dask.distributed import Client, LocalCluster, as_completed
+    own = None
+    if client is None:
+        own = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
+                           dashboard_address=None)
+        client = Client(own)
+    elif isinstance(client, str):
+        client = own = Client(client)
+    try:
+        futures = client.map(grow_one, [model] * count, [args] * count, seed_list, [save] * count,
+                             [tuple(formats)] * count, pure=False)
+        clusters = []
+        for future in as_completed(futures):
+            measures = future.result()
+            clusters.append(measures)
+            if on_cluster:
+                on_cluster(measures)
+    finally:
+        if own is not None:
+            client.close()
+            own.close()
+    return summarize(model, args, clusters)
+
+
+def plot(summary, path):
+    """Rg against n, the ensemble's mean with its 95% interval and the fit, as a PNG."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    gyration = summary["gyration"]
+    n = np.asarray(gyration["n"], dtype=float)
+    mean = np.asarray(gyration["mean"])
+    ci = np.asarray([c or 0.0 for c in gyration["ci95"]])
+    fit = gyration["fit"]
+    figure, axes = plt.subplots(figsize=(6, 4.5), dpi=100)
+    axes.fill_between(n, mean - ci, mean + ci, color="tab:blue", alpha=0.25, label="95% interval")
+    axes.loglog(n, mean, "o", color="tab:blue", markersize=3, label=f"mean of {summary['count']} clusters")
+    fitted = n[n >= fit["from_n"]]
+    axes.loglog(fitted, np.exp(fit["intercept"]) * fitted ** (1.0 / fit["dimension"]), "-", color="tab:red",
+                label=f"fit: D = {fit['dimension']:.3f}")
+    axes.set_xlabel("particles n")
+    axes.set_ylabel("radius of gyration Rg")
+    axes.set_title(summary["command"], fontsize=8)
+    axes.legend()
+    figure.tight_layout()
+    figure.savefig(path)
+    plt.close(figure)
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(
+        prog="python3 -m dla3d.ensemble",
+        description="Grow an ensemble of clusters on Dask and measure it. Words it does not know "
+                    "(-n 100000, --dimensions 2) go to the model, as on dla3d's command line.")
+    parser.add_argument("--model", default="grow", choices=["grow", "colonize", "drop", "ballistic", "eden"])
+    parser.add_argument("--count", type=int, default=10, help="clusters (default 10)")
+    parser.add_argument("--first-seed", type=int, default=1, help="cluster k has rng seed FIRST_SEED + k (default 1)")
+    parser.add_argument("--scheduler", help="a Dask scheduler's address (tcp://HOST:8786); "
+                                            "default: a LocalCluster of one worker a core")
+    parser.add_argument("--workers", type=int, help="with no scheduler: the LocalCluster's workers")
+    parser.add_argument("--output", "-o", default="ensemble", help="writes OUTPUT.json and OUTPUT.png")
+    parser.add_argument("--save", help="also write each cluster's CSV, as SAVE_SEED.csv")
+    options, words = parser.parse_known_args(argv)
+    if options.count < 1:
+        parser.error(f"--count {options.count} is not at least 1")
+    for word in words:
+        if word in ("-o", "--output", "--formats", "--rng-seed") or word.startswith(("--rng-seed=", "--formats=")):
+            parser.error(f"{word}: the ensemble sets it for each cluster")
+    args = ([] if options.model == "grow" else [options.model]) + words
+    start = time.time()
+    done = []
+
+    def report(measures):
+        done.append(measures)
+        print(f"\rdla3d.ensemble: {len(done)}/{options.count} clusters, "
+              f"{time.time() - start:.0f} s", end="", file=sys.stderr, flush=True)
+
+    try:
+        summary = _run(options.model, args, options.count, options.first_seed, options.scheduler, options.save,
+                       ("csv",), report, options.workers)
+    except ValueError as error:
+        print(f"\ndla3d.ensemble: error: {error}", file=sys.stderr)
+        return 2
+    summary["seconds"] = time.time() - start
+    with open(options.output + ".json", "w") as out:
+        json.dump(summary, out, indent=1)
+    written = options.output + ".json"
+    if "gyration" in summary:
+        plot(summary, options.output + ".png")
+        written += " " + options.output + ".png"
+    d = summary["fractal_dimension"]
+    fmt = lambda v: "n/a" if v["mean"] is None else f"{v['mean']:.3f} ± {v['ci95'] or 0:.3f}"
+    print(f"\ndla3d.ensemble: {summary['count']} clusters in {summary['seconds']:.1f} s; D by gyration "
+          f"{fmt(d['gyration'])}, by mass-radius {fmt(d['mass_radius'])} (95%)\ndla3d.ensemble: wrote {written}",
+          file=sys.stderr)
+    return 0
+
+
+class _Callable(types.ModuleType):
+    """Importing this module makes it the package's `ensemble`, in place of the function of that
+    name in dla3d/__init__.py: so the module, when called, is that function."""
+
+    def __call__(self, model, count, seeds=1, client=None, **options):
+        return run_ensemble(model, count, seeds, client=client, **options)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
+sys.modules[__name__].__class__ = _Callable

@@ -1,0 +1,226 @@
+"""dla3d's Blender add-on: grows a structure inside or around the selected mesh object.
+
+Install it from Edit > Preferences > Add-ons > Install..., with the dla3d Python module
+importable by Blender's Python (docs/python.md). The panel is in the 3D Viewport's sidebar
+(N), tab "dla3d".
+"""
+
+bl_info = {
+    "name": "dla3d",
+    "author": "dla3d",
+    "version": (0, 1, 0),
+    "blender": (3, 4, 0),
+    "location": "View3D > Sidebar > dla3d",
+    "description": "Grow DLA, space colonization or aggregates inside or around a mesh",
+    "doc_url": "https://github.com/dla3d/dla3d/blob/main/docs/python.md",
+    "category": "Add Curve",
+}
+
+import bpy
+import numpy as np
+
+# Models that grow in or around a mesh; ballistic and Eden grow free, at the object's origin.
+MODELS = [
+    ("grow", "DLA", "Diffusion-limited aggregation"),
+    ("colonize", "Space colonization", "Branches grow towards attractors scattered in the mesh"),
+    ("drop", "Random drop", "Ballistic aggregation of particles dropped on the structure"),
+    ("ballistic", "Ballistic", "Ballistic aggregation from random lines (no mesh)"),
+    ("eden", "Eden", "The Eden model on a lattice (no mesh)"),
+]
+MESH_MODELS = {"grow", "colonize", "drop"}
+
+
+class DLA3DSettings(bpy.types.PropertyGroup):
+    model: bpy.props.EnumProperty(name="Model", items=MODELS, default="grow")
+    side: bpy.props.EnumProperty(
+        name="Side", default="inside",
+        items=[("inside", "Inside", "Grow inside the mesh"), ("outside", "Around", "Grow around the mesh")])
+    count: bpy.props.IntProperty(name="Particles", default=5000, min=10, soft_max=200000,
+                                 description="Particles (nodes, sites) to grow")
+    seeds: bpy.props.IntProperty(name="Seeds", default=1, min=1, max=100,
+                                 description="DLA: seeds placed deep in the mesh, far apart")
+    rng_seed: bpy.props.IntProperty(name="Random seed", default=1, min=0,
+                                    description="The same seed grows the same structure")
+    radius: bpy.props.EnumProperty(
+        name="Radius", default="taper",
+        items=[("taper", "Taper", "Thick at the seed, thin at the tips"),
+               ("pipe", "Pipe", "Thicker where more grows beyond"),
+               ("uniform", "Uniform", "One radius")])
+    output: bpy.props.EnumProperty(
+        name="Result", default="CURVES",
+        items=[("CURVES", "Curves", "A curves object: one poly curve per strand, radius and age per point"),
+               ("MESH", "Tube mesh", "Tubes along the strands, with the age per vertex")])
+    sides: bpy.props.IntProperty(name="Tube sides", default=8, min=3, max=64)
+
+
+def mesh_arrays(obj, depsgraph):
+    """The evaluated object's triangles in world space: (V, 3) vertices and (F, 3) faces."""
+    evaluated = obj.evaluated_get(depsgraph)
+    mesh = evaluated.to_mesh()
+    try:
+        mesh.calc_loop_triangles()
+        vertices = np.empty(len(mesh.vertices) * 3, dtype=np.float64)
+        mesh.vertices.foreach_get("co", vertices)
+        vertices = vertices.reshape(-1, 3)
+        faces = np.empty(len(mesh.loop_triangles) * 3, dtype=np.int64)
+        mesh.loop_triangles.foreach_get("vertices", faces)
+    finally:
+        evaluated.to_mesh_clear()
+    matrix = np.array(obj.matrix_world)
+    vertices = vertices @ matrix[:3, :3].T + matrix[:3, 3]
+    return vertices, faces.reshape(-1, 3)
+
+
+def grow_options(settings, obj, depsgraph):
+    """The model's keyword arguments for dla3d."""
+    model = settings.model
+    options = {"rng_seed": settings.rng_seed, "radius": settings.radius}
+    uses_mesh = model in MESH_MODELS and obj is not None and obj.type == 'MESH'
+    arrays = mesh_arrays(obj, depsgraph) if uses_mesh else None
+    if model == "grow":
+        options["particles"] = settings.count
+        if arrays is not None:
+            options.update(stl=arrays, side=settings.side, seeds=settings.seeds)
+    elif model == "colonize":
+        options["max_nodes"] = settings.count
+        if arrays is not None:
+            if settings.side == "inside":
+                options["stl"] = arrays
+            else:
+                options["collide"] = arrays
+    elif model == "drop":
+        options["particles"] = settings.count
+        if arrays is not None:
+            options.update(stl=arrays, side=settings.side)
+    elif model == "ballistic":
+        options["particles"] = settings.count
+    else:
+        options["sites"] = settings.count
+    return options
+
+
+def make_curves(result, name):
+    """A curves object: one poly curve per strand, with the look's radius and the age per point."""
+    ids, starts = result.strands()
+    curve = bpy.data.curves.new(name, 'CURVE')
+    curve.dimensions = '3D'
+    positions = result.positions
+    radius = result.radius
+    for k in range(len(starts) - 1):
+        strand = ids[starts[k]:starts[k + 1]]
+        spline = curve.splines.new('POLY')
+        spline.points.add(len(strand) - 1)
+        co = np.ones((len(strand), 4))
+        co[:, :3] = positions[strand]
+        spline.points.foreach_set("co", co.ravel())
+        spline.points.foreach_set("radius", radius[strand])
+    obj = bpy.data.objects.new(name, curve)
+    bpy.context.scene.collection.objects.link(obj)
+    # The curves type holds attributes for geometry nodes; the legacy curve it comes from cannot.
+    for other in bpy.context.view_layer.objects:
+        other.select_set(False)
+    bpy.context.view_layer.objects.active = obj
+    obj.select_set(True)
+    bpy.ops.object.convert(target='CURVES')
+    obj = bpy.context.view_layer.objects.active
+    age = obj.data.attributes.new("age", 'FLOAT', 'POINT')
+    age.data.foreach_set("value", result.age[ids])
+    return obj
+
+
+def make_tube_mesh(result, name, sides):
+    """A mesh of the look's tubes, with the age of each vertex's particle."""
+    vertices, _normals, faces, particle = result.tubes(sides=sides)
+    mesh = bpy.data.meshes.new(name)
+    mesh.vertices.add(len(vertices))
+    mesh.vertices.foreach_set("co", vertices.ravel())
+    mesh.loops.add(faces.size)
+    mesh.loops.foreach_set("vertex_index", faces.ravel().astype(np.int32))
+    mesh.polygons.add(len(faces))
+    mesh.polygons.foreach_set("loop_start", np.arange(0, faces.size, 3, dtype=np.int32))
+    mesh.polygons.foreach_set("loop_total", np.full(len(faces), 3, dtype=np.int32))
+    mesh.update()
+    mesh.validate()
+    age = mesh.attributes.new("age", 'FLOAT', 'POINT')
+    age.data.foreach_set("value", result.age[particle])
+    obj = bpy.data.objects.new(name, mesh)
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+class DLA3D_OT_grow(bpy.types.Operator):
+    """Grow inside or around the selected mesh object"""
+    bl_idname = "dla3d.grow"
+    bl_label = "Grow"
+    bl_options = {'REGISTER', 'UNDO'}
+
+    def execute(self, context):
+        import dla3d
+        settings = context.scene.dla3d
+        obj = context.active_object
+        if settings.model in MESH_MODELS and (obj is None or obj.type != 'MESH'):
+            self.report({'ERROR'}, "select a mesh object to grow in or around")
+            return {'CANCELLED'}
+        wm = context.window_manager
+        wm.progress_begin(0, 1)
+        try:
+            options = grow_options(settings, obj, context.evaluated_depsgraph_get())
+
+            def progress(done, total):
+                wm.progress_update(done / max(total, 1))
+
+            result = getattr(dla3d, settings.model)(progress=progress, **options)
+        except ValueError as error:
+            self.report({'ERROR'}, str(error))
+            return {'CANCELLED'}
+        finally:
+            wm.progress_end()
+        name = f"dla3d {settings.model}"
+        made = (make_curves(result, name) if settings.output == 'CURVES'
+                else make_tube_mesh(result, name, settings.sides))
+        if settings.model not in MESH_MODELS and obj is not None:
+            made.location = obj.matrix_world.translation
+        self.report({'INFO'}, f"grew {len(result)} particles" + ("" if result.complete else " (stopped)"))
+        return {'FINISHED'}
+
+
+class DLA3D_PT_panel(bpy.types.Panel):
+    bl_label = "dla3d"
+    bl_space_type = 'VIEW_3D'
+    bl_region_type = 'UI'
+    bl_category = "dla3d"
+
+    def draw(self, context):
+        settings = context.scene.dla3d
+        layout = self.layout
+        layout.prop(settings, "model")
+        if settings.model in MESH_MODELS:
+            layout.prop(settings, "side")
+        layout.prop(settings, "count")
+        if settings.model == "grow":
+            layout.prop(settings, "seeds")
+        layout.prop(settings, "rng_seed")
+        layout.prop(settings, "radius")
+        layout.prop(settings, "output")
+        if settings.output == 'MESH':
+            layout.prop(settings, "sides")
+        layout.operator(DLA3D_OT_grow.bl_idname)
+
+
+CLASSES = (DLA3DSettings, DLA3D_OT_grow, DLA3D_PT_panel)
+
+
+def register():
+    for cls in CLASSES:
+        bpy.utils.register_class(cls)
+    bpy.types.Scene.dla3d = bpy.props.PointerProperty(type=DLA3DSettings)
+
+
+def unregister():
+    del bpy.types.Scene.dla3d
+    for cls in reversed(CLASSES):
+        bpy.utils.unregister_class(cls)
+
+
+if __name__ == "__main__":
+    register()

@@ -1,0 +1,292 @@
+"""The module's growth functions: every model, the arrays against the CLI's files for the same
+seed, argument checking, meshes as arrays, the look, progress, Ctrl-C and the GIL."""
+
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import threading
+
+import numpy as np
+import pytest
+
+import dla3d
+
+# Every model, small, and what the CLI calls its count.
+MODELS = [
+    ("grow", {"particles": 3000, "rng_seed": 5}),
+    ("grow", {"particles": 2000, "seed_at": [(-20, 0, 0), (20, 0, 0)], "radius": "pipe"}),
+    ("colonize", {"max_nodes": 3000, "rng_seed": 2}),
+    ("drop", {"particles": 2000, "rng_seed": 3}),
+    ("ballistic", {"particles": 2000, "rng_seed": 4}),
+    ("eden", {"sites": 2000, "rng_seed": 6}),
+]
+COLUMNS = "id,x,y,z,parent,seed,radius,age,depth,descendants,order,tip"
+
+
+def grown(model, options):
+    return getattr(dla3d, model)(**options)
+
+
+def expect_tree(result):
+    """Parents come earlier, seeds first; every particle is in its parent's seed's tree."""
+    n = len(result)
+    parent, seed = result.parent, result.seed
+    assert result.positions.shape == (n, 3) and parent.shape == seed.shape == (n,)
+    k = result.seed_count
+    assert k >= 1 and (parent[:k] == -1).all() and (seed[:k] == np.arange(k)).all()
+    assert (parent[k:] >= 0).all() and (parent[k:] < np.arange(k, n)).all()
+    assert (seed[k:] == seed[parent[k:]]).all()
+    assert np.isfinite(result.positions).all()
+
+
+@pytest.mark.parametrize("model,options", MODELS)
+def test_every_model_grows_a_tree(model, options):
+    result = grown(model, options)
+    assert result.complete and result.stopped_by == ""
+    expect_tree(result)
+    # The attributes agree with the tree.
+    n, k = len(result), result.seed_count
+    depth = result.depth
+    assert (depth[:k] == 0).all() and (depth[k:] == depth[result.parent[k:]] + 1).all()
+    children = np.bincount(result.parent[k:], minlength=n)
+    assert (result.tip == (children == 0)).all()
+    assert (result.order[result.tip] == 1).all()
+    assert result.descendants[:k].sum() + k == n
+    age = result.age
+    assert age[k] == 0 and (len(result) == k + 1 or age[-1] == 1) and (np.diff(age[k:]) >= 0).all()
+    assert (result.radius > 0).all()
+
+
+@pytest.mark.parametrize("model,options", MODELS)
+def test_arrays_are_the_clis_csv_for_the_same_seed(model, options, cli, tmp_path):
+    result = grown(model, options)
+    # The command it reports is the CLI's for the same structure.
+    words = result.command.split()[1:]
+    cli(*words, "-q", "--formats", "csv", "-o", str(tmp_path / "cli"))
+    table = np.loadtxt(tmp_path / "cli.csv", delimiter=",", skiprows=1)
+    assert open(tmp_path / "cli.csv").readline().strip() == COLUMNS
+    assert len(table) == len(result)
+    np.testing.assert_array_equal(table[:, 1:4], result.positions)
+    np.testing.assert_array_equal(table[:, 4], result.parent)
+    np.testing.assert_array_equal(table[:, 5], result.seed)
+    np.testing.assert_array_equal(table[:, 6].astype(np.float32), result.radius)  # the shortest float text
+    np.testing.assert_array_equal(table[:, 7].astype(np.float32), result.age)
+    np.testing.assert_array_equal(table[:, 8], result.depth)
+    np.testing.assert_array_equal(table[:, 9], result.descendants)
+    np.testing.assert_array_equal(table[:, 10], result.order)
+    np.testing.assert_array_equal(table[:, 11], result.tip)
+    # And what the module writes is the CLI's, byte for byte.
+    result.write(str(tmp_path / "py"), formats=["csv", "ply", "pov"])
+    cli(*words, "-q", "--formats", "csv,ply,pov", "-o", str(tmp_path / "cli"))
+    for name in ["csv", "ply", "inc", "_growth.inc"]:
+        suffix = name if name.startswith("_") else "." + name
+        assert (tmp_path / f"py{suffix}").read_bytes() == (tmp_path / f"cli{suffix}").read_bytes(), name
+
+
+def test_the_particle_arrays_share_the_structures_memory():
+    result = dla3d.grow(particles=500)
+    positions, parent, seed = result.positions, result.parent, result.seed
+    assert not positions.flags.owndata and not positions.flags.writeable
+    # One particle is 32 bytes: its centre, then its parent and seed, as the C++ Particle is.
+    base = positions.__array_interface__["data"][0]
+    assert positions.strides == (32, 8)
+    assert parent.__array_interface__["data"][0] == base + 24
+    assert seed.__array_interface__["data"][0] == base + 28
+    assert np.shares_memory(result.depth, result.depth)  # from the attributes, not copied each time
+    assert result.depth.__array_interface__["data"][0] == result.depth.__array_interface__["data"][0]
+    # The arrays keep the structure alive after the result is gone.
+    del result
+    assert positions.shape == (501, 3) and parent[1] == 0
+
+
+@pytest.mark.parametrize("options,message", [
+    ({"particles": -1}, "--particles -1 is negative"),
+    ({"spawn": "cube"}, "spawn mode 'cube' is not one of"),
+    ({"seed_at": (1, 2)}, "--seed-at '1,2' is not 3 comma-separated numbers"),
+    ({"stickiness": 0}, "stickiness"),
+    ({"radius": "boundary"}, "--radius boundary measures to a constraint mesh"),
+])
+def test_bad_options_raise_the_clis_message(options, message, cli):
+    with pytest.raises(ValueError) as raised:
+        dla3d.grow(**options)
+    assert message in str(raised.value)
+    # The very line dla3d prints for the same words.
+    words, _ = dla3d.command_args("grow", options)
+    done = cli(*words, "-q", "-o", "/tmp/dla3d_python_refused", check=False)
+    assert done.returncode != 0
+    assert done.stderr.strip() == f"dla3d: error: {raised.value}"
+
+
+def test_a_missing_file_is_an_os_error():
+    with pytest.raises(OSError, match="cannot read '/no/such/mesh.stl'"):
+        dla3d.grow(stl="/no/such/mesh.stl")
+
+
+@pytest.mark.parametrize("call,message", [
+    (lambda: dla3d.grow(bogus=1), "bogus is not an option of grow()"),
+    (lambda: dla3d.eden(particles=10), "particles is not an option of eden()"),
+    (lambda: dla3d.grow(formats=["csv"]), "formats is an argument of Result.write()"),
+    (lambda: dla3d.grow(checkpoint="x.ck"), "checkpoint is an option of the dla3d command line"),
+    (lambda: dla3d.grow(progress=3), "progress is not callable"),
+    (lambda: dla3d.grow(seed_at=[(0, 0, 0), object()]), "is not a number"),
+    (lambda: dla3d.grow(particles=10).write("/tmp/dla3d_py_x", formats=["gif"]), "'gif' is not one of"),
+    (lambda: dla3d.grow(particles=10).write("/no/such/dir/x", formats=["csv"]), "cannot write"),
+    (lambda: dla3d.grow(particles=10).tubes(sides=2), "tube sides 2 is not in 3-64"),
+])
+def test_misuse_is_one_clear_line(call, message):
+    with pytest.raises(ValueError) as raised:
+        call()
+    assert message in str(raised.value) and "\n" not in str(raised.value)
+
+
+def test_a_mesh_as_arrays_grows_as_the_same_mesh_from_a_file(sphere_mesh, tmp_path):
+    vertices, faces = sphere_mesh
+    result = dla3d.grow(stl=(vertices, faces), particles=2000, seeds=2)
+    expect_tree(result)
+    assert result.seed_count == 2
+    # Every particle inside the sphere's mesh (whose faces are within 10 of its centre).
+    assert np.linalg.norm(result.positions, axis=1).max() < 10.0
+    # The same mesh in a file: the same structure.
+    off = tmp_path / "sphere.off"
+    lines = ["OFF", f"{len(vertices)} {len(faces)} 0"] + [" ".join(repr(float(c)) for c in v) for v in vertices]
+    lines += ["3 " + " ".join(str(i) for i in f) for f in faces]
+    off.write_text("\n".join(lines) + "\n")
+    from_file = dla3d.grow(stl=str(off), particles=2000, seeds=2)
+    np.testing.assert_array_equal(result.positions, from_file.positions)
+    # Around it, nothing inside.
+    around = dla3d.grow(stl=(vertices, faces), side="outside", particles=1000)
+    assert np.linalg.norm(around.positions, axis=1).min() > 9.0
+    with pytest.raises(ValueError, match="face [0-9]+ names vertex 99, not one of its 99"):
+        dla3d.grow(stl=(vertices[:99], faces))
+
+
+def test_tubes_and_strands_follow_the_look(cli, tmp_path):
+    result = dla3d.grow(particles=1500, rng_seed=3)
+    vertices, normals, faces, particle = result.tubes(sides=6)
+    assert vertices.dtype == np.float32 and faces.dtype == np.uint32
+    assert vertices.shape == normals.shape and particle.shape == (len(vertices),)
+    assert faces.max() < len(vertices)
+    np.testing.assert_allclose(np.linalg.norm(normals, axis=1), 1.0, atol=1e-5)
+    # Every vertex lies within its particle's radius of it, or of the branch point a strand
+    # starts at, a spacing away.
+    distance = np.linalg.norm(vertices - result.positions[particle], axis=1)
+    assert (distance <= result.radius[particle] * 1.01 + result.spacing + 1e-4).all()
+    # The OBJ the CLI writes has the same tubes.
+    cli(*result.command.split()[1:], "-q", "--formats", "obj", "--tube-sides", "6", "-o", str(tmp_path / "t"))
+    obj_vertices = sum(1 for line in open(tmp_path / "t.obj") if line.startswith("v "))
+    obj_faces = sum(1 for line in open(tmp_path / "t.obj") if line.startswith("f "))
+    assert (obj_vertices, obj_faces) == (len(vertices), len(faces))
+    ids, starts = result.strands()
+    assert starts[0] == 0 and starts[-1] == len(ids) and len(starts) - 1 == result.tip.sum()
+    for k in range(len(starts) - 1):  # each strand runs down the tree, from parent to child
+        strand = ids[starts[k]:starts[k + 1]]
+        assert (result.parent[strand[1:]] == strand[:-1]).all()
+
+
+def test_the_callback_sees_progress_and_stops_growth(tmp_path):
+    seen = []
+
+    def progress(done, total):
+        seen.append((done, total))
+        return done < 20000
+
+    result = dla3d.grow(particles=10**7, progress=progress)
+    assert not result.complete and result.stopped_by == "callback"
+    assert seen and seen[-1][1] == 10**7 and 20000 <= len(result) < 10**7
+    expect_tree(result)
+    # What grew writes as an incomplete run.
+    result.write(str(tmp_path / "part"), formats=["json"])
+    assert '"stopped_by": "callback"' in (tmp_path / "part.json").read_text()
+
+    def fails(done, total):
+        raise RuntimeError("from the callback")
+
+    with pytest.raises(RuntimeError, match="from the callback"):
+        dla3d.grow(particles=10**7, progress=fails)
+
+
+def test_other_python_threads_run_while_it_grows():
+    ticks = []
+    stop = threading.Event()
+
+    def tick():
+        while not stop.is_set():
+            ticks.append(1)
+            stop.wait(0.001)
+
+    thread = threading.Thread(target=tick)
+    thread.start()
+    try:
+        before = len(ticks)
+        dla3d.grow(particles=100000)
+        during = len(ticks) - before
+    finally:
+        stop.set()
+        thread.join()
+    assert during > 50  # the GIL was released for the growth's second or so
+
+
+def test_ctrl_c_returns_what_grew(tmp_path):
+    script = textwrap.dedent(f"""
+        import signal, sys, dla3d
+        signal.signal(signal.SIGINT, signal.default_int_handler)  # as in an interactive session
+        print("growing", flush=True)
+        result = dla3d.grow(particles=10**8)
+        print(len(result), result.complete, result.stopped_by, flush=True)
+        result.write({str(tmp_path / "stopped")!r}, formats=["csv", "json"])
+        """)
+    process = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
+    assert process.stdout.readline().strip() == "growing"
+    import time
+    time.sleep(1.5)
+    process.send_signal(signal.SIGINT)
+    out, _ = process.communicate(timeout=60)
+    assert process.returncode == 0
+    count, complete, stopped_by = out.split()
+    assert complete == "False" and stopped_by == "SIGINT" and 1000 < int(count) < 10**8
+    assert sum(1 for _ in open(tmp_path / "stopped.csv")) == int(count) + 1
+    assert '"stopped_by": "SIGINT"' in (tmp_path / "stopped.json").read_text()
+
+
+# Random keyword sets, good values and bad: each grows a valid tree or raises one clear line,
+# as the CLI's property test does for command lines (cli_property_test.cpp).
+RANDOM_OPTIONS = {
+    "grow": {"particles": [0, 1, 300, -3, "many", 10**13], "stickiness": [0.3, 1, 0, -1, 2],
+             "dimensions": [2, 3, 4], "spawn": ["sphere", "disk", "box", "radial", "cube"],
+             "drift": [(0, 0.2, 0), (1, 2), "up"], "seeds": [1, 2, 0], "rng_seed": [0, 7, -1],
+             "radius": ["pipe", "taper", "boundary", "seed-distance", "fat"], "threads": [1, 2, 0, 300],
+             "seed_at": [[(0, 0, 0), (10, 0, 0)], [(0, 0, 0), (0, 0, 0)], (1, 2, 3)], "index": ["grid", "kdtree", "x"],
+             "tube_sides": [3, 8, 2, 65], "color_by": ["age", "depth", "mood"], "n": [200, -1]},
+    "colonize": {"max_nodes": [10, 400, -1, 0], "attractors": [100, 0, -5], "kill_distance": [0.5, 2, -1, 0],
+                 "noise": [(0.3, 5), (2, 2), -1], "dimensions": [2, 3, 5], "roots": [1, 3, 0, -2],
+                 "rng_seed": [1, 2], "tropism": [(0, 1, 0), "down"], "influence": [5, 0, -1]},
+    "drop": {"particles": [100, -1, 0], "dimensions": [2, 3], "zone": ["disk", "box", "ring"],
+             "stickiness": [0.5, 1, 3], "rng_seed": [3, 4], "spacing": [1, 0, -2]},
+    "ballistic": {"particles": [100, -1, 0], "dimensions": [2, 3, 7], "stickiness": [0.5, 1.5],
+                  "rng_seed": [5], "spacing": [0.5, -1]},
+    "eden": {"sites": [100, 0, -2], "lattice": ["square4", "square8", "hex", "cubic6", "tri"],
+             "mode": ["perimeter", "site", "growth", "x"], "dimensions": [2, 3], "rng_seed": [9],
+             "mask_threshold": [0.5, 2]},
+}
+
+
+def test_random_keyword_sets_grow_or_refuse_in_one_line():
+    import random
+    rng = random.Random(int(os.environ.get("DLA_PROPERTY_SEED", "2026")))
+    grown_count = refused = 0
+    for _ in range(int(os.environ.get("DLA_PROPERTY_RUNS", "200"))):
+        model = rng.choice(sorted(RANDOM_OPTIONS))
+        table = RANDOM_OPTIONS[model]
+        options = {key: rng.choice(table[key]) for key in rng.sample(sorted(table), rng.randint(0, 4))}
+        try:
+            result = getattr(dla3d, model)(**options)
+        except (ValueError, OSError) as error:
+            text = str(error)
+            assert text and "\n" not in text and len(text) < 400, (model, options, text)
+            refused += 1
+            continue
+        expect_tree(result)
+        grown_count += 1
+    assert grown_count > 20 and refused > 20, (grown_count, refused)
