@@ -39,7 +39,7 @@ int grow(const CommandLine& line, const std::vector<std::string>& args, const Ch
     }
   };
   const auto progress = [&](const Cluster& so_far) {
-    bar.update(attached(so_far), so_far.filled, run->fill);
+    bar.update(run->done(so_far), so_far.filled, run->fill);
     if (stop.load()) return false;
     if (!command.checkpoint_path.empty() &&
         Clock::now() - saved >= std::chrono::duration<double>(command.checkpoint_every)) {

@@ -64,6 +64,8 @@ class GrowthRun : public ModelRun {
     return constraint_ ? dla::grow(options_, *constraint_, progress, stop) : dla::grow(options_, progress, stop);
   }
 
+  std::size_t done(const Cluster& so_far) const override { return attached(so_far); }
+
   std::string summary(const Cluster& cluster, const RunRecord& record) const override {
     const double count = static_cast<double>(attached(cluster));
     char filled[160] = "";

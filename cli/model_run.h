@@ -31,6 +31,8 @@ class ModelRun {
   virtual Cluster grow(const ProgressFn& progress, const StopFlag* stop) = 0;
   //! The first line of the summary dla3d prints, for the structure grown.
   virtual std::string summary(const Cluster& cluster, const RunRecord& record) const = 0;
+  //! How much of `total` a structure growing has: its particles (DLA: without the seeds).
+  virtual std::size_t done(const Cluster& so_far) const { return so_far.particles.size(); }
   //! Writes the JSON record of the run to `path`.
   virtual void write_report(const Cluster& cluster, const LookOptions& look, const PovOptions& pov,
                             const RunRecord& record, const std::string& path) const = 0;

@@ -19,7 +19,7 @@ int run_model(const CommandLine& line, const std::vector<std::string>& args, con
 
   ProgressBar bar(run.total, !files.quiet && isatty(STDERR_FILENO));
   const auto progress = [&](const Cluster& so_far) {
-    bar.update(so_far.particles.size());
+    bar.update(run.done(so_far));
     return !stop.load();
   };
   RunRecord record;

@@ -130,7 +130,8 @@ def make_curves(result, name):
 
 def make_tube_mesh(result, name, sides):
     """A mesh of the look's tubes, with the age of each vertex's particle."""
-    vertices, _normals, faces, particle = result.tubes(sides=sides)
+    tubes = result.tubes(sides=sides)
+    vertices, faces = tubes.vertices, tubes.faces
     mesh = bpy.data.meshes.new(name)
     mesh.vertices.add(len(vertices))
     mesh.vertices.foreach_set("co", vertices.ravel())
@@ -142,7 +143,7 @@ def make_tube_mesh(result, name, sides):
     mesh.update()
     mesh.validate()
     age = mesh.attributes.new("age", 'FLOAT', 'POINT')
-    age.data.foreach_set("value", result.age[particle])
+    age.data.foreach_set("value", result.age[tubes.particle])
     obj = bpy.data.objects.new(name, mesh)
     bpy.context.scene.collection.objects.link(obj)
     return obj

@@ -131,7 +131,10 @@ std::shared_ptr<Result> grow_run(const std::vector<std::string>& args, const std
     if (hash) *hash = fnv1a({reinterpret_cast<const char*>(mesh.vertices.data()), mesh.vertices.size() * sizeof(Vec3)});
     return mesh;
   };
-  result->run = cli::prepare_run(line, nullptr, read);
+  {
+    py::gil_scoped_release released;  // a mesh's repair and set-up can take seconds
+    result->run = cli::prepare_run(line, nullptr, read);
+  }
   ModelRun& run = *result->run;
 
   StopFlag stop{false};
@@ -148,7 +151,7 @@ std::shared_ptr<Result> grow_run(const std::vector<std::string>& args, const std
     }
     if (progress.is_none()) return true;
     try {
-      const py::object go_on = progress(so_far.particles.size(), run.total);
+      const py::object go_on = progress(run.done(so_far), run.total);
       if (!go_on.is_none() && !go_on.cast<bool>()) {
         stopped_by = "callback";
         return false;
@@ -176,8 +179,7 @@ std::shared_ptr<Result> grow_run(const std::vector<std::string>& args, const std
     }
   }
   if (raised) throw std::move(*raised);
-  if (!result->cluster.complete && stopped_by.empty()) stopped_by = "SIGINT";
-  result->stopped_by = result->cluster.complete ? "" : stopped_by;
+  result->stopped_by = result->cluster.complete ? "" : stopped_by.empty() ? "stopped" : stopped_by;
   return result;
 }
 
@@ -319,8 +321,13 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("up", [](const Result& r) { return std::string(to_string(r.run->files.pov.up)); },
                              "the axis that is up: x, y or z (a mesh's longest side's by default)")
       .def("__len__", [](const Result& r) { return r.cluster.particles.size(); })
-      .def("tubes", &tubes, py::arg("sides") = 8, py::arg("tolerance") = 0.0, py::arg("min_branch") = 1,
-           "(vertices, normals, faces, particle): the tube mesh of the look")
+      .def("__repr__", [](const Result& r) {
+        return "<dla3d.Result: " + cli::with_commas(static_cast<double>(r.cluster.particles.size())) + " particles, " +
+               std::to_string(r.cluster.seed_count) + (r.cluster.seed_count == 1 ? " seed" : " seeds") +
+               (r.stopped_by.empty() ? "" : ", stopped by " + r.stopped_by) + ">";
+      })
+      .def("_tubes", &tubes, py::arg("sides"), py::arg("tolerance"), py::arg("min_branch"),
+           "(vertices, normals, faces, particle): the tube mesh of the look (dla3d.Result.tubes)")
       .def("strands", &strands, "(ids, starts): particle ids of every strand, strand k at ids[starts[k]:starts[k+1]]")
       .def("fractal_dimension", [](const Result& r) {
         const FractalFit gyration = fractal_dimension_by_gyration(r.cluster);

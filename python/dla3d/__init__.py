@@ -11,13 +11,14 @@ checked with the same one-line messages, raised as ValueError. See docs/python.m
 """
 
 import numbers
+import warnings
 
 import numpy as np
 
 from . import _core
 from ._core import Result
 
-__all__ = ["grow", "colonize", "drop", "ballistic", "eden", "command_args", "Result", "ensemble"]
+__all__ = ["grow", "colonize", "drop", "ballistic", "eden", "command_args", "Result", "Tubes", "ensemble"]
 
 # Options of the files, which Result.write() takes instead: a model function writes nothing.
 _WRITE_ONLY = {"output", "o", "formats", "quiet", "q"}
@@ -25,6 +26,30 @@ _WRITE_ONLY = {"output", "o", "formats", "quiet", "q"}
 _CLI_ONLY = {"checkpoint", "checkpoint_every", "resume", "help", "h", "version"}
 # Options that name a mesh file, and may be given (V, 3) vertices and (F, 3) faces instead.
 _MESH_OPTIONS = {"stl", "collide", "seed_mesh"}
+
+
+class Tubes(tuple):
+    """The tube mesh of the look: unpacks as (vertices, normals, faces), float32 (V, 3), float32
+    (V, 3) unit normals and uint32 (F, 3) triangles; `particle` is the particle each vertex
+    belongs to, for its age or any other attribute."""
+
+    def __new__(cls, vertices, normals, faces, particle):
+        tubes = super().__new__(cls, (vertices, normals, faces))
+        tubes.particle = particle
+        return tubes
+
+    vertices = property(lambda self: self[0])
+    normals = property(lambda self: self[1])
+    faces = property(lambda self: self[2])
+
+
+def _tubes(result, sides=8, tolerance=0.0, min_branch=1):
+    """The tube mesh of the look, as the glTF's: see Tubes. `sides`, `tolerance` (spacings) and
+    `min_branch` are --tube-sides, --tube-tolerance and --tube-min-branch."""
+    return Tubes(*result._tubes(sides, tolerance, min_branch))
+
+
+Result.tubes = _tubes
 
 
 def _word(key, value):
@@ -99,9 +124,14 @@ def _run(model, progress, options):
         raise ValueError("progress is not callable: give a function of (done, total)")
     args, meshes = command_args(model, options)
     try:
-        return _core.grow_run(args, model, meshes, progress)
+        result = _core.grow_run(args, model, meshes, progress)
     except ValueError as error:
         raise _refused(model, error) from None
+    if result.stopped_by.startswith("error: "):
+        # As dla3d keeps the files of a run that failed part way: what grew, and a warning.
+        warnings.warn(f"{model}(): {result.stopped_by[7:]}; the result holds the {len(result)} particles "
+                      "grown before it", RuntimeWarning, stacklevel=3)
+    return result
 
 
 def grow(progress=None, **options):

@@ -236,7 +236,7 @@ def main(argv=None):
     try:
         summary = _run(options.model, args, options.count, options.first_seed, options.scheduler, options.save,
                        ("csv",), report, options.workers)
-    except ValueError as error:
+    except (ValueError, OSError) as error:  # bad options; a scheduler out of reach, a file a worker lacks
         print(f"\ndla3d.ensemble: error: {error}", file=sys.stderr)
         return 2
     summary["seconds"] = time.time() - start

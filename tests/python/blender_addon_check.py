@@ -60,7 +60,7 @@ bpy.context.view_layer.objects.active = sphere
 assert bpy.ops.dla3d.grow() == {'FINISHED'}
 tubes = [o for o in bpy.context.scene.objects if o.type == 'MESH' and o is not sphere]
 assert len(tubes) == 1
-vertices, _normals, faces, _particle = expected.tubes(sides=6)
+vertices, _normals, faces = expected.tubes(sides=6)
 assert len(tubes[0].data.vertices) == len(vertices) and len(tubes[0].data.polygons) == len(faces)
 assert "age" in tubes[0].data.attributes
 print(f"dla3d add-on: {len(data.curves)} curves, {len(data.points)} points, radii "

@@ -164,7 +164,10 @@ def test_a_mesh_as_arrays_grows_as_the_same_mesh_from_a_file(sphere_mesh, tmp_pa
 
 def test_tubes_and_strands_follow_the_look(cli, tmp_path):
     result = dla3d.grow(particles=1500, rng_seed=3)
-    vertices, normals, faces, particle = result.tubes(sides=6)
+    tubes = result.tubes(sides=6)
+    vertices, normals, faces = tubes
+    particle = tubes.particle
+    assert tubes.vertices is vertices and tubes.faces is faces
     assert vertices.dtype == np.float32 and faces.dtype == np.uint32
     assert vertices.shape == normals.shape and particle.shape == (len(vertices),)
     assert faces.max() < len(vertices)
@@ -205,6 +208,16 @@ def test_the_callback_sees_progress_and_stops_growth(tmp_path):
 
     with pytest.raises(RuntimeError, match="from the callback"):
         dla3d.grow(particles=10**7, progress=fails)
+
+
+def test_growth_that_fails_part_way_returns_what_grew_with_a_warning(tmp_path):
+    with pytest.warns(RuntimeWarning, match="no free start .* the result holds the"):
+        result = dla3d.grow(spawn="box", box=(-2, -2, -2, 2, 2, 2), particles=1000)
+    assert not result.complete and result.stopped_by.startswith("error: no free start")
+    assert 1 < len(result) < 1001 and "stopped by error" in repr(result)
+    expect_tree(result)
+    result.write(str(tmp_path / "filled"), formats=["json"])
+    assert '"complete": false' in (tmp_path / "filled.json").read_text()
 
 
 def test_other_python_threads_run_while_it_grows():
