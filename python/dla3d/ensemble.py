@@ -221,6 +221,8 @@ def main(argv=None):
     options, words = parser.parse_known_args(argv)
     if options.count < 1:
         parser.error(f"--count {options.count} is not at least 1")
+    if options.workers is not None and (options.scheduler or options.workers < 1):
+        parser.error("--workers starts a LocalCluster of at least 1 worker, without --scheduler")
     for word in words:
         if word in ("-o", "--output", "--formats", "--rng-seed") or word.startswith(("--rng-seed=", "--formats=")):
             parser.error(f"{word}: the ensemble sets it for each cluster")
