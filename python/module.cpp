@@ -40,7 +40,9 @@ struct Result {
   Cluster cluster;
   std::shared_ptr<ModelRun> run;
   std::vector<std::string> args;  //!< the command line's words, without "dla3d"
-  std::string stopped_by;         //!< empty when complete: "SIGINT", "callback" or "error: ..."
+  //! For the JSON: the time growth took, the command, and stopped_by: empty when complete, else
+  //! "SIGINT", "callback", "stopped" or "error: ...".
+  RunRecord record;
 
   //! Computed on first use: growth alone costs no more than the C++ call.
   const Look& look() {
@@ -171,15 +173,13 @@ std::shared_ptr<Result> grow_run(const std::vector<std::string>& args, const std
       if (!call_python(so_far)) stop.store(true);
       return !stop.load();
     };
-    try {
-      result->cluster = run.grow(watch, &stop);
-    } catch (const PartialGrowth& e) {
-      result->cluster = e.partial();
-      stopped_by = std::string("error: ") + e.what();
-    }
+    std::string error;  // why growth failed part way, if it did
+    const volatile std::sig_atomic_t no_signal = 0;  // what stopped growth is told below
+    result->cluster = cli::grow_recorded(run, watch, stop, no_signal, args, result->record, error);
+    if (!error.empty()) stopped_by = "error: " + error;
   }
   if (raised) throw std::move(*raised);
-  result->stopped_by = result->cluster.complete ? "" : stopped_by.empty() ? "stopped" : stopped_by;
+  result->record.stopped_by = result->cluster.complete ? "" : stopped_by.empty() ? "stopped" : stopped_by;
   return result;
 }
 
@@ -245,9 +245,7 @@ void write(Result& result, const std::string& prefix, const std::vector<std::str
   cli::FileOptions files = *line.growth_files();
   files.pov.up = result.run->files.pov.up;  // from the mesh, when not given
   cli::check_writable(cli::file_names(files).front());
-  RunRecord record;
-  record.command = cli::command_line(result.args);
-  record.stopped_by = result.stopped_by;
+  RunRecord record = result.record;  // the growth's time, command and end; the writing's own time
   py::gil_scoped_release released;
   cli::write_run(*result.run, result.cluster, files, record);
 }
@@ -314,7 +312,7 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("dimensions", [](const Result& r) { return r.cluster.dimensions; })
       .def_property_readonly("complete", [](const Result& r) { return r.cluster.complete; },
                              "False when growth was stopped (Ctrl-C, the callback, an error) before its count")
-      .def_property_readonly("stopped_by", [](const Result& r) { return r.stopped_by; },
+      .def_property_readonly("stopped_by", [](const Result& r) { return r.record.stopped_by; },
                              "'' when complete; else 'SIGINT', 'callback' or 'error: ...'")
       .def_property_readonly("command", [](const Result& r) { return cli::command_line(r.args); },
                              "the dla3d command line that grows the same structure")
@@ -324,7 +322,7 @@ PYBIND11_MODULE(_core, m) {
       .def("__repr__", [](const Result& r) {
         return "<dla3d.Result: " + cli::with_commas(static_cast<double>(r.cluster.particles.size())) + " particles, " +
                std::to_string(r.cluster.seed_count) + (r.cluster.seed_count == 1 ? " seed" : " seeds") +
-               (r.stopped_by.empty() ? "" : ", stopped by " + r.stopped_by) + ">";
+               (r.record.stopped_by.empty() ? "" : ", stopped by " + r.record.stopped_by) + ">";
       })
       .def("_tubes", &tubes, py::arg("sides"), py::arg("tolerance"), py::arg("min_branch"),
            "(vertices, normals, faces, particle): the tube mesh of the look (dla3d.Result.tubes)")

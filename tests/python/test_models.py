@@ -1,6 +1,7 @@
 """The module's growth functions: every model, the arrays against the CLI's files for the same
 seed, argument checking, meshes as arrays, the look, progress, Ctrl-C and the GIL."""
 
+import json
 import os
 import signal
 import subprocess
@@ -201,7 +202,9 @@ def test_the_callback_sees_progress_and_stops_growth(tmp_path):
     expect_tree(result)
     # What grew writes as an incomplete run.
     result.write(str(tmp_path / "part"), formats=["json"])
-    assert '"stopped_by": "callback"' in (tmp_path / "part.json").read_text()
+    record = json.loads((tmp_path / "part.json").read_text())
+    assert record["stopped_by"] == "callback" and record["complete"] is False
+    assert record["timings"]["grow_seconds"] > 0 and record["command"] == result.command
 
     def fails(done, total):
         raise RuntimeError("from the callback")
