@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include <chrono>
 #include <thread>
 
@@ -326,12 +328,12 @@ TEST(Growth, MassRadiusDimension3D) {
 
 // The ensemble figures of Tolman and Meakin, Phys. Rev. A 40, 428 (1989): D = 2.495 in 3D and
 // 1.715 in 2D for off-lattice hard-sphere DLA, from the radius of gyration. Twenty clusters of
-// 10^5 each (the standard error of the mean is about 0.01 in 3D), about 40 s, so only with
-// -DDLA_SLOW_TESTS=ON. The fit takes the last decade of the growth history: the local slope
+// 10^5 each (the standard error of the mean is about 0.01 in 3D), about 40 s, so only in the
+// full tier (ctest -L full sets DLA_FULL_TESTS). The fit takes the last decade of the growth history: the local slope
 // of log R_g against log n still falls at n = 10^3 (on the same ten 3D clusters, 2.550 from
 // n = 10^3 and 2.513 from 10^4; docs/algorithm.md).
 void expect_ensemble_dimension(int dimensions, double expected, double tolerance) {
-  if (!DLA_SLOW_TESTS) GTEST_SKIP() << "slow: configure with -DDLA_SLOW_TESTS=ON";
+  if (!std::getenv("DLA_FULL_TESTS")) GTEST_SKIP() << "in the full tier: ctest -L full";
   double sum_gyration = 0.0, sum_mass = 0.0;
   constexpr int clusters = 20;
   for (int i = 0; i < clusters; ++i) {
@@ -355,7 +357,7 @@ TEST(Slow, EnsembleDimension2D) { expect_ensemble_dimension(2, 1.71, 0.02); }
 
 // A stop request reaches walkers inside their walk: walkers that touch the structure ten
 // thousand times before they stick take seconds for 256 particles (the progress beat), and
-// the flag stops them within milliseconds, on one thread and on two.
+// the flag stops them before the first beat, on one thread and on two.
 TEST(Growth, AStopFlagEndsGrowthInsideAWalk) {
   for (const int threads : {1, 2}) {
     GrowthOptions o;
@@ -364,15 +366,13 @@ TEST(Growth, AStopFlagEndsGrowthInsideAWalk) {
     o.threads = threads;
     StopFlag stop{false};
     std::thread stopper([&] {
-      std::this_thread::sleep_for(std::chrono::milliseconds(300));
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
       stop.store(true);
     });
-    const auto start = std::chrono::steady_clock::now();
     const Cluster part = grow(o, {}, &stop);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stopper.join();
     EXPECT_FALSE(part.complete);
-    EXPECT_LT(seconds, 1.3) << threads << " threads";
+    EXPECT_LT(attached(part), 256u) << threads << " threads: the flag waited for the progress beat";
     EXPECT_LT(attached(part), o.particles);
     // What grew is a prefix of the whole run: it resumes to the same structure.
     o.particles = attached(part) + 20;
