@@ -6,6 +6,7 @@
 #include "dla/index/grid_index.h"
 #include "dla/models/ballistic.h"
 #include "dla/models/drop.h"
+#include "tree_check.h"
 
 #include <gtest/gtest.h>
 
@@ -17,24 +18,8 @@ namespace {
 
 using dla::Vec3;
 
-//! Every particle but a seed lies one spacing from its earlier parent, and (unless clipped) no
-//! particle comes closer than the spacing to an earlier one.
-void expect_tree(const dla::Cluster& c) {
-  const double s = c.spacing;
-  for (std::size_t i = c.seed_count; i < c.particles.size(); ++i) {
-    const dla::Particle& p = c.particles[i];
-    ASSERT_GE(p.parent, 0);
-    ASSERT_LT(static_cast<std::size_t>(p.parent), i);
-    ASSERT_NEAR((p.position - c.particles[static_cast<std::size_t>(p.parent)].position).norm(), s, 1e-9 * s);
-    ASSERT_EQ(p.seed, c.particles[static_cast<std::size_t>(p.parent)].seed);
-    if (c.dimensions == 2) {
-      ASSERT_EQ(p.position.z(), 0.0);
-    }
-    for (std::size_t j = 0; j < i; ++j) {
-      ASSERT_GE((p.position - c.particles[j].position).norm(), s * (1.0 - 1e-9)) << "particles " << j << " and " << i;
-    }
-  }
-}
+//! A tree (tree_check.h) whose particles are a spacing apart.
+void expect_tree(const dla::Cluster& c) { EXPECT_EQ(dla::testing::tree_fault(c), ""); }
 
 //! Clouds to look up in: uniform, in tight clumps far apart, and along a line.
 std::vector<dla::Particle> cloud(int kind, int dimensions, std::mt19937_64& rng) {

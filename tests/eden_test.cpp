@@ -5,6 +5,8 @@
 #include "dla/models/eden.h"
 #include "dla/core/analysis.h"
 
+#include "tree_check.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -82,12 +84,8 @@ TEST(Eden, EverySiteHangsFromItsNearestOccupiedNeighbour) {
                                                 {Lattice::cubic6, 6},   {Lattice::cubic18, 18}, {Lattice::cubic26, 26}};
     EXPECT_EQ(lattice_neighbours(lattice).size(), counts.at(lattice));
     check_sites(o, cluster, 1);
-    for (std::size_t i = 1; i < cluster.particles.size(); ++i) {
-      const Particle& p = cluster.particles[i];
-      const double step = (p.position - cluster.particles[static_cast<std::size_t>(p.parent)].position).norm();
-      ASSERT_GE(step, o.spacing - 1e-9);
-      ASSERT_LE(step, std::sqrt(3.0) * o.spacing + 1e-9);
-    }
+    // A site hangs from a neighbour on the lattice: at most a cube's diagonal away.
+    EXPECT_EQ(dla::testing::tree_fault(cluster, {1.0, std::sqrt(3.0), true}), "");
   }
 }
 

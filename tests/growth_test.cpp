@@ -3,7 +3,7 @@
 
 #include "dla/core/analysis.h"
 #include "dla/models/growth.h"
-#include "dla/index/kdtree_index.h"
+#include "tree_check.h"
 
 #include <gtest/gtest.h>
 
@@ -22,37 +22,11 @@
 namespace dla {
 namespace {
 
-// Parent earlier and one spacing away, seed ids inherited, no two particles closer than the
-// spacing (checked against every particle with a k-d tree), 2D stays in its plane.
+// The counts asked for, and a tree (tree_check.h) whose particles are a spacing apart.
 void expect_valid_tree(const Cluster& c, const GrowthOptions& o) {
-  const auto& ps = c.particles;
-  ASSERT_EQ(ps.size(), o.seeds.size() + o.particles);
+  ASSERT_EQ(c.particles.size(), o.seeds.size() + o.particles);
   ASSERT_EQ(c.seed_count, o.seeds.size());
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    const Particle& p = ps[i];
-    ASSERT_TRUE(p.position.allFinite());
-    if (i < c.seed_count) {
-      ASSERT_EQ(p.parent, -1);
-      ASSERT_EQ(p.seed, static_cast<std::int32_t>(i));
-      continue;
-    }
-    ASSERT_GE(p.parent, 0);
-    ASSERT_LT(p.parent, static_cast<std::int32_t>(i)) << "parent must come earlier";
-    const Particle& parent = ps[static_cast<std::size_t>(p.parent)];
-    ASSERT_NEAR((p.position - parent.position).norm(), o.spacing, 1e-9 * o.spacing);
-    ASSERT_EQ(p.seed, parent.seed);
-    if (o.dimensions == 2) {
-      ASSERT_EQ(p.position.z(), 0.0);
-    }
-  }
-  KdTreeIndex all(ps, o.spacing, o.dimensions);
-  for (std::size_t i = 0; i < ps.size(); ++i) all.insert(static_cast<std::int32_t>(i));
-  double closest = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < ps.size(); ++i)
-    all.for_each_within(ps[i].position, o.spacing * 1.5, [&](std::int32_t j, double d2) {
-      if (static_cast<std::size_t>(j) != i) closest = std::min(closest, std::sqrt(d2));
-    });
-  EXPECT_GE(closest, o.spacing * (1 - 1e-9)) << "two particles overlap";
+  EXPECT_EQ(testing::tree_fault(c), "");
 }
 
 double mean_z(const Cluster& c) {
@@ -463,6 +437,36 @@ TEST(Options, BadValuesAreRefusedWithAClearMessage) {
   EXPECT_THROW(parse_spawn_mode("cube"), InvalidInput);
   EXPECT_EQ(parse_spawn_mode("disk"), SpawnMode::disk);
   EXPECT_EQ(parse_index_kind(to_string(IndexKind::kdtree)), IndexKind::kdtree);
+}
+
+}  // namespace
+}  // namespace dla
+
+namespace dla {
+namespace {
+
+// The tree checker every test uses (tree_check.h) finds each fault it is there for.
+TEST(TreeCheck, FindsEachFault) {
+  Cluster good;
+  good.seed_count = 1;
+  good.particles = {{Vec3(0, 0, 0), -1, 0}, {Vec3(1, 0, 0), 0, 0}, {Vec3(2, 0, 0), 1, 0}};
+  ASSERT_EQ(testing::tree_fault(good), "");
+  const auto fault = [&](auto&& spoil, testing::TreeRules rules = {}) {
+    Cluster bad = good;
+    spoil(bad);
+    return testing::tree_fault(bad, rules);
+  };
+  EXPECT_NE(fault([](Cluster& c) { c.particles[2].parent = 2; }), "");        // not before it
+  EXPECT_NE(fault([](Cluster& c) { c.particles[1].seed = 1; }), "");          // another tree
+  EXPECT_NE(fault([](Cluster& c) { c.particles[0].parent = 0; }), "");        // a seed with a parent
+  EXPECT_NE(fault([](Cluster& c) { c.particles[2].position.x() = 2.5; }), "");  // too long
+  EXPECT_NE(fault([](Cluster& c) { c.particles[2].position.x() = NAN; }), "");
+  EXPECT_NE(fault([](Cluster& c) { c.dimensions = 2, c.particles[2].position.z() = 1e-9; }), "");
+  // Too close to particle 0, though a spacing from its parent.
+  const auto bent = [](Cluster& c) { c.particles[2].position = Vec3(1 - std::sqrt(0.75), 0.5, 0); };
+  EXPECT_NE(fault(bent), "");
+  EXPECT_EQ(fault(bent, {1.0, 1.0, false}), "");
+  EXPECT_EQ(fault([](Cluster& c) { c.particles[2].position.x() = 1.5; }, {0.5, 1.0, false}), "");  // clipped
 }
 
 }  // namespace

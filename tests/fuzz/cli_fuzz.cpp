@@ -17,6 +17,7 @@
 #include "dla/models/growth.h"
 #include "dla/look/instances.h"
 #include "dla/look/look.h"
+#include "../tree_check.h"
 
 #include <algorithm>
 #include <chrono>
@@ -55,10 +56,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           dla::scatter_attractors(c.attractors, c.options.rng_seed, c.options.dimensions);
       const dla::Cluster tree = dla::colonize(c.options, attractors, dla::cli::colonize_roots(c, attractors, nullptr));
       if (tree.particles.size() > c.options.max_nodes) std::abort();
-      for (std::size_t i = tree.seed_count; i < tree.particles.size(); ++i) {
-        const dla::Particle& p = tree.particles[i];
-        if (p.parent < 0 || static_cast<std::size_t>(p.parent) >= i || !p.position.allFinite()) std::abort();
-      }
+      // One step a node, or as far as the noise moves it.
+      const double noise = std::sqrt(3.0) * c.options.noise_amplitude;
+      if (!dla::testing::tree_fault(tree, {noise > 0 ? 0.0 : 1.0, 1.0 + noise, false}).empty()) std::abort();
       const dla::Look look = dla::make_look(tree, c.look);
       for (const float radius : look.radii(tree))
         if (!(radius > 0.0f) || !std::isfinite(radius)) std::abort();
@@ -71,10 +71,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       o.sites = std::min<std::size_t>(o.sites, 200);
       const dla::Cluster cluster = dla::eden(o);
       if (cluster.particles.size() > o.sites) std::abort();
-      for (std::size_t i = 1; i < cluster.particles.size(); ++i) {
-        const dla::Particle& p = cluster.particles[i];
-        if (p.parent < 0 || static_cast<std::size_t>(p.parent) >= i || !p.position.allFinite()) std::abort();
-      }
+      // A site hangs from the nearest occupied site of its mask, up to 8 sites away each way.
+      if (!dla::testing::tree_fault(cluster, {1.0, 8 * std::sqrt(3.0), true}).empty()) std::abort();
       const dla::Look look = dla::make_look(cluster, line.eden.look);
       for (const float radius : look.radii(cluster))
         if (!(radius > 0.0f) || !std::isfinite(radius)) std::abort();
@@ -93,10 +91,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       for (const dla::Vec3& seed : dropping ? drop.seeds : lines.seeds)
         if (seed.cwiseAbs().maxCoeff() > 500.0 * (dropping ? drop.spacing : lines.spacing)) return 0;
       const dla::Cluster cluster = dropping ? dla::drop(drop) : dla::ballistic(lines);
-      for (std::size_t i = cluster.seed_count; i < cluster.particles.size(); ++i) {
-        const dla::Particle& p = cluster.particles[i];
-        if (p.parent < 0 || static_cast<std::size_t>(p.parent) >= i || !p.position.allFinite()) std::abort();
-      }
+      if (!dla::testing::tree_fault(cluster).empty()) std::abort();
       const dla::Look look = dla::make_look(cluster, dropping ? line.drop.look : line.ballistic.look);
       for (const float radius : look.radii(cluster))
         if (!(radius > 0.0f) || !std::isfinite(radius)) std::abort();
@@ -136,10 +131,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       throw;
     }
     stop_watchdog();
-    for (std::size_t i = cluster.seed_count; i < cluster.particles.size(); ++i) {
-      const dla::Particle& p = cluster.particles[i];
-      if (p.parent < 0 || static_cast<std::size_t>(p.parent) >= i || !p.position.allFinite()) std::abort();
-    }
+    if (!dla::testing::tree_fault(cluster).empty()) std::abort();
     // The look the options ask for: attributes, radii, tubes and instancing points.
     const dla::Look look = dla::make_look(cluster, line.grow.look);
     const std::vector<float> radii = look.radii(cluster);
