@@ -2,7 +2,8 @@
 // format, for tools that cannot reveal growth by the age attribute of one file.
 
 #include "commands.h"
-#include "run_files.h"
+#include "options.h"
+#include "progress.h"
 
 #include "dla/io/csv_reader.h"
 
@@ -24,16 +25,54 @@ std::string frame_prefix(const std::string& output, std::size_t frame, std::size
 
 }  // namespace
 
-int frames(const FramesCommand& command, const StopFlag& stop, const volatile std::sig_atomic_t& stop_signal) {
+Subcommand add_frames_command(CLI::App& app) {
+  struct Words {
+    long long count = 30;
+    bool quiet = false;
+    std::unique_ptr<OutputWords> files;
+  };
+  auto w = std::make_shared<Words>();
+  auto frames = std::make_shared<FramesCommand>();
+  CLI::App* command = app.add_subcommand(
+      "frames", "write the structure a CSV holds as it grew, K files of each format (PREFIX_0001.glb ...): "
+                "growth for tools without an age attribute (docs/animation.md)");
+  command->get_formatter()->column_width(34);
+  command->add_option("csv", frames->csv_path, "a CSV that dla3d wrote")->required();
+  command->add_option("--count", w->count, "frames, 1-100000: frame k of K holds the seeds and k/K of the "
+                                           "other particles, in attach order")->capture_default_str();
+  w->files = std::make_unique<OutputWords>(*command, frames->files, w->quiet, "glb");
+  CLI::Option* output = command->get_option("--output");
+  output->description("prefix of the files written, each PREFIX_NNNN.EXT; default: the CSV's, without .csv");
+  return {command, [w, frames, output](CommandLine& line, const std::vector<std::string>&) {
+            FramesCommand& fr = *frames;
+            line.kind = CommandLine::Kind::frames;
+            if (w->count < 1 || w->count > 100000)
+              throw InvalidInput("--count " + std::to_string(w->count) + " is not a number of frames in 1-100000");
+            fr.count = static_cast<std::size_t>(w->count);
+            if (!output->count()) {
+              fr.files.output = fr.csv_path;
+              if (fr.files.output.size() > 4 && fr.files.output.compare(fr.files.output.size() - 4, 4, ".csv") == 0)
+                fr.files.output.resize(fr.files.output.size() - 4);
+            }
+            w->files->finish(fr.files);
+            if (fr.files.formats.json) throw InvalidInput("--formats json: frames have no run to report; leave json out");
+            // svg and png need 2D growth, which only the CSV tells: frames() checks them.
+            validate(fr.files, 2, false);
+            line.quiet = w->quiet;
+            line.frames = fr;
+          }};
+}
+
+int frames(const FramesCommand& command, bool quiet, const StopFlag& stop, const volatile std::sig_atomic_t& stop_signal) {
   const Cluster whole = read_csv(command.csv_path);
-  if ((command.formats.svg || command.formats.png) && whole.dimensions != 2)
+  if ((command.files.formats.svg || command.files.formats.png) && whole.dimensions != 2)
     throw InvalidInput(command.csv_path + " holds 3D growth: --formats svg and png draw 2D growth");
-  FileOptions files = command;
-  files.output = frame_prefix(command.output, 1, command.count);
+  OutputOptions files = command.files;
+  files.output = frame_prefix(command.files.output, 1, command.count);
   check_writable(file_names(files).front());
 
   const std::size_t others = attached(whole);
-  ProgressBar bar(command.count, !command.quiet && isatty(STDERR_FILENO));
+  ProgressBar bar(command.count, !quiet && isatty(STDERR_FILENO));
   for (std::size_t k = 1; k <= command.count; ++k) {
     if (stop.load()) {
       bar.clear();
@@ -51,17 +90,16 @@ int frames(const FramesCommand& command, const StopFlag& stop, const volatile st
     frame.center = whole.center;
     frame.spacing = whole.spacing;
     frame.dimensions = whole.dimensions;
-    files.output = frame_prefix(command.output, k, command.count);
-    PovOptions pov = files.pov;
-    pov.comment = "frame " + std::to_string(k) + " of " + std::to_string(command.count) + " of " + command.csv_path;
-    write_files(frame, files, pov, 1, nullptr, nullptr);
+    files.output = frame_prefix(command.files.output, k, command.count);
+    write_files(frame, files, {1, nullptr, nullptr,
+                               "frame " + std::to_string(k) + " of " + std::to_string(command.count) + " of " + command.csv_path});
     bar.update(k);
   }
   bar.clear();
-  if (!command.quiet) {
+  if (!quiet) {
     std::fprintf(stderr, "dla3d: wrote %zu frames of growth, %s.* to %s.*; one file with the age attribute "
                          "reveals growth in Blender and Houdini too (docs/animation.md)\n",
-                 command.count, frame_prefix(command.output, 1, command.count).c_str(), files.output.c_str());
+                 command.count, frame_prefix(command.files.output, 1, command.count).c_str(), files.output.c_str());
   }
   return 0;
 }

@@ -1,78 +1,191 @@
-// `dla3d [options]`: grows a structure by DLA (in or around a mesh if one is given;
-// model_run.cpp sets the run up) and writes the POV-Ray scene, CSV, PLY and JSON sidecar;
-// saves and resumes checkpoints.
+// `dla3d [options]`: DLA's options, the top level's (Growth, Mesh constraint, Spawn, Long runs),
+// turned into the library's DlaRunOptions; and --resume.
 
-#include "commands.h"
-#include "model_run.h"
-#include "run_files.h"
-
-#include <unistd.h>
-
-#include <csignal>
-#include <cstdio>
-#include <memory>
+#include "options.h"
 
 namespace dla::cli {
 
-int grow(const CommandLine& line, const std::vector<std::string>& args, const Checkpoint* resumed,
-         const StopFlag& stop, const volatile std::sig_atomic_t& stop_signal) {
-  const GrowCommand& command = line.grow;
-  const std::string& output = command.output;
-  check_writable(file_names(command).front());  // before a mesh's set-up and a long run
-  if (!command.checkpoint_path.empty()) check_writable(command.checkpoint_path);
-  const std::unique_ptr<ModelRun> run = prepare_run(line, resumed);
-  // Only once every option is known good: bad input gets its one line and nothing else.
-  if (!command.quiet && !run->mesh_line.empty()) std::fprintf(stderr, "dla3d: %s\n", run->mesh_line.c_str());
+namespace {
 
-  ProgressBar bar(run->total, !command.quiet && isatty(STDERR_FILENO));
-  Clock::time_point saved = Clock::now();
-  // A save that fails (a full disk) is reported once and does not stop the run.
-  bool save_failed = false;
-  const auto save = [&](const Cluster& so_far) {
-    if (command.checkpoint_path.empty()) return;
-    try {
-      write_checkpoint({args, run->input_hash, so_far}, command.checkpoint_path);
-    } catch (const IOError& e) {
-      bar.clear();
-      if (!save_failed) std::fprintf(stderr, "dla3d: warning: %s; growth goes on\n", e.what());
-      save_failed = true;
-    }
-  };
-  const auto progress = [&](const Cluster& so_far) {
-    bar.update(run->done(so_far), so_far.filled, run->fill);
-    if (stop.load()) return false;
-    if (!command.checkpoint_path.empty() &&
-        Clock::now() - saved >= std::chrono::duration<double>(command.checkpoint_every)) {
-      save(so_far);
-      saved = Clock::now();
-    }
-    return true;
-  };
-  RunRecord record;
-  std::string error;  // why growth failed part way, if it did
-  const Cluster cluster = grow_recorded(*run, progress, stop, stop_signal, args, record, error);
-  bar.clear();
-  const int signal = stop_signal;
-  write_run(*run, cluster, run->files, record);
-  if (!cluster.complete) save(cluster);  // after the files: they matter more
+//! The words of DLA's options that are not values of the run's options as they are.
+struct GrowWords {
+  long long particles = 10000;
+  std::vector<std::string> seed_at;
+  std::string spawn = std::string(to_string(SpawnMode::sphere));
+  std::string spawn_axis = std::string(to_string(Axis::z));
+  std::string box, drift, rotate, index = std::string(to_string(IndexKind::grid));
+  std::string side = std::string(to_string(Side::inside));
+  std::string constraint_mode = std::string(to_string(ConstraintMode::reject));
+  std::string text, font = kDefaultFont;
+  double spacing = 1.0;
+  CLI::Option *particles_option, *spacing_option, *seed_at_option, *text_option, *font_option, *shell_option,
+      *fill_option, *fill_distance_option, *spawn_option, *threads_option;
+  std::unique_ptr<SeedWords> seeds;
+  std::unique_ptr<OutputWords> files;
+};
 
-  const std::string resume_hint =
-      command.checkpoint_path.empty() ? "" : "; go on with: dla3d --resume " + command.checkpoint_path;
-  const std::string grown = with_commas(static_cast<double>(attached(cluster)));
-  if (!error.empty()) {
-    std::fprintf(stderr, "dla3d: error: %s; %s.* hold the %s particles grown before it\n", error.c_str(),
-                 output.c_str(), grown.c_str());
-    return 1;
+//! Only -q and --threads may go with --resume: every other option comes from the checkpoint.
+void check_resume_company(const std::vector<std::string>& args) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    if (arg == "--resume" || arg == "--threads") ++i;
+    else if (arg.rfind("--resume=", 0) != 0 && arg.rfind("--threads=", 0) != 0 && arg != "-q" && arg != "--quiet")
+      throw InvalidInput("--resume takes no other options but -q and --threads: they come from the checkpoint");
   }
-  if (!command.quiet) print_summary(*run, cluster, run->files, record);
-  if (!cluster.complete) {
-    std::fprintf(stderr, "dla3d: stopped by %s after %s of %s particles; the files hold them%s\n",
-                 signal_name(signal), grown.c_str(), with_commas(static_cast<double>(run->total)).c_str(),
-                 resume_hint.c_str());
-    return 128 + signal;
+}
+
+void add_options(CLI::App& app, DlaRunOptions& g, CommandLine& line, GrowWords& w) {
+  GrowthOptions& options = g.growth;
+  const char* growth = "Growth";
+  w.particles_option = app.add_option("-n,--particles", w.particles, "particles to attach, seeds not counted; with a mesh, "
+                                                                     "default 30000")->capture_default_str()->group(growth);
+  w.spacing_option = app.add_option(
+      "--spacing", w.spacing,
+      "distance between a particle and its parent; also the contact distance, in [1e-25, 1e25]; "
+      "with a mesh, default: its longest side / 100")->capture_default_str()->group(growth);
+  app.add_option("--stickiness", options.stickiness, "probability of sticking at a contact, in [1e-4, 1]")
+      ->capture_default_str()->group(growth);
+  app.add_option("--dimensions", options.dimensions, "3, or 2 for growth in the plane z = 0")
+      ->capture_default_str()->group(growth);
+  w.seed_at_option =
+      app.add_option("--seed-at", w.seed_at, "a seed at x,y,z (repeat for several); default: one at the origin")
+          ->type_name("X,Y,Z")->allow_extra_args(false)->group(growth);
+  app.add_option("--rng-seed", options.rng_seed, "seed of the random generator: the same seed gives the same files")
+      ->capture_default_str()->group(growth);
+  app.add_option("--min-step", options.min_step, "step length next to the structure, in spacings, [0.01, 1]")
+      ->capture_default_str()->group(growth);
+  app.add_option("--index", w.index, "nearest-particle look-up: grid, kdtree or brute")
+      ->capture_default_str()->group(growth);
+  w.threads_option = app.add_option("--threads", options.threads,
+                                    "walkers run at once, 1-256 (grid index); the files do not depend on it")
+                         ->capture_default_str()->group(growth);
+
+  const char* meshes = "Mesh constraint";
+  CLI::Option* stl_option = app.add_option("--stl,--mesh", g.stl, "grow constrained by this mesh: STL, OFF, OBJ or PLY")
+                                ->type_name("FILE")->group(meshes);
+  w.text_option =
+      app.add_option("--text", w.text, "grow in this text, extruded a quarter of its size (lines split at \\n): "
+                                       "a mesh, as --stl's; one seed in each letter")
+          ->type_name("TEXT")->group(meshes)->excludes(stl_option);
+  w.font_option =
+      app.add_option("--font", w.font, "--text's font: a TrueType or OpenType file")->capture_default_str()->group(meshes);
+  app.add_option("--side", w.side, "inside, outside, both (the mesh is only a wall; not closed) or surface (over "
+                                   "it, both sides, in a shell)")
+      ->capture_default_str()->group(meshes);
+  w.shell_option =
+      app.add_option("--shell", g.constraint.shell, "keep growth within T spacings of the surface, on its side, "
+                                                    "[1, 1000]: frost, lichen; with --side surface, default 3")
+          ->type_name("T")->group(meshes);
+  app.add_option("--constraint", w.constraint_mode, "a branch crossing the mesh: reject (walk on) or clip (end at it)")
+      ->capture_default_str()->group(meshes);
+  w.seeds = std::make_unique<SeedWords>(
+      app, g.seeds, meshes, w.seed_at_option,
+      "place K seeds on the growing side, far apart (default 1), or all: the surface, the paint or the --seed-mesh "
+      "curves at the spacing (their default)",
+      "start from the whole surface (or the painted part): seeds a spacing apart, half a spacing off it on the "
+      "growing side");
+  app.add_flag("--scene-mesh,!--no-scene-mesh", g.scene_mesh, "show the mesh, as glass, in the POV-Ray scene")
+      ->capture_default_str()->group(meshes);
+  w.fill_option =
+      app.add_option("--fill", options.fill, "grow until this fraction of the mesh's volume lies within "
+                                             "--fill-distance of the structure, (0, 1]; -n then caps it (default 1e7)")
+          ->type_name("F")->group(meshes);
+  w.fill_distance_option =
+      app.add_option("--fill-distance", options.fill_distance, "--fill: how near counts as covered, in spacings, [0.5, 1000]")
+          ->capture_default_str()->group(meshes);
+
+  const char* spawning = "Spawn";
+  w.spawn_option =
+      app.add_option("--spawn", w.spawn, "where walkers start: sphere, disk, box, or with a mesh inside, radial or surface; "
+                                         "with --side inside, default surface")
+          ->capture_default_str()->group(spawning);
+  app.add_option("--spawn-axis", w.spawn_axis, "disk: the axis the disk sits on, x, y or z")
+      ->capture_default_str()->group(spawning);
+  app.add_option("--disk-radius", options.disk_radius, "disk: radius as a fraction of the launch radius, (0, 1000]")
+      ->capture_default_str()->group(spawning);
+  app.add_option("--box", w.box, "box: a fixed box; default: the cube around the launch sphere")
+      ->type_name("X0,Y0,Z0,X1,Y1,Z1")->group(spawning);
+  app.add_option("--drift", w.drift, "bias of every step, per unit step length, length < 1")
+      ->type_name("X,Y,Z")->group(spawning);
+  app.add_option("--rotate", w.rotate, "turn the spawn and the drift about the seeds' centre by DEGREES per 1000 "
+                                       "particles, as if the structure turned while it grew: spirals; no mesh")
+      ->type_name("AXIS,DEGREES")->group(spawning);
+
+  w.files = std::make_unique<OutputWords>(app, g.files, line.quiet);
+
+  const char* runs = "Long runs";
+  app.add_option("--checkpoint", line.checkpoint_path, "save the run to FILE as it goes, and when stopped by Ctrl-C or SIGTERM")
+      ->type_name("FILE")->group(runs);
+  app.add_option("--checkpoint-every", line.checkpoint_every, "seconds between saves")->capture_default_str()->group(runs);
+  app.add_option("--resume", line.resume_path, "grow on from a checkpoint, with the options it was started with")
+      ->type_name("FILE")->group(runs);
+}
+
+//! The words as DLA's run options. The checks that need to know what was given, which the run
+//! options cannot tell, are made here; the library checks the rest.
+void finish(CommandLine& line, DlaRunOptions& g, const GrowWords& w) {
+  GrowthOptions& options = g.growth;
+  if (!(line.checkpoint_every >= 0.0))
+    throw InvalidInput("--checkpoint-every " + detail::format_number(line.checkpoint_every) + " is not a number of seconds");
+  const std::size_t particles = parse_count("--particles", w.particles);
+  if (w.particles_option->count()) g.particles = particles;
+  if (w.spacing_option->count()) g.spacing = w.spacing;
+  if (w.seed_at_option->count()) g.seed_at = parse_points("--seed-at", w.seed_at);
+  const SpawnMode spawn = parse_spawn_mode(w.spawn);
+  if (w.spawn_option->count()) g.spawn = spawn;
+  options.spawn_axis = parse_axis(w.spawn_axis);
+  options.index = parse_index_kind(w.index);
+  w.files->finish(g.files);
+  if (w.text_option->count()) {
+    // "\n" typed in the shell is a line break.
+    std::string text = w.text;
+    for (std::size_t at = text.find("\\n"); at != std::string::npos; at = text.find("\\n", at + 1)) text.replace(at, 2, "\n");
+    g.text = TextOptions{text, w.font};
+  } else if (w.font_option->count()) {
+    throw InvalidInput("--font is the font of --text: give the text");
   }
-  if (!command.checkpoint_path.empty()) std::remove(command.checkpoint_path.c_str());  // whole: nothing to resume
-  return 0;
+  validate(g.files, options.dimensions, g.has_mesh());
+  if (!w.box.empty()) options.spawn_box = parse_box("--box", w.box);
+  if (!w.drift.empty()) options.drift = parse_vec3("--drift", w.drift);
+  if (!w.rotate.empty()) {
+    const std::size_t comma = w.rotate.find(',');
+    if (comma == std::string::npos) throw InvalidInput("--rotate '" + w.rotate + "' is not AXIS,DEGREES (as y,30)");
+    options.rotate_axis = parse_axis(w.rotate.substr(0, comma));
+    options.rotate_degrees = parse_numbers("--rotate's degrees", w.rotate.substr(comma + 1), 1)[0];
+  }
+  g.constraint.side = parse_side(w.side);
+  g.constraint.mode = parse_constraint_mode(w.constraint_mode);
+  w.seeds->finish(g.seeds, g.has_mesh());
+  if (!w.fill_option->count() && w.fill_distance_option->count()) throw InvalidInput("--fill-distance is for --fill");
+  if (w.shell_option->count()) {
+    if (!g.has_mesh()) throw InvalidInput("--shell keeps growth near a mesh's surface: give one with --stl");
+    detail::require_in("--shell", g.constraint.shell, 1.0, 1000.0);
+  }
+  validate(g);
+}
+
+}  // namespace
+
+Subcommand add_grow_options(CLI::App& app) {
+  auto words = std::make_shared<GrowWords>();
+  auto run = std::make_shared<DlaRunOptions>();
+  auto line = std::make_shared<CommandLine>();  // the Long runs' and the quiet flag's words
+  add_options(app, *run, *line, *words);
+  return {&app, [words, run, line](CommandLine& out, const std::vector<std::string>& args) {
+            out.quiet = line->quiet;
+            out.checkpoint_path = line->checkpoint_path;
+            out.checkpoint_every = line->checkpoint_every;
+            if (!line->resume_path.empty()) {
+              check_resume_company(args);
+              out.kind = CommandLine::Kind::resume;
+              out.resume_path = line->resume_path;
+              if (words->threads_option->count()) out.threads = run->growth.threads;
+              validate(run->growth);  // the thread count, the one growth option given
+              return;
+            }
+            finish(out, *run, *words);
+            out.run = *run;
+          }};
 }
 
 }  // namespace dla::cli

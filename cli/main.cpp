@@ -1,8 +1,9 @@
 // dla3d: grows a DLA structure (or, with `colonize`, a space colonization tree; with `eden`, an
 // Eden cluster; with `drop` and `ballistic`, a random-drop or ballistic aggregate) and writes it
 // as a POV-Ray scene, CSV, PLY and a JSON sidecar.
-// This file parses the command line (command_line.cpp) and runs the subcommand it names, one
-// file each; every error ends here as one line on stderr.
+// This file parses the command line (command_line.cpp) and runs what it names: a growth run of
+// any model (run.cpp) or another subcommand, a file each. Every error ends here as one line on
+// stderr, with the options the library names spelled as dla3d's flags.
 
 #include "command_line.h"
 #include "commands.h"
@@ -40,38 +41,32 @@ int run(const std::vector<std::string>& args) {
   const dla::cli::CommandLine line = dla::cli::parse_command_line(args);
   switch (line.kind) {
     case Kind::print: std::fputs(line.text.c_str(), stdout); return 0;
-    case Kind::convert: return dla::cli::convert(line.convert_in, line.convert_out, line.grow.quiet);
+    case Kind::convert: return dla::cli::convert(line.convert_in, line.convert_out, line.quiet);
     case Kind::analyze: return dla::cli::analyze(line.analyze_csv);
     case Kind::frames:
       catch_stop_signals();
-      return dla::cli::frames(line.frames, stop_requested, stop_signal);
-    case Kind::grow: break;
-    case Kind::colonize:
-    case Kind::eden:
-    case Kind::drop:
-    case Kind::ballistic:
+      return dla::cli::frames(line.frames, line.quiet, stop_requested, stop_signal);
+    case Kind::run:
       catch_stop_signals();
-      return dla::cli::run_model(line, args, stop_requested, stop_signal);
-    case Kind::resume: {
-      // The checkpoint's own command, with this thread count and -q: the count changes how
-      // fast it goes on, never what it grows.
-      const dla::Checkpoint checkpoint = dla::read_checkpoint(line.resume_path);
-      std::vector<std::string> command;
-      for (std::size_t i = 0; i < checkpoint.command.size(); ++i) {
-        const std::string& word = checkpoint.command[i];
-        if (line.threads_given && word == "--threads") ++i;
-        else if (!(line.threads_given && word.rfind("--threads=", 0) == 0)) command.push_back(word);
-      }
-      if (line.threads_given) command.insert(command.end(), {"--threads", std::to_string(line.grow.options.threads)});
-      if (line.grow.quiet) command.push_back("-q");
-      const dla::cli::CommandLine resumed = dla::cli::parse_command_line(command);
-      if (resumed.kind != Kind::grow) throw dla::InvalidInput(line.resume_path + ": its command is not a growth run");
-      catch_stop_signals();
-      return dla::cli::grow(resumed, command, &checkpoint, stop_requested, stop_signal);
-    }
+      return dla::cli::run(line, args, nullptr, 0, stop_requested, stop_signal);
+    case Kind::resume: break;
   }
+  // The checkpoint's own command, with this thread count and -q: the count changes how fast it
+  // goes on, never what it grows.
+  const dla::Checkpoint checkpoint = dla::read_checkpoint(line.resume_path);
+  std::vector<std::string> command;
+  for (std::size_t i = 0; i < checkpoint.command.size(); ++i) {
+    const std::string& word = checkpoint.command[i];
+    if (line.threads && word == "--threads") ++i;
+    else if (!(line.threads && word.rfind("--threads=", 0) == 0)) command.push_back(word);
+  }
+  if (line.threads) command.insert(command.end(), {"--threads", std::to_string(*line.threads)});
+  if (line.quiet) command.push_back("-q");
+  const dla::cli::CommandLine resumed = dla::cli::parse_command_line(command);
+  if (resumed.kind != Kind::run || resumed.run.index() != 0)
+    throw dla::InvalidInput(line.resume_path + ": its command is not a growth run");
   catch_stop_signals();
-  return dla::cli::grow(line, args, nullptr, stop_requested, stop_signal);
+  return dla::cli::run(resumed, command, &checkpoint.cluster, checkpoint.input_hash, stop_requested, stop_signal);
 }
 
 }  // namespace
@@ -80,12 +75,12 @@ int main(int argc, char** argv) {
   try {
     return run(std::vector<std::string>(argv + 1, argv + argc));
   } catch (const dla::InvalidInput& e) {
-    std::fprintf(stderr, "dla3d: error: %s\n", e.what());
+    std::fprintf(stderr, "dla3d: error: %s\n", dla::spell_options(e.what(), dla::OptionSpelling::cli).c_str());
     return 2;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "dla3d: error: out of memory\n");
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "dla3d: error: %s\n", e.what());
+    std::fprintf(stderr, "dla3d: error: %s\n", dla::spell_options(e.what(), dla::OptionSpelling::cli).c_str());
   }
   return 1;
 }

@@ -73,7 +73,7 @@ TriangleMesh repaired(const TriangleMesh& mesh, Side side, RepairReport& report)
   TriangleMesh out = repair_mesh(mesh, options, &report);
   if (solid(side) && !report.closed)
     throw InvalidInput("the mesh does not bound a volume even after hole filling (" + report.summary() +
-                       "), so it has no inside: use --side both to take it as a wall");
+                       "), so it has no inside: use `side` both to take it as a wall");
   return out;
 }
 
@@ -104,7 +104,7 @@ MeshConstraint::MeshConstraint(const TriangleMesh& mesh, const ConstraintOptions
   centroid_ = volume > 0.0 && std::isfinite(volume) ? Vec3(moment / volume) : center_;
   const double layers = options.side == Side::surface && options.shell == 0.0 ? kShellSpacings : options.shell;
   if (layers != 0.0) {
-    detail::require_in("--shell", layers, 1.0, 1000.0);
+    detail::require_in("`shell`", layers, 1.0, 1000.0);
     shell_thickness_ = layers * spacing;
     // Voxels of half a spacing: walkers stray at most 0.43 spacings past the layer.
     const Layer layer = options.side == Side::inside ? Layer::inside : options.side == Side::outside ? Layer::outside
@@ -283,11 +283,11 @@ Vec3 MeshConstraint::beside(const Vec3& s, const Vec3& normal, Rng& rng) const {
 }
 
 std::vector<Vec3> MeshConstraint::sample_surface(std::uint64_t rng_seed, const Paint* paint) const {
-  const char* option = paint ? "--seed-paint" : "--seed-surface";
+  const char* option = paint ? "`seed_paint`" : "`seed_surface`";
   if (options_.side == Side::both && !shell_)
-    throw InvalidInput(std::string(option) + " needs a growing side to put the seeds on: --side inside or outside");
+    throw InvalidInput(std::string(option) + " needs a growing side to put the seeds on: `side` inside or outside");
   if (paint && mesh_.colors.empty())
-    throw InvalidInput("the mesh has no vertex colours for --seed-paint: paint it, and save it as PLY, OFF or OBJ with "
+    throw InvalidInput("the mesh has no vertex colours for `seed_paint`: paint it, and save it as PLY, OFF or OBJ with "
                        "its colours");
   // The triangles whose corners' colours could blend to the paint (all of them without paint),
   // by cumulative area.
@@ -335,14 +335,14 @@ std::vector<Vec3> MeshConstraint::sample_surface(std::uint64_t rng_seed, const P
   }
   if (darts.points.empty())
     throw InvalidInput("the painted part of the mesh is too small for a seed at a spacing of " +
-                       detail::format_number(spacing_) + ": use a smaller spacing or a larger --seed-paint tolerance");
+                       detail::format_number(spacing_) + ": use a smaller spacing or a larger `seed_paint` tolerance");
   return std::move(darts.points);
 }
 
 std::vector<Vec3> MeshConstraint::sample_intersection(const std::vector<TriangleMesh>& others,
                                                       std::uint64_t rng_seed) const {
   if (options_.side == Side::both && !shell_)
-    throw InvalidInput("--seed-mesh needs a growing side to put the seeds on: --side inside or outside");
+    throw InvalidInput("`seed_mesh` needs a growing side to put the seeds on: `side` inside or outside");
   // Every piece, weighed by length (curves) or area over a spacing (patches): seeds per spacing.
   struct Piece {
     Vec3 a, b, c;  // c == a for a segment
@@ -370,8 +370,8 @@ std::vector<Vec3> MeshConstraint::sample_intersection(const std::vector<Triangle
       prefix.push_back(measure);
     }
   }
-  if (!(measure > 0.0)) throw InvalidInput("no --seed-mesh meets the mesh's surface, so there is nowhere to seed");
-  require_seedable(measure, "spacings of curve", "--seed-mesh");
+  if (!(measure > 0.0)) throw InvalidInput("no `seed_mesh` meets the mesh's surface, so there is nowhere to seed");
+  require_seedable(measure, "spacings of curve", "`seed_mesh`");
   Rng rng(rng_seed, ~std::uint64_t{2});  // a stream of its own
   Darts darts(spacing_);
   const auto tries = static_cast<std::size_t>(std::ceil(4.0 * measure)) + 1;
@@ -392,9 +392,9 @@ std::vector<Vec3> MeshConstraint::sample_intersection(const std::vector<Triangle
 
 std::vector<Vec3> farthest_apart(const std::vector<Vec3>& points, std::size_t count) {
   if (count > 1000)
-    throw InvalidInput("--seeds " + std::to_string(count) + " is more than 1000; --seeds all covers the part at the spacing");
+    throw InvalidInput("`seeds` " + std::to_string(count) + " is more than 1000; `seeds` all covers the part at the spacing");
   if (points.size() < count)
-    throw InvalidInput("--seeds " + std::to_string(count) + ": only " + std::to_string(points.size()) +
+    throw InvalidInput("`seeds` " + std::to_string(count) + ": only " + std::to_string(points.size()) +
                        " seeds fit there a spacing apart");
   if (count == 0) return {};
   Vec3 mean = Vec3::Zero();
@@ -420,7 +420,7 @@ double MeshConstraint::distance_to_surface(const Vec3& p) const {
 }
 
 std::vector<Vec3> MeshConstraint::place_seeds(std::size_t count, std::uint64_t rng_seed) const {
-  if (count == 0) throw InvalidInput("--seeds 0: at least one seed is needed");
+  if (count == 0) throw InvalidInput("`seeds` 0: at least one seed is needed");
   if (shell_) {
     // In a layer, depth means nothing: points half a spacing off the surface, far apart.
     Rng rng(rng_seed, ~std::uint64_t{0});
@@ -434,8 +434,8 @@ std::vector<Vec3> MeshConstraint::place_seeds(std::size_t count, std::uint64_t r
     return seeds;
   }
   if (options_.side == Side::both)
-    throw InvalidInput("seeds cannot be placed automatically with --side both: place them with --seed-at");
-  if (count > 1000) throw InvalidInput("--seeds " + std::to_string(count) + " is more than 1000");
+    throw InvalidInput("seeds cannot be placed automatically with `side` both: place them with `seed_at`");
+  if (count > 1000) throw InvalidInput("`seeds` " + std::to_string(count) + " is more than 1000");
   // Candidates from a stream no walker uses; the best by a greedy farthest-point rule.
   Rng rng(rng_seed, ~std::uint64_t{0});
   const std::size_t candidates = std::min<std::size_t>(4096, 64 + 64 * count);

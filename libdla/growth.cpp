@@ -52,7 +52,7 @@ std::string point(const Vec3& p) {
 void require_no_mesh_options(const GrowthOptions& options) {
   if (spawns_from_mesh(options.spawn))
     throw InvalidInput("spawn " + std::string(to_string(options.spawn)) + " needs a constraint mesh");
-  if (options.fill != 0.0) throw InvalidInput("--fill fills a mesh's volume: give one with --stl");
+  if (options.fill != 0.0) throw InvalidInput("`fill` fills a mesh's volume: give one with `stl`");
 }
 
 }  // namespace
@@ -83,22 +83,22 @@ void validate(const GrowthOptions& options, const MeshConstraint& constraint) {
   const Side side = constraint.options().side;
   if (options.dimensions != 3) throw InvalidInput("a constraint mesh needs growth in 3 dimensions");
   if (options.fill != 0.0 && side != Side::inside)
-    throw InvalidInput("--fill fills the volume a mesh encloses: it needs --side inside, not --side " +
+    throw InvalidInput("`fill` fills the volume a mesh encloses: it needs `side` inside, not `side` " +
                        std::string(to_string(side)));
   if (options.rotate_degrees != 0.0)
-    throw InvalidInput("--rotate turns the spawn and the drift about the seeds' centre, and a mesh does not turn "
-                       "with them: leave out --rotate or the mesh");
+    throw InvalidInput("`rotate` turns the spawn and the drift about the seeds' centre, and a mesh does not turn "
+                       "with them: leave out `rotate` or the mesh");
   if (options.spacing != constraint.spacing())
     throw InvalidInput("the constraint was built for spacing " + detail::format_number(constraint.spacing()) +
                        ", not " + detail::format_number(options.spacing));
   const bool shell = constraint.shell() > 0.0;
-  if (options.fill != 0.0 && shell) throw InvalidInput("--fill fills the volume a mesh encloses, not a shell over it");
+  if (options.fill != 0.0 && shell) throw InvalidInput("`fill` fills the volume a mesh encloses, not a shell over it");
   // In a shell, `inside` is uniform in the shell.
   if ((options.spawn == SpawnMode::radial || (options.spawn == SpawnMode::inside && !shell)) && side != Side::inside)
-    throw InvalidInput("spawn " + std::string(to_string(options.spawn)) + " needs --side inside, not --side " +
+    throw InvalidInput("spawn " + std::string(to_string(options.spawn)) + " needs `side` inside, not `side` " +
                        std::string(to_string(side)));
   if (options.spawn == SpawnMode::surface && side == Side::both && !shell)
-    throw InvalidInput("spawn surface needs a growing side, --side inside or outside, not --side both");
+    throw InvalidInput("spawn surface needs a growing side, `side` inside or outside, not `side` both");
   for (std::size_t i = 0; i < options.seeds.size(); ++i)
     if (!constraint.on_growth_side(options.seeds[i]))
       throw InvalidInput("seed " + std::to_string(i + 1) + " at " + point(options.seeds[i]) + " is " +

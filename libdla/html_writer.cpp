@@ -85,7 +85,7 @@ bool has_web_viewer() { return detail::kViewerScriptPartCount > 0; }
 void write_html(const Cluster& cluster, const Look& look, const std::string& path, const HtmlOptions& options,
                 const TriangleMesh* mesh) {
   if (!has_web_viewer())
-    throw InvalidInput("--formats html: this dla3d was built without npm, which fetches the web viewer's three.js; "
+    throw InvalidInput("`formats` html: this dla3d was built without npm, which fetches the web viewer's three.js; "
                        "install npm and build again");
   const auto& ps = cluster.particles;
   const std::size_t n = ps.size();

@@ -27,7 +27,7 @@ std::string srgb_hex(const std::array<double, 3>& linear) {
 
 void write_svg(const Cluster& cluster, const Look& look, const std::string& path) {
   if (cluster.dimensions != 2)
-    throw InvalidInput("svg draws 2D growth (--dimensions 2); a 3D structure goes to glb, obj or pov");
+    throw InvalidInput("svg draws 2D growth (`dimensions` 2); a 3D structure goes to glb, obj or pov");
   const auto& ps = cluster.particles;
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   double widest = 0.0;

@@ -186,10 +186,10 @@ char32_t next_code_point(const std::string& text, std::size_t& at) {
   const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
   const unsigned char lead = byte(at);
   const int length = lead < 0x80 ? 1 : (lead >> 5) == 0x6 ? 2 : (lead >> 4) == 0xe ? 3 : (lead >> 3) == 0x1e ? 4 : 0;
-  if (length == 0 || at + length > text.size()) throw InvalidInput("--text is not valid UTF-8");
+  if (length == 0 || at + length > text.size()) throw InvalidInput("`text` is not valid UTF-8");
   char32_t code = length == 1 ? lead : lead & (0x7f >> length);
   for (int i = 1; i < length; ++i) {
-    if ((byte(at + i) >> 6) != 0x2) throw InvalidInput("--text is not valid UTF-8");
+    if ((byte(at + i) >> 6) != 0x2) throw InvalidInput("`text` is not valid UTF-8");
     code = code << 6 | (byte(at + i) & 0x3f);
   }
   at += length;

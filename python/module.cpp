@@ -1,17 +1,15 @@
-// dla3d._core: the growth runs of dla3d's command line (cli/model_run.h), grown from Python.
-// dla3d/__init__.py turns keyword arguments into the command line's words, so options are
-// spelled and checked as on the CLI; this file grows the run with the GIL released and hands the
-// structure to numpy without copying it. See docs/python.md.
-
-#include "../cli/command_line.h"
-#include "../cli/model_run.h"
-#include "../cli/run_files.h"
+// dla3d._core: dla3d's growth runs (dla/run/run.h), grown from Python. Keyword arguments set
+// the library's run options (dla/run/models.h) through one table a model, spelled as the
+// options' C++ names; the library checks them, and its messages name the options as Python
+// spells them. This file grows the run with the GIL released and hands the structure to numpy
+// without copying it. See docs/python.md.
 
 #include "dla/core/analysis.h"
 #include "dla/core/hash.h"
 #include "dla/look/look.h"
 #include "dla/look/tubes.h"
 #include "dla/mesh/surface_distance.h"
+#include "dla/run/run.h"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -20,6 +18,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -30,16 +29,14 @@ namespace dla::python {
 
 namespace {
 
-using cli::CommandLine;
-using cli::ModelRun;
 using Clock = std::chrono::steady_clock;
+using detail::with_commas;
 
 //! A grown structure and the run that grew it (its look and files come from the run's options).
 //! The arrays it hands out share its memory and keep it alive.
 struct Result {
   Cluster cluster;
-  std::shared_ptr<ModelRun> run;
-  std::vector<std::string> args;  //!< the command line's words, without "dla3d"
+  std::shared_ptr<Run> run;
   //! For the JSON: the time growth took, the command, and stopped_by: empty when complete, else
   //! "SIGINT", "callback", "stopped" or "error: ...".
   RunRecord record;
@@ -77,6 +74,82 @@ py::array_t<T> per_particle(const Result& result, Value&& value) {
   return array;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Keyword arguments as the run's options: a value of the right kind, or one line naming it.
+
+std::string shown(py::handle value) { return py::repr(value).cast<std::string>(); }
+
+double number(const char* name, py::handle value) {
+  if (py::isinstance<py::bool_>(value) || !(py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value)))
+    throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is not a number");
+  return value.cast<double>();
+}
+
+long long whole(const char* name, py::handle value) {
+  if (py::isinstance<py::bool_>(value) || !py::isinstance<py::int_>(value))
+    throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is not a whole number");
+  try {
+    return value.cast<long long>();
+  } catch (const py::cast_error&) {
+    throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is too large");
+  }
+}
+
+std::size_t count(const char* name, py::handle value) {
+  const long long n = whole(name, value);
+  if (n < 0) throw InvalidInput(std::string("`") + name + "` " + std::to_string(n) + " is negative");
+  return static_cast<std::size_t>(n);
+}
+
+std::string text(const char* name, py::handle value) {
+  if (!py::isinstance<py::str>(value)) throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is not a string");
+  return value.cast<std::string>();
+}
+
+bool flag(const char* name, py::handle value) {
+  if (!py::isinstance<py::bool_>(value)) throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is not True or False");
+  return value.cast<bool>();
+}
+
+//! `count` numbers: a tuple, a list or an array of them.
+std::vector<double> numbers(const char* name, py::handle value, std::size_t count) {
+  const std::string wanted = std::to_string(count) + " numbers";
+  if (py::isinstance<py::str>(value) || !py::hasattr(value, "__len__") || py::len(value) != count)
+    throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is not " + wanted);
+  std::vector<double> values;
+  for (py::handle item : value) values.push_back(number(name, item));
+  return values;
+}
+
+Vec3 vec3(const char* name, py::handle value) {
+  const std::vector<double> v = numbers(name, value, 3);
+  return {v[0], v[1], v[2]};
+}
+
+//! One point (x, y, z), or a list or (N, 3) array of them.
+std::vector<Vec3> points(const char* name, py::handle value) {
+  // A sequence of numbers is one point, however many it holds.
+  const bool one = py::hasattr(value, "__len__") && !py::isinstance<py::str>(value) && py::len(value) > 0 &&
+                   !py::hasattr(value[py::int_(0)], "__len__");
+  std::vector<Vec3> all;
+  if (one) return {vec3(name, value)};
+  if (py::isinstance<py::str>(value) || !py::hasattr(value, "__iter__"))
+    throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is not a point (x, y, z) or a list of them");
+  for (py::handle item : value) all.push_back(vec3(name, item));
+  return all;
+}
+
+Box box(const char* name, py::handle value) {
+  const std::vector<double> b = numbers(name, value, 6);
+  return Box{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}};
+}
+
+//! A word of an enum, parsed as the library parses it.
+template <class Parse>
+auto word(const char* name, py::handle value, Parse&& parse) {
+  return parse(text(name, value));
+}
+
 using Vertices = py::array_t<double, py::array::c_style | py::array::forcecast>;
 using Faces = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
 
@@ -109,35 +182,315 @@ TriangleMesh mesh_from_arrays(const std::string& name, const Vertices& vertices,
   return mesh;
 }
 
-//! Refuses words that ask for something but a `model` run (--help, --resume).
-void check_kind(const CommandLine& line, const std::string& model) {
-  const char* kinds[] = {"grow", "colonize", "eden", "drop", "ballistic"};
-  const auto kind = static_cast<std::size_t>(line.kind);
-  if (kind >= std::size(kinds) || model != kinds[kind]) throw InvalidInput("these options ask for no " + model + " run");
+//! What a run's keywords set besides its options: the meshes handed over as arrays, under the
+//! names that stand for them, and what only all the keywords together decide.
+struct Given {
+  std::map<std::string, TriangleMesh> meshes;
+  bool seeds_all = false;         //!< seeds="all"
+  bool attractors = false;        //!< attractors=N, a sample of attractors_from's
+  std::optional<int> eden_dimensions;
+  bool lattice = false;
+};
+
+//! A file's path, or (V, F) arrays held under a name that stands for them.
+std::string mesh(const char* name, py::handle value, Given& given) {
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (!py::isinstance<py::tuple>(value) && !py::isinstance<py::list>(value))
+    throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is not a file's path or (vertices, faces) arrays");
+  if (py::len(value) != 2)
+    throw InvalidInput(std::string("`") + name + "` is not a file's path or (vertices, faces) arrays");
+  const std::string key = "<" + std::string(name) + " arrays" +
+                          (given.meshes.empty() ? "" : " " + std::to_string(given.meshes.size() + 1)) + ">";
+  given.meshes[key] = mesh_from_arrays(key, value[py::int_(0)].cast<Vertices>(), value[py::int_(1)].cast<Faces>());
+  return key;
 }
 
-//! Grows the run that `args` (the command line's words) set up, with `meshes` standing in for
-//! the files of those names. Releases the GIL while growing; every 0.1 s it takes it back to
-//! call progress(done, total), whose False stops growth, and to see Ctrl-C, which stops growth
-//! and returns what grew.
-std::shared_ptr<Result> grow_run(const std::vector<std::string>& args, const std::string& model,
-                                 const std::map<std::string, TriangleMesh>& meshes, const py::object& progress) {
-  const CommandLine line = cli::parse_command_line(args);
-  check_kind(line, model);
+template <class Options>
+using Setter = std::function<void(Options& options, py::handle value, Given& given)>;
+template <class Options>
+using Table = std::map<std::string, Setter<Options>>;
+
+//! The look and output options every model has (the files themselves are Result.write()'s).
+template <class Options>
+void add_look(Table<Options>& t) {
+  const auto files = [](Options& o) -> OutputOptions& { return o.files; };
+  t["ply_format"] = [=](Options& o, py::handle v, Given&) { files(o).ply_encoding = word("ply_format", v, parse_ply_encoding); };
+  t["png_scale"] = [=](Options& o, py::handle v, Given&) { files(o).png.pixels_per_spacing = number("png_scale", v); };
+  t["png_bands"] = [=](Options& o, py::handle v, Given&) { files(o).png.bands = static_cast<int>(whole("png_bands", v)); };
+  t["radius"] = [=](Options& o, py::handle v, Given&) { files(o).radius = word("radius", v, parse_radius_model); };
+  t["base_radius"] = [=](Options& o, py::handle v, Given&) { files(o).base_radius = number("base_radius", v); };
+  t["tip_radius"] = [=](Options& o, py::handle v, Given&) { files(o).tip_radius = number("tip_radius", v); };
+  t["pipe_exponent"] = [=](Options& o, py::handle v, Given&) { files(o).look.radius.pipe_exponent = number("pipe_exponent", v); };
+  t["color_by"] = [=](Options& o, py::handle v, Given&) { files(o).look.color_by = word("color_by", v, parse_color_by); };
+  t["look"] = [=](Options& o, py::handle v, Given&) { files(o).pov.style = word("look", v, parse_pov_style); };
+  t["tube_sides"] = [=](Options& o, py::handle v, Given&) { files(o).look.tubes.sides = static_cast<int>(whole("tube_sides", v)); };
+  t["tube_tolerance"] = [=](Options& o, py::handle v, Given&) { files(o).look.tubes.tolerance = number("tube_tolerance", v); };
+  t["tube_min_branch"] = [=](Options& o, py::handle v, Given&) {
+    files(o).look.tubes.min_branch = static_cast<int>(whole("tube_min_branch", v));
+  };
+  t["instances"] = [=](Options& o, py::handle v, Given&) { files(o).instances.set = word("instances", v, parse_instance_set); };
+  t["tips_within"] = [=](Options& o, py::handle v, Given&) { files(o).instances.within = number("tips_within", v); };
+  t["up"] = [=](Options& o, py::handle v, Given&) { files(o).up = word("up", v, parse_axis); };
+}
+
+//! Where seeds (colonize: roots) go on the mesh, the same for DLA, drop and colonize.
+template <class O>
+void add_mesh_seeds(Table<O>& t) {
+  t["seeds"] = [](O& o, py::handle v, Given& g) {
+    if (py::isinstance<py::str>(v) && v.cast<std::string>() == "all") g.seeds_all = true;
+    else if ((o.seeds.count = count("seeds", v)) == 0) throw InvalidInput("`seeds` 0: there must be a seed");
+  };
+  t["seed_surface"] = [](O& o, py::handle v, Given&) { o.seeds.surface = flag("seed_surface", v); };
+  t["seed_paint"] = [](O& o, py::handle v, Given&) { o.seeds.paint = parse_paint(text("seed_paint", v)); };
+  t["seed_mesh"] = [](O& o, py::handle v, Given& g) {
+    const bool one = py::isinstance<py::str>(v) || (py::isinstance<py::tuple>(v) && py::len(v) == 2 &&
+                                                    py::hasattr(v[py::int_(0)], "shape"));
+    if (one) o.seeds.meshes.push_back(mesh("seed_mesh", v, g));
+    else
+      for (py::handle item : v) o.seeds.meshes.push_back(mesh("seed_mesh", item, g));
+  };
+}
+
+//! --fill and --shell, for the models they mean nothing to: refused with why.
+template <class O>
+void add_refused(Table<O>& t, const char* model) {
+  for (const char* option : {"fill", "shell"})
+    t[option] = [model, option](O&, py::handle, Given&) { refuse_for(model, option); };
+}
+
+Table<DlaRunOptions> dla_table() {
+  using O = DlaRunOptions;
+  Table<O> t;
+  add_look(t);
+  t["particles"] = [](O& o, py::handle v, Given&) { o.particles = count("particles", v); };
+  t["spacing"] = [](O& o, py::handle v, Given&) { o.spacing = number("spacing", v); };
+  t["stickiness"] = [](O& o, py::handle v, Given&) { o.growth.stickiness = number("stickiness", v); };
+  t["dimensions"] = [](O& o, py::handle v, Given&) { o.growth.dimensions = static_cast<int>(whole("dimensions", v)); };
+  t["seed_at"] = [](O& o, py::handle v, Given&) { o.seed_at = points("seed_at", v); };
+  t["rng_seed"] = [](O& o, py::handle v, Given&) { o.growth.rng_seed = count("rng_seed", v); };
+  t["min_step"] = [](O& o, py::handle v, Given&) { o.growth.min_step = number("min_step", v); };
+  t["index"] = [](O& o, py::handle v, Given&) { o.growth.index = word("index", v, parse_index_kind); };
+  t["threads"] = [](O& o, py::handle v, Given&) { o.growth.threads = static_cast<int>(whole("threads", v)); };
+  t["stl"] = [](O& o, py::handle v, Given& g) { o.stl = mesh("stl", v, g); };
+  t["text"] = [](O& o, py::handle v, Given&) {
+    const std::string font = o.text ? o.text->font : kDefaultFont;
+    o.text = TextOptions{text("text", v), font};
+  };
+  t["font"] = [](O& o, py::handle v, Given&) {
+    if (!o.text) o.text = TextOptions{};
+    o.text->font = text("font", v);
+  };
+  t["side"] = [](O& o, py::handle v, Given&) { o.constraint.side = word("side", v, parse_side); };
+  t["shell"] = [](O& o, py::handle v, Given&) { o.constraint.shell = number("shell", v); };
+  t["constraint"] = [](O& o, py::handle v, Given&) { o.constraint.mode = word("constraint", v, parse_constraint_mode); };
+  add_mesh_seeds(t);
+  t["scene_mesh"] = [](O& o, py::handle v, Given&) { o.scene_mesh = flag("scene_mesh", v); };
+  t["fill"] = [](O& o, py::handle v, Given&) { o.growth.fill = number("fill", v); };
+  t["fill_distance"] = [](O& o, py::handle v, Given&) { o.growth.fill_distance = number("fill_distance", v); };
+  t["spawn"] = [](O& o, py::handle v, Given&) { o.spawn = word("spawn", v, parse_spawn_mode); };
+  t["spawn_axis"] = [](O& o, py::handle v, Given&) { o.growth.spawn_axis = word("spawn_axis", v, parse_axis); };
+  t["disk_radius"] = [](O& o, py::handle v, Given&) { o.growth.disk_radius = number("disk_radius", v); };
+  t["box"] = [](O& o, py::handle v, Given&) { o.growth.spawn_box = box("box", v); };
+  t["drift"] = [](O& o, py::handle v, Given&) { o.growth.drift = vec3("drift", v); };
+  t["rotate"] = [](O& o, py::handle v, Given&) {
+    if (py::isinstance<py::str>(v) || !py::hasattr(v, "__len__") || py::len(v) != 2)
+      throw InvalidInput("`rotate` " + shown(v) + " is not (axis, degrees), as ('y', 30)");
+    o.growth.rotate_axis = word("rotate", v[py::int_(0)], parse_axis);
+    o.growth.rotate_degrees = number("rotate", v[py::int_(1)]);
+  };
+  t["n"] = t["particles"];
+  t["mesh"] = t["stl"];
+  return t;
+}
+
+Table<ColonizeRunOptions> colonize_table() {
+  using O = ColonizeRunOptions;
+  Table<O> t;
+  add_look(t);
+  t["max_nodes"] = [](O& o, py::handle v, Given&) { o.colonization.max_nodes = count("max_nodes", v); };
+  t["max_iterations"] = [](O& o, py::handle v, Given&) { o.colonization.max_iterations = count("max_iterations", v); };
+  t["spacing"] = [](O& o, py::handle v, Given&) { o.colonization.spacing = number("spacing", v); };
+  t["kill_distance"] = [](O& o, py::handle v, Given&) { o.colonization.kill_distance = number("kill_distance", v); };
+  t["influence"] = [](O& o, py::handle v, Given&) { o.colonization.influence = number("influence", v); };
+  t["noise"] = [](O& o, py::handle v, Given&) {
+    const std::vector<double> n = numbers("noise", v, 2);
+    o.colonization.noise_amplitude = n[0];
+    o.colonization.noise_scale = n[1];
+  };
+  t["tropism"] = [](O& o, py::handle v, Given&) { o.colonization.tropism = vec3("tropism", v); };
+  t["dimensions"] = [](O& o, py::handle v, Given&) { o.colonization.dimensions = static_cast<int>(whole("dimensions", v)); };
+  t["rng_seed"] = [](O& o, py::handle v, Given&) { o.colonization.rng_seed = count("rng_seed", v); };
+  t["attractors"] = [](O& o, py::handle v, Given& g) {
+    o.attractors.count = count("attractors", v);
+    g.attractors = true;
+  };
+  t["attractors_in"] = [](O& o, py::handle v, Given&) { o.attractors.region = word("attractors_in", v, parse_attractor_region); };
+  t["attractors_from"] = [](O& o, py::handle v, Given&) { o.attractors_from = text("attractors_from", v); };
+  t["attractor_center"] = [](O& o, py::handle v, Given&) { o.attractors.center = vec3("attractor_center", v); };
+  t["attractor_radius"] = [](O& o, py::handle v, Given&) { o.attractors.radius = number("attractor_radius", v); };
+  t["attractor_box"] = [](O& o, py::handle v, Given&) {
+    const Box b = box("attractor_box", v);
+    o.attractors.box_min = b.min;
+    o.attractors.box_max = b.max;
+  };
+  t["attractor_falloff"] = [](O& o, py::handle v, Given&) { o.attractors.falloff = number("attractor_falloff", v); };
+  t["root_at"] = [](O& o, py::handle v, Given&) { o.root_at = points("root_at", v); };
+  t["roots"] = [](O& o, py::handle v, Given&) {
+    if ((o.root_count = count("roots", v)) == 0) throw InvalidInput("`roots` 0: there must be a root");
+  };
+  t["roots_in"] = [](O& o, py::handle v, Given&) { o.roots_in = word("roots_in", v, parse_root_region); };
+  t["roots_scale"] = [](O& o, py::handle v, Given&) { o.roots_scale = number("roots_scale", v); };
+  t["stl"] = [](O& o, py::handle v, Given& g) { o.stl = mesh("stl", v, g); };
+  t["collide"] = [](O& o, py::handle v, Given& g) { o.collide = mesh("collide", v, g); };
+  t["collision"] = [](O& o, py::handle v, Given&) { o.collision = word("collision", v, parse_collision_mode); };
+  add_mesh_seeds(t);
+  add_refused(t, "colonize");
+  t["n"] = t["max_nodes"];
+  return t;
+}
+
+Table<EdenRunOptions> eden_table() {
+  using O = EdenRunOptions;
+  Table<O> t;
+  add_look(t);
+  t["sites"] = [](O& o, py::handle v, Given&) {
+    if ((o.eden.sites = count("sites", v)) == 0) throw InvalidInput("`sites` 0 is not at least 1");
+  };
+  t["dimensions"] = [](O&, py::handle v, Given& g) { g.eden_dimensions = static_cast<int>(whole("dimensions", v)); };
+  t["lattice"] = [](O& o, py::handle v, Given& g) {
+    o.eden.lattice = word("lattice", v, parse_lattice);
+    g.lattice = true;
+  };
+  t["mode"] = [](O& o, py::handle v, Given&) { o.eden.mode = word("mode", v, parse_eden_mode); };
+  t["mask"] = [](O& o, py::handle v, Given&) {
+    const std::string mask = text("mask", v);
+    if (mask.size() == 1 && mask.find_first_of("ABCD") == 0) o.eden.mask = parse_eden_mask(mask);
+    else o.mask_file = mask;
+  };
+  t["mask_threshold"] = [](O& o, py::handle v, Given&) { o.eden.mask_threshold = static_cast<int>(whole("mask_threshold", v)); };
+  t["seed_radius"] = [](O& o, py::handle v, Given&) { o.eden.seed_radius = number("seed_radius", v); };
+  t["spacing"] = [](O& o, py::handle v, Given&) { o.eden.spacing = number("spacing", v); };
+  t["rng_seed"] = [](O& o, py::handle v, Given&) { o.eden.rng_seed = count("rng_seed", v); };
+  t["n"] = t["sites"];
+  return t;
+}
+
+//! What drop and ballistic share: the count, the plane, the scale, the seeds.
+template <class O, class Model>
+void add_seeded(Table<O>& t, Model O::*model) {
+  t["particles"] = [=](O& o, py::handle v, Given&) { (o.*model).particles = count("particles", v); };
+  t["dimensions"] = [=](O& o, py::handle v, Given&) { (o.*model).dimensions = static_cast<int>(whole("dimensions", v)); };
+  t["rng_seed"] = [=](O& o, py::handle v, Given&) { (o.*model).rng_seed = count("rng_seed", v); };
+  t["n"] = t["particles"];
+}
+
+Table<DropRunOptions> drop_table() {
+  using O = DropRunOptions;
+  Table<O> t;
+  add_look(t);
+  add_seeded(t, &O::drop);
+  t["spacing"] = [](O& o, py::handle v, Given&) { o.spacing = number("spacing", v); };
+  t["seed_at"] = [](O& o, py::handle v, Given&) { o.seed_at = points("seed_at", v); };
+  t["stickiness"] = [](O& o, py::handle v, Given&) { o.drop.stickiness = number("stickiness", v); };
+  t["zone"] = [](O& o, py::handle v, Given&) { o.drop.zone = word("zone", v, parse_drop_zone); };
+  t["zone_radius"] = [](O& o, py::handle v, Given&) { o.drop.zone_radius = number("zone_radius", v); };
+  t["zone_margin"] = [](O& o, py::handle v, Given&) { o.drop.zone_margin = number("zone_margin", v); };
+  t["zone_box"] = [](O& o, py::handle v, Given&) { o.drop.zone_box = box("zone_box", v); };
+  t["drop"] = [](O& o, py::handle v, Given&) { o.drop.bias = parse_drop_bias(text("drop", v)); };
+  t["stl"] = [](O& o, py::handle v, Given& g) { o.stl = mesh("stl", v, g); };
+  t["side"] = [](O& o, py::handle v, Given&) { o.constraint.side = word("side", v, parse_side); };
+  t["constraint"] = [](O& o, py::handle v, Given&) { o.constraint.mode = word("constraint", v, parse_constraint_mode); };
+  t["scene_mesh"] = [](O& o, py::handle v, Given&) { o.scene_mesh = flag("scene_mesh", v); };
+  add_mesh_seeds(t);
+  add_refused(t, "drop");
+  t["mesh"] = t["stl"];
+  return t;
+}
+
+Table<BallisticRunOptions> ballistic_table() {
+  using O = BallisticRunOptions;
+  Table<O> t;
+  add_look(t);
+  add_seeded(t, &O::ballistic);
+  t["spacing"] = [](O& o, py::handle v, Given&) { o.ballistic.spacing = number("spacing", v); };
+  t["seed_at"] = [](O& o, py::handle v, Given&) { o.ballistic.seeds = points("seed_at", v); };
+  t["direction"] = [](O& o, py::handle v, Given&) {
+    o.ballistic.direction = vec3("direction", v);
+    if (o.ballistic.direction.squaredNorm() == 0.0) throw InvalidInput("`direction` (0, 0, 0) has no direction");
+  };
+  return t;
+}
+
+//! What only all the keywords together decide.
+void settle(RunOptions& run, const Given& given) {
+  const auto all = [&](MeshSeeds& seeds) {
+    if (given.seeds_all) seeds.surface = !seeds.paint && seeds.meshes.empty();
+  };
+  if (auto* o = std::get_if<DlaRunOptions>(&run)) {
+    all(o->seeds);
+  } else if (auto* o = std::get_if<DropRunOptions>(&run)) {
+    all(o->seeds);
+  } else if (auto* o = std::get_if<ColonizeRunOptions>(&run)) {
+    all(o->seeds);
+    o->sample_attractors = given.attractors && !o->attractors_from.empty();
+  } else if (auto* o = std::get_if<EdenRunOptions>(&run)) {
+    const int dimensions = given.eden_dimensions.value_or(2);
+    if (dimensions != 2 && dimensions != 3) throw InvalidInput("`dimensions` " + std::to_string(dimensions) + " is not 2 or 3");
+    if (!given.lattice) o->eden.lattice = dimensions == 3 ? Lattice::cubic6 : Lattice::square4;
+    else if (given.eden_dimensions && dimensions_of(o->eden.lattice) != dimensions)
+      throw InvalidInput("`lattice` " + std::string(to_string(o->eden.lattice)) + " is not a lattice in " +
+                         std::to_string(dimensions) + "D");
+  }
+}
+
+//! The run options `model`'s keywords ask for, and the meshes they hand over as arrays.
+template <class Options>
+RunOptions set_all(const Table<Options>& table, const std::string& model, const py::dict& keywords, Given& given) {
+  Options options;
+  for (const auto& [key, value] : keywords) {
+    const std::string name = key.template cast<std::string>();
+    const auto setter = table.find(name);
+    if (setter == table.end())
+      throw InvalidInput(name + " is not an option of " + model + "(): see docs/python.md, or `dla3d " +
+                         (model == "grow" ? "" : model + " ") + "--help`");
+    if (!value.is_none()) setter->second(options, value, given);
+  }
+  return options;
+}
+
+RunOptions run_options(const std::string& model, const py::dict& keywords, Given& given) {
+  RunOptions run;
+  if (model == "grow") run = set_all(dla_table(), model, keywords, given);
+  else if (model == "colonize") run = set_all(colonize_table(), model, keywords, given);
+  else if (model == "eden") run = set_all(eden_table(), model, keywords, given);
+  else if (model == "drop") run = set_all(drop_table(), model, keywords, given);
+  else if (model == "ballistic") run = set_all(ballistic_table(), model, keywords, given);
+  else throw InvalidInput("'" + model + "' is not one of grow, colonize, eden, drop, ballistic");
+  settle(run, given);
+  validate(run);
+  return run;
+}
+
+//! Grows the run `keywords` ask of `model`; `command` is what the record says made it. Releases
+//! the GIL while growing; every 0.1 s it takes it back to call progress(done, total), whose
+//! False stops growth, and to see Ctrl-C, which stops growth and returns what grew.
+std::shared_ptr<Result> grow_run(const std::string& model, const py::dict& keywords, const std::string& command,
+                                 const py::object& progress) {
+  Given given;
+  const RunOptions options = run_options(model, keywords, given);
   auto result = std::make_shared<Result>();
-  result->args = args;
-  const cli::MeshReader read = [&](const std::string& path, std::uint64_t* hash) {
-    const auto given = meshes.find(path);
-    if (given == meshes.end()) return read_mesh(path, hash);
-    const TriangleMesh& mesh = given->second;
+  const MeshReader read = [&](const std::string& path, std::uint64_t* hash) {
+    const auto held = given.meshes.find(path);
+    if (held == given.meshes.end()) return read_mesh(path, hash);
+    const TriangleMesh& mesh = held->second;
     if (hash) *hash = fnv1a({reinterpret_cast<const char*>(mesh.vertices.data()), mesh.vertices.size() * sizeof(Vec3)});
     return mesh;
   };
   {
     py::gil_scoped_release released;  // a mesh's repair and set-up can take seconds
-    result->run = cli::prepare_run(line, nullptr, read);
+    result->run = prepare_run(options, read);
   }
-  ModelRun& run = *result->run;
+  Run& run = *result->run;
 
   StopFlag stop{false};
   std::string stopped_by;
@@ -164,6 +517,7 @@ std::shared_ptr<Result> grow_run(const std::vector<std::string>& args, const std
     }
     return true;
   };
+  result->record.command = command;
   {
     py::gil_scoped_release released;
     const ProgressFn watch = [&](const Cluster& so_far) {
@@ -173,13 +527,12 @@ std::shared_ptr<Result> grow_run(const std::vector<std::string>& args, const std
       if (!call_python(so_far)) stop.store(true);
       return !stop.load();
     };
-    std::string error;  // why growth failed part way, if it did
-    const volatile std::sig_atomic_t no_signal = 0;  // what stopped growth is told below
-    result->cluster = cli::grow_recorded(run, watch, stop, no_signal, args, result->record, error);
-    if (!error.empty()) stopped_by = "error: " + error;
+    result->cluster = grow_recorded(run, watch, &stop, result->record);
   }
   if (raised) throw std::move(*raised);
-  result->record.stopped_by = result->cluster.complete ? "" : stopped_by.empty() ? "stopped" : stopped_by;
+  RunRecord& record = result->record;
+  if (!record.stopped_by.empty()) record.stopped_by = spell_options(record.stopped_by, OptionSpelling::python);
+  else if (!result->cluster.complete) record.stopped_by = stopped_by.empty() ? "stopped" : stopped_by;
   return result;
 }
 
@@ -233,21 +586,19 @@ py::tuple strands(Result& result) {
                         py::array_t<std::int64_t>(static_cast<py::ssize_t>(starts.size()), starts.data()));
 }
 
-//! Writes the files `formats` names (the CLI's --formats words) as PREFIX.EXT, with the look
-//! the run's options ask for; the JSON records the command line.
+//! Writes the files `formats` names (the formats' words) as PREFIX.EXT, with the look the run's
+//! options ask for; the JSON records how the run was made.
 void write(Result& result, const std::string& prefix, const std::vector<std::string>& formats) {
-  std::vector<std::string> args = result.args;
   std::string words;
   for (const std::string& format : formats) words += (words.empty() ? "" : ",") + format;
-  args.insert(args.end(), {"--output", prefix, "--formats", words});
-  // Parsed again, so that the formats are checked as the CLI checks them.
-  const CommandLine line = cli::parse_command_line(args);
-  cli::FileOptions files = *line.growth_files();
-  files.pov.up = result.run->files.pov.up;  // from the mesh, when not given
-  cli::check_writable(cli::file_names(files).front());
+  OutputOptions files = result.run->files;
+  files.output = prefix;
+  files.formats = parse_formats(words);
+  validate(files, result.cluster.dimensions, result.run->constraint != nullptr);
+  check_writable(file_names(files).front());
   RunRecord record = result.record;  // the growth's time, command and end; the writing's own time
   py::gil_scoped_release released;
-  cli::write_run(*result.run, result.cluster, files, record);
+  write_run(*result.run, result.cluster, files, record);
 }
 
 }  // namespace
@@ -258,7 +609,7 @@ PYBIND11_MODULE(_core, m) {
     try {
       if (error) std::rethrow_exception(error);
     } catch (const InvalidInput& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
+      PyErr_SetString(PyExc_ValueError, spell_options(e.what(), OptionSpelling::python).c_str());
     } catch (const IOError& e) {
       PyErr_SetString(PyExc_OSError, e.what());
     }
@@ -314,13 +665,13 @@ PYBIND11_MODULE(_core, m) {
                              "False when growth was stopped (Ctrl-C, the callback, an error) before its count")
       .def_property_readonly("stopped_by", [](const Result& r) { return r.record.stopped_by; },
                              "'' when complete; else 'SIGINT', 'callback' or 'error: ...'")
-      .def_property_readonly("command", [](const Result& r) { return cli::command_line(r.args); },
+      .def_property_readonly("command", [](const Result& r) { return r.record.command; },
                              "the dla3d command line that grows the same structure")
       .def_property_readonly("up", [](const Result& r) { return std::string(to_string(r.run->files.pov.up)); },
                              "the axis that is up: x, y or z (a mesh's longest side's by default)")
       .def("__len__", [](const Result& r) { return r.cluster.particles.size(); })
       .def("__repr__", [](const Result& r) {
-        return "<dla3d.Result: " + cli::with_commas(static_cast<double>(r.cluster.particles.size())) + " particles, " +
+        return "<dla3d.Result: " + with_commas(static_cast<double>(r.cluster.particles.size())) + " particles, " +
                std::to_string(r.cluster.seed_count) + (r.cluster.seed_count == 1 ? " seed" : " seeds") +
                (r.record.stopped_by.empty() ? "" : ", stopped by " + r.record.stopped_by) + ">";
       })
@@ -348,23 +699,14 @@ PYBIND11_MODULE(_core, m) {
       .def("write", &write, py::arg("prefix"), py::arg("formats"),
            "writes PREFIX.EXT for each of `formats` (the CLI's --formats words)");
 
+  m.def("grow_run", &grow_run, py::arg("model"), py::arg("keywords"), py::arg("command"), py::arg("progress"),
+        "grows the run the keywords ask of the model (grow, colonize, eden, drop, ballistic)");
   m.def(
-      "grow_run",
-      [](const std::vector<std::string>& args, const std::string& model, const py::dict& arrays,
-         const py::object& progress) {
-        std::map<std::string, TriangleMesh> meshes;
-        for (const auto& [name, value] : arrays) {
-          const auto pair = value.cast<py::tuple>();
-          const std::string key = name.cast<std::string>();
-          meshes[key] = mesh_from_arrays(key, pair[0].cast<Vertices>(), pair[1].cast<Faces>());
-        }
-        return grow_run(args, model, meshes, progress);
+      "check", [](const std::string& model, const py::dict& keywords) {
+        Given given;
+        run_options(model, keywords, given);
       },
-      py::arg("args"), py::arg("model"), py::arg("meshes"), py::arg("progress"));
-  m.def(
-      "check_args",
-      [](const std::vector<std::string>& args, const std::string& model) { check_kind(cli::parse_command_line(args), model); },
-      py::arg("args"), py::arg("model"), "raises ValueError for the words the command line refuses");
+      py::arg("model"), py::arg("keywords"), "raises ValueError for keywords the model refuses");
 }
 
 }  // namespace dla::python

@@ -138,9 +138,16 @@ const std::map<std::string, std::vector<std::string>>& colonize_table() {
       {"--roots", {"3", "1", "20", "0", "-2"}},
       {"--roots-in", {"sphere", "mesh", "surface", "cube"}},
       {"--roots-scale", {"1.5", "1", "0.01", "100", "0", "-1", "nan", "1e300"}},
-      {"--stl", {"ball.stl", "box.off", "missing.stl", "noise.stl"}},
+      {"--stl", {"ball.stl", "box.off", "paint.ply", "missing.stl", "noise.stl"}},
       {"--collide", {"ball.stl", "box.off", "missing.stl", "noise.stl", "out.csv"}},
       {"--collision", {"push", "stick", "bounce"}},
+      // Roots on the mesh as DLA's seeds; DLA's fill and shell, refused.
+      {"--seeds", {"2", "all", "1", "0", "-1", "x"}},
+      {"--seed-surface", {}},
+      {"--seed-paint", {"red", "ff0000", "pink", "''"}},
+      {"--seed-mesh", {"rod.stl", "box.off", "missing.stl", "noise.stl"}},
+      {"--fill", {"0.5", "x"}},
+      {"--shell", {"3", "0"}},
   };
   return table;
 }
@@ -184,11 +191,18 @@ const std::map<std::string, std::vector<std::string>>& drop_table() {
       {"--zone-margin", {"4", "0.5", "1e6", "0.1", "-1", "inf"}},
       {"--zone-box", {"-20,-20,-20,20,20,20", "-5,-5,0,5,5,0", "1,1,1,0,0,0", "1,2", "nan,0,0,1,1,1"}},
       {"--drop", {"circle", "same:5", "offset:10,3", "uniform", "same:0", "offset:5", "offset:5,0", "same:1e10", "rain"}},
-      {"--stl", {"ball.stl", "box.off", "missing.stl", "noise.stl"}},
+      {"--stl", {"ball.stl", "box.off", "paint.ply", "missing.stl", "noise.stl"}},
       {"--side", {"inside", "outside", "both", "up"}},
       {"--constraint", {"clip", "reject", "bounce"}},
       {"--scene-mesh", {}},
       {"--no-scene-mesh", {}},
+      // Seeds on the mesh as DLA's; DLA's fill and shell, refused.
+      {"--seeds", {"2", "all", "1", "0", "-1", "x"}},
+      {"--seed-surface", {}},
+      {"--seed-paint", {"red", "ff0000", "pink", "''"}},
+      {"--seed-mesh", {"rod.stl", "box.off", "missing.stl", "noise.stl"}},
+      {"--fill", {"0.5", "x"}},
+      {"--shell", {"3", "0"}},
   });
   return table;
 }

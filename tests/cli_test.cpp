@@ -850,6 +850,43 @@ TEST(Cli, SeedPaintGrowsFromThePaintedPart) {
                        "--stl painted.ply --seed-paint red --side both", "--stl painted.ply --seed-paint red --seeds 5000"});
 }
 
+// drop and colonize take DLA's mesh controls: seeds (colonize: roots) on the painted part, on the
+// surface, K far apart; DLA's --fill and --shell are refused with why.
+TEST(Cli, DropAndColonizeTakeTheMeshControls) {
+  ScratchDir dir;
+  dla::TriangleMesh ball = dla::make_sphere(dla::Vec3::Zero(), 10.0, 12, 24);
+  for (const dla::Vec3& v : ball.vertices) ball.colors.push_back(v.z() > 5.0 ? dla::Vec3(1, 0, 0) : dla::Vec3(1, 1, 1));
+  std::ofstream(dir / "painted.ply") << dla::testing::painted_ply(ball);
+  const auto seeds_of = [&](const std::string& args) {  // the model's words first
+    std::filesystem::remove(dir / "out.csv");
+    const CliRun run = dla3d(dir, args + " -q --stl painted.ply --spacing 0.5 -o out --formats csv");
+    EXPECT_EQ(run.exit_code, 0) << args << ": " << run.err;
+    const dla::Cluster grown = dla::read_csv(dir / "out.csv");
+    return std::vector<dla::Particle>(grown.particles.begin(), grown.particles.begin() + grown.seed_count);
+  };
+  for (const char* model : {"drop -n 100", "colonize --attractors-in mesh --attractors 500 -n 3000"}) {
+    const std::string m = model;
+    const std::vector<dla::Particle> painted = seeds_of(m + " --seed-paint red");
+    EXPECT_GT(painted.size(), 30u) << model;
+    for (const dla::Particle& p : painted) EXPECT_GT(p.position.z(), 3.5) << model;
+    EXPECT_EQ(seeds_of(m + " --seed-paint red --seeds 3").size(), 3u) << model;
+    EXPECT_EQ(seeds_of(m + " --seeds 4").size(), 4u) << model;
+    const std::vector<dla::Particle> surface = seeds_of(m + " --seed-surface");
+    EXPECT_GT(surface.size(), painted.size()) << model;
+    for (const dla::Particle& p : surface) EXPECT_NEAR(p.position.norm(), 10.0, 0.5) << model;  // half a spacing in
+  }
+  for (const char* args : {"drop --fill 0.5", "drop --shell 3", "colonize --fill 0.5", "colonize --shell 3",
+                           "drop --seeds 2", "colonize --seed-surface", "drop --stl painted.ply --seeds 2 --seed-at 0,0,0",
+                           "colonize --stl painted.ply --attractors-in mesh --seeds 2 --roots 3"}) {
+    const CliRun run = dla3d(dir, std::string(args) + " -q -o bad");
+    EXPECT_EQ(run.exit_code, 2) << args << ": " << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << args << ": " << run.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad.csv")) << args;
+  }
+  EXPECT_EQ(dla3d(dir, "drop --fill 0.5").err,
+            "dla3d: error: --fill grows DLA until a mesh is full; drop grows to its count, --particles\n");
+}
+
 TEST(Cli, SeedMeshGrowsFromWhereARodEnters) {
   ScratchDir dir;
   dla::write_stl(dla::make_sphere(dla::Vec3::Zero(), 10.0, 12, 24), dir / "ball.stl");

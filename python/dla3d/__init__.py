@@ -5,9 +5,10 @@
     result.positions            # (N, 3) float64, sharing the structure's memory
     result.write("cluster", formats=["glb", "pov"])
 
-Keyword arguments are the command line's options, with dashes as underscores:
-``dla3d.grow(stl="bust.stl", seeds=2)`` grows what ``dla3d --stl bust.stl --seeds 2`` does,
-checked with the same one-line messages, raised as ValueError. See docs/python.md.
+Keyword arguments set the library's run options; they are spelled as the command line's, with
+dashes as underscores: ``dla3d.grow(stl="bust.stl", seeds=2)`` grows what ``dla3d --stl
+bust.stl --seeds 2`` does, checked by the library with the same one-line messages, raised as
+ValueError with the options spelled as keywords. See docs/python.md.
 """
 
 import numbers
@@ -25,7 +26,7 @@ _WRITE_ONLY = {"output", "o", "formats", "quiet", "q"}
 # The command line's own: from Python a stopped run returns what grew, and help is help().
 _CLI_ONLY = {"checkpoint", "checkpoint_every", "resume", "help", "h", "version"}
 # Options that name a mesh file, and may be given (V, 3) vertices and (F, 3) faces instead.
-_MESH_OPTIONS = {"stl", "collide", "seed_mesh"}
+_MESH_OPTIONS = {"stl", "mesh", "collide", "seed_mesh"}
 
 
 class Tubes(tuple):
@@ -52,19 +53,15 @@ def _tubes(result, sides=8, tolerance=0.0, min_branch=1):
 Result.tubes = _tubes
 
 
-def _word(key, value):
-    """One command-line word for a value: numbers exact, vectors comma-separated."""
-    if isinstance(value, (bool, np.bool_)):
-        raise ValueError(f"{key}: True or False is a switch, not a value in a list")
-    if isinstance(value, numbers.Integral):
+def _word(value):
+    """A value as the command line writes it: numbers exact, vectors comma-separated."""
+    if isinstance(value, numbers.Integral) and not isinstance(value, (bool, np.bool_)):
         return str(int(value))
     if isinstance(value, numbers.Real):
         return repr(float(value))  # the shortest text that reads back as the same double
-    if isinstance(value, str):
-        return value
     if isinstance(value, (list, tuple, np.ndarray)) and all(isinstance(v, numbers.Real) for v in value):
-        return ",".join(_word(key, v) for v in value)
-    raise ValueError(f"{key}={value!r} is not a number, a string or a list of numbers")
+        return ",".join(_word(v) for v in value)
+    return str(value)
 
 
 def _is_mesh(value):
@@ -74,15 +71,11 @@ def _is_mesh(value):
 
 
 def command_args(model, options):
-    """The command line's words (without "dla3d") for `model` and keyword `options`, and the
-    meshes given as arrays, by the name that stands for each on the command line."""
+    """The dla3d command line's words (without "dla3d") that grow what `model` grows with
+    keyword `options`: what a result records as its command. Meshes given as arrays stand as
+    <stl arrays>, which only Python can hand over."""
     args = [] if model == "grow" else [model]
-    meshes = {}
     for key, value in options.items():
-        if key in _WRITE_ONLY:
-            raise ValueError(f"{key} is an argument of Result.write(), not of {model}()")
-        if key in _CLI_ONLY:
-            raise ValueError(f"{key} is an option of the dla3d command line, not of {model}()")
         flag = ("-" if len(key) == 1 else "--") + key.replace("_", "-")
         if value is None or value is False:
             continue
@@ -94,39 +87,39 @@ def command_args(model, options):
             values = [value]
         elif isinstance(value, np.ndarray) and value.ndim == 2:
             values = list(value)
+        elif key == "rotate" and isinstance(value, (list, tuple)) and len(value) == 2:
+            values = [f"{value[0]},{_word(value[1])}"]
         elif isinstance(value, (list, tuple)) and value and all(
                 isinstance(v, (list, tuple, np.ndarray, str)) for v in value):
             values = list(value)
         else:
             values = [value]
         for item in values:
-            if key in _MESH_OPTIONS and _is_mesh(item):
-                name = f"<{key} arrays{'' if not meshes else ' ' + str(len(meshes) + 1)}>"
-                meshes[name] = (np.asarray(item[0], dtype=np.float64), np.asarray(item[1], dtype=np.int64))
-                args += [flag, name]
-            else:
-                args += [flag, _word(key, item)]
-    return args, meshes
+            args += [flag, f"<{key} arrays>" if key in _MESH_OPTIONS and _is_mesh(item) else _word(item)]
+    return args
 
 
-def _refused(model, error):
-    """CLI11's words for an unknown option, as the keyword argument it was."""
-    text = str(error)
-    if text.startswith("The following arguments were not expected"):
-        flags = [w for w in text.split() if w.startswith("-")]
-        name = flags[0].lstrip("-").replace("-", "_") if flags else "an argument"
-        return ValueError(f"{name} is not an option of {model}(): see `dla3d {'' if model == 'grow' else model + ' '}--help`")
-    return error
+def _check_keywords(model, options):
+    for key in options:
+        if key in _WRITE_ONLY:
+            raise ValueError(f"{key} is an argument of Result.write(), not of {model}()")
+        if key in _CLI_ONLY:
+            raise ValueError(f"{key} is an option of the dla3d command line, not of {model}()")
+
+
+def _command(model, options):
+    words = []
+    for word in command_args(model, options):
+        plain = word and all(c.isalnum() or c in "_-+=.,:/@%" for c in word)
+        words.append(word if plain else "'" + word.replace("'", "'\\''") + "'")
+    return " ".join(["dla3d"] + words)
 
 
 def _run(model, progress, options):
     if progress is not None and not callable(progress):
         raise ValueError("progress is not callable: give a function of (done, total)")
-    args, meshes = command_args(model, options)
-    try:
-        result = _core.grow_run(args, model, meshes, progress)
-    except ValueError as error:
-        raise _refused(model, error) from None
+    _check_keywords(model, options)
+    result = _core.grow_run(model, options, _command(model, options), progress)
     if result.stopped_by.startswith("error: "):
         # As dla3d keeps the files of a run that failed part way: what grew, and a warning.
         warnings.warn(f"{model}(): {result.stopped_by[7:]}; the result holds the {len(result)} particles "

@@ -24,7 +24,7 @@ import types
 
 import numpy as np
 
-from . import _core, command_args, _refused
+from . import _core, _check_keywords, _command
 
 # Student's t at 97.5% for 1-30 degrees of freedom; beyond, the normal 1.96.
 _T975 = [12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.160, 2.145,
@@ -59,10 +59,11 @@ def _numbers(record, prefix=""):
     return found
 
 
-def grow_one(model, args, rng_seed, save=None, formats=("csv",)):
+def grow_one(model, options, rng_seed, save=None, formats=("csv",)):
     """Grows one cluster (on a worker) and returns its measures; with `save`, also writes its
     files as SAVE_SEED.EXT, which are the CLI's for that seed."""
-    result = _core.grow_run(list(args) + ["--rng-seed", str(rng_seed)], model, {}, None)
+    options = dict(options, rng_seed=rng_seed)
+    result = _core.grow_run(model, options, _command(model, options), None)
     gyration, mass_radius = result.fractal_dimension()
     n, rg = result.gyration(100, _GYRATION_SAMPLES)
     with tempfile.TemporaryDirectory() as folder:
@@ -91,12 +92,12 @@ def grow_one(model, args, rng_seed, save=None, formats=("csv",)):
     }
 
 
-def summarize(model, args, clusters):
+def summarize(model, options, clusters):
     """The ensemble's measures, with 95% confidence intervals, from the clusters' own."""
     clusters = sorted(clusters, key=lambda c: c["rng_seed"])
     summary = {
         "model": model,
-        "command": "dla3d " + " ".join(args),
+        "command": _command(model, options),
         "count": len(clusters),
         "fractal_dimension": {
             "gyration": _interval(c["fractal_dimension_gyration"] for c in clusters),
@@ -142,20 +143,18 @@ def run_ensemble(model, count, seeds=1, client=None, save=None, formats=("csv",)
     summary: see summarize()."""
     if "rng_seed" in options:
         raise ValueError("rng_seed is set per cluster: give the ensemble's seeds instead")
-    args, meshes = command_args(model, options)
-    if meshes:
+    if any(not isinstance(v, str) and isinstance(v, (tuple, list)) and len(v) == 2 and hasattr(v[0], "shape")
+           for v in options.values()):
         raise ValueError("an ensemble takes meshes as files, which every worker reads")
-    return _run(model, args, count, seeds, client, save, formats, on_cluster)
+    return _run(model, options, count, seeds, client, save, formats, on_cluster)
 
 
-def _run(model, args, count, seeds, client, save, formats, on_cluster, workers=None):
+def _run(model, options, count, seeds, client, save, formats, on_cluster, workers=None):
     if not isinstance(count, int) or count < 1:
         raise ValueError(f"count {count!r} is not a whole number of clusters, at least 1")
     seed_list = _seed_list(count, seeds)
-    try:
-        _core.check_args(list(args), model)  # here, once, rather than on every worker
-    except ValueError as error:
-        raise _refused(model, error) from None
+    _check_keywords(model, options)
+    _core.check(model, options)  # here, once, rather than on every worker
     from dask.distributed import Client, LocalCluster, as_completed
     own = None
     if client is None:
@@ -165,7 +164,7 @@ def _run(model, args, count, seeds, client, save, formats, on_cluster, workers=N
     elif isinstance(client, str):
         client = own = Client(client)
     try:
-        futures = client.map(grow_one, [model] * count, [args] * count, seed_list, [save] * count,
+        futures = client.map(grow_one, [model] * count, [options] * count, seed_list, [save] * count,
                              [tuple(formats)] * count, pure=False)
         clusters = []
         for future in as_completed(futures):
@@ -177,7 +176,7 @@ def _run(model, args, count, seeds, client, save, formats, on_cluster, workers=N
         if own is not None:
             client.close()
             own.close()
-    return summarize(model, args, clusters)
+    return summarize(model, options, clusters)
 
 
 def plot(summary, path):
@@ -205,6 +204,41 @@ def plot(summary, path):
     plt.close(figure)
 
 
+def _value(text):
+    """A word as the keyword's value: a number, numbers (x,y,z), or the word itself."""
+    def number(part):
+        try:
+            return int(part)
+        except ValueError:
+            return float(part)
+
+    try:
+        values = [number(p) for p in text.split(",")]
+    except ValueError:
+        return text
+    return values[0] if len(values) == 1 else tuple(values)
+
+
+def _keywords(words):
+    """The model's options given on this tool's command line as --name VALUE (or a lone --flag),
+    -n for the count, as keyword arguments: the library checks them as it checks Python's."""
+    keywords = {}
+    at = 0
+    while at < len(words):
+        word = words[at]
+        if not word.startswith("-"):
+            raise ValueError(f"{word}: not an option (--name VALUE)")
+        name, _, value = word.lstrip("-").partition("=")
+        name = name.replace("-", "_")
+        if not value:
+            if at + 1 < len(words) and not (words[at + 1].startswith("--") or words[at + 1] == "-n"):
+                value = words[at + 1]
+                at += 1
+        keywords[name] = True if not value else _value(value)
+        at += 1
+    return keywords
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(
         prog="python3 -m dla3d.ensemble",
@@ -226,7 +260,10 @@ def main(argv=None):
     for word in words:
         if word in ("-o", "--output", "--formats", "--rng-seed") or word.startswith(("--rng-seed=", "--formats=")):
             parser.error(f"{word}: the ensemble sets it for each cluster")
-    args = ([] if options.model == "grow" else [options.model]) + words
+    try:
+        model_options = _keywords(words)
+    except ValueError as error:
+        parser.error(str(error))
     start = time.time()
     done = []
 
@@ -236,7 +273,7 @@ def main(argv=None):
               f"{time.time() - start:.0f} s", end="", file=sys.stderr, flush=True)
 
     try:
-        summary = _run(options.model, args, options.count, options.first_seed, options.scheduler, options.save,
+        summary = _run(options.model, model_options, options.count, options.first_seed, options.scheduler, options.save,
                        ("csv",), report, options.workers)
     except (ValueError, OSError) as error:  # bad options; a scheduler out of reach, a file a worker lacks
         print(f"\ndla3d.ensemble: error: {error}", file=sys.stderr)

@@ -30,7 +30,7 @@ def test_six_clusters_on_two_workers_are_six_single_runs(client, cli, tmp_path):
     assert sorted(c["rng_seed"] for c in summary["clusters"]) == [1, 2, 3, 4, 5, 6]
     assert {w for w in client.scheduler_info()["workers"]} and len(client.scheduler_info()["workers"]) == 2
     for measures in summary["clusters"]:
-        single = grow_one("grow", ["--particles", "100000"], measures["rng_seed"])
+        single = grow_one("grow", {"particles": 100000}, measures["rng_seed"])
         assert measures == single
     # A cluster written on a worker is the CLI's for its seed, byte for byte.
     cli("--particles", "100000", "--rng-seed", "4", "-q", "--formats", "csv", "-o", str(tmp_path / "cli"))
@@ -60,7 +60,7 @@ def test_every_model_runs_as_an_ensemble(client):
 
 
 def test_bad_ensembles_are_refused_before_any_worker_starts():
-    with pytest.raises(ValueError, match="--particles -5 is negative"):
+    with pytest.raises(ValueError, match="particles=-5 is negative"):
         dla3d.ensemble("grow", 2, particles=-5)
     with pytest.raises(ValueError, match="rng_seed is set per cluster"):
         dla3d.ensemble("grow", 2, rng_seed=3)

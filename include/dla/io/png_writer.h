@@ -22,9 +22,9 @@ struct PngOptions {
 };
 
 inline void validate(const PngOptions& o) {
-  detail::require_in("--png-scale", o.pixels_per_spacing, 1e-6, 64.0);
+  detail::require_in("`png_scale`", o.pixels_per_spacing, 1e-6, 64.0);
   if (o.bands < 1 || o.bands > 1'000'000)
-    throw InvalidInput("--png-bands " + std::to_string(o.bands) + " is not in [1, 1e6]");
+    throw InvalidInput("`png_bands` " + std::to_string(o.bands) + " is not in [1, 1e6]");
   if (o.margin < 0 || o.margin > 1000) throw InvalidInput("png margin " + std::to_string(o.margin) + " is not in [0, 1000]");
 }
 

@@ -59,7 +59,7 @@ class InstanceSelection {
         near_boundary_(options.within != std::numeric_limits<double>::infinity()) {
     validate(options);
     if (near_boundary_ && attributes.boundary_distance.empty())
-      throw InvalidInput("--tips-within measures to a constraint mesh (--stl)");
+      throw InvalidInput("`tips_within` measures to a constraint mesh (`stl`)");
   }
   bool operator()(std::size_t i) const {
     if (set_ == InstanceSet::tips && !attributes_.tip(i)) return false;

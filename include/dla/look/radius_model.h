@@ -81,7 +81,7 @@ inline double radius_fraction(const RadiusOptions& options, const Cluster& clust
 inline void validate(const RadiusOptions& options, const Attributes& attributes) {
   validate(options);
   if (options.model == RadiusModel::boundary && attributes.boundary_distance.empty())
-    throw InvalidInput("the boundary radius model needs a constraint mesh (--stl)");
+    throw InvalidInput("the boundary radius model needs a constraint mesh (`stl`)");
 }
 
 //! Particle i's branch radius, in spacings (a float holds it at any spacing: multiply by the

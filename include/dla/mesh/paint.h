@@ -44,7 +44,7 @@ inline Paint parse_paint(std::string_view text) {
     bool hex = word.size() == 6;
     for (const char c : word) hex = hex && std::isxdigit(static_cast<unsigned char>(c));
     if (!hex)
-      throw InvalidInput("--seed-paint '" + whole + "': the colour is not a name (red, green, blue, yellow, cyan, "
+      throw InvalidInput("`seed_paint` '" + whole + "': the colour is not a name (red, green, blue, yellow, cyan, "
                          "magenta, white, black) nor six hex digits as ff8000");
     for (int c = 0; c < 3; ++c)
       paint.color[c] = std::stoi(std::string(word.substr(2 * static_cast<std::size_t>(c), 2)), nullptr, 16) / 255.0;
@@ -58,9 +58,9 @@ inline Paint parse_paint(std::string_view text) {
       end = 0;
     }
     if (end == 0 || end != tolerance.size())
-      throw InvalidInput("--seed-paint '" + whole + "': the tolerance '" + tolerance + "' is not a number");
+      throw InvalidInput("`seed_paint` '" + whole + "': the tolerance '" + tolerance + "' is not a number");
     if (!(paint.tolerance >= 0.0 && paint.tolerance < 1.0))
-      throw InvalidInput("--seed-paint's tolerance " + detail::format_number(paint.tolerance) +
+      throw InvalidInput("`seed_paint`'s tolerance " + detail::format_number(paint.tolerance) +
                          " is not in [0, 1): a channel's difference, 0 to 1");
   }
   return paint;

@@ -78,7 +78,7 @@ inline std::string to_string(const DropBias& bias) {
 //! checked by validate().
 inline DropBias parse_drop_bias(const std::string& text) {
   const auto fail = [&] {
-    return InvalidInput("--drop '" + text + "' is not uniform, circle, same:N or offset:N,R");
+    return InvalidInput("`drop` '" + text + "' is not uniform, circle, same:N or offset:N,R");
   };
   const auto number = [&](const std::string& word) {
     std::size_t used = 0;
@@ -93,7 +93,7 @@ inline DropBias parse_drop_bias(const std::string& text) {
   };
   const auto count = [&](const std::string& word) {
     const double n = number(word);
-    if (!(n >= 1.0 && n <= 1e9 && n == std::floor(n))) throw InvalidInput("--drop '" + text + "': N is not a whole number in [1, 1e9]");
+    if (!(n >= 1.0 && n <= 1e9 && n == std::floor(n))) throw InvalidInput("`drop` '" + text + "': N is not a whole number in [1, 1e9]");
     return static_cast<std::uint64_t>(n);
   };
   DropBias bias;
@@ -174,9 +174,9 @@ inline void validate(const DropOptions& o) {
   if (o.zone_radius != 0.0 && o.zone == DropZone::mesh) throw InvalidInput("a zone radius has no use with the mesh zone");
   if (o.zone == DropZone::mesh && o.dimensions != 3) throw InvalidInput("the mesh zone needs 3 dimensions");
   if (o.bias.count < 1 || o.bias.count > 1'000'000'000u)
-    throw InvalidInput("--drop's N " + std::to_string(o.bias.count) + " is not in [1, 1e9]");
+    throw InvalidInput("`drop`'s N " + std::to_string(o.bias.count) + " is not in [1, 1e9]");
   if (o.bias.pattern == DropPattern::offset)
-    detail::require_in("--drop's offset radius, in spacings,", o.bias.offset_radius / o.spacing, 1e-6, 1e6);
+    detail::require_in("`drop`'s offset radius, in spacings,", o.bias.offset_radius / o.spacing, 1e-6, 1e6);
 }
 
 //! Checks the options against a constraint mesh as well: 3 dimensions, the same spacing, seeds
@@ -188,12 +188,12 @@ inline void validate(const DropOptions& o, const MeshConstraint& constraint) {
     throw InvalidInput("the constraint was built for spacing " + detail::format_number(constraint.spacing()) +
                        ", not " + detail::format_number(o.spacing));
   if (constraint.shell() > 0.0)
-    throw InvalidInput("drops fall through space, not over a surface: --side surface and shells are for DLA");
+    throw InvalidInput("drops fall through space, not over a surface: `side` surface and shells are for DLA");
   const Side side = constraint.options().side;
   if (o.zone == DropZone::mesh && side != Side::inside)
-    throw InvalidInput("the mesh zone drops inside the mesh: it needs --side inside, not --side " + std::string(to_string(side)));
+    throw InvalidInput("the mesh zone drops inside the mesh: it needs `side` inside, not `side` " + std::string(to_string(side)));
   if (o.zone == DropZone::mesh && o.bias.pattern == DropPattern::circle && side == Side::both)
-    throw InvalidInput("drops on the mesh's surface need a growing side, --side inside or outside");
+    throw InvalidInput("drops on the mesh's surface need a growing side, `side` inside or outside");
   for (std::size_t i = 0; i < o.seeds.size(); ++i)
     if (!constraint.on_growth_side(o.seeds[i]))
       throw InvalidInput("seed " + std::to_string(i + 1) + " is not on the growing side of the mesh");
@@ -368,7 +368,7 @@ inline Cluster drop(const DropOptions& options, const MeshConstraint* constraint
                     const ProgressFn& progress = {}, const StopFlag* stop = nullptr, DropStats* stats = nullptr) {
   if (constraint) validate(options, *constraint);
   else validate(options);
-  if (options.zone == DropZone::mesh && !constraint) throw InvalidInput("the mesh zone drops inside a mesh: give one with --stl");
+  if (options.zone == DropZone::mesh && !constraint) throw InvalidInput("the mesh zone drops inside a mesh: give one with `stl`");
   return drop_with<GridIndex>(options, constraint, progress, stop, stats);
 }
 

@@ -535,7 +535,7 @@ class Aggregation {
             throw GrowthError("the mesh refused " + std::to_string(max_rejected) + " branches of walker " +
                               std::to_string(k + 1) + ": it touches the structure only across the surface (seeds " +
                               "within a spacing of it, or, with the surface spawn, a structure that fills the " +
-                              "mesh's skin: grow fewer particles or use --spawn inside)");
+                              "mesh's skin: grow fewer particles or use `spawn` inside)");
           // In a shell, a walker can be caught between the structure and the shell's edge, where
           // every contact would put the particle outside the shell: it starts afresh.
           if (shell != 0.0) relaunch();

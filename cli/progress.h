@@ -1,14 +1,7 @@
 #pragma once
-// What every growth subcommand shares: the progress bar, the command line echoed in the
-// files, the summary's words, and the files themselves (the look, then every writer at once).
+// The progress bar dla3d draws on a terminal, and the words its messages share.
 
-#include "command_line.h"
-
-#include "dla/core/cluster.h"
-#include "dla/io/run_report.h"
-#include "dla/mesh/constraint.h"
-
-#include <unistd.h>
+#include "dla/run/run.h"
 
 #include <algorithm>
 #include <chrono>
@@ -20,9 +13,7 @@
 namespace dla::cli {
 
 using Clock = std::chrono::steady_clock;
-
-//! A non-negative amount rounded to a whole number, thousands grouped.
-std::string with_commas(double value);
+using detail::with_commas;
 
 //! A one-line progress bar on stderr, drawn only on a terminal and only once a run has taken
 //! a second.
@@ -69,40 +60,26 @@ class ProgressBar {
   Clock::time_point last_{};
 };
 
-//! Fails early, before a long run, if `path` cannot be created (its temporary name is tried).
-void check_writable(const std::string& path);
+inline const char* signal_name(int signal) {
+  return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal";
+}
 
 //! The arguments as one line a shell reads back: words with anything but plain characters
 //! are single-quoted.
-std::string command_line(const std::vector<std::string>& args);
-
-//! The files the options write, in --formats order, for the summary line.
-std::vector<std::string> file_names(const FileOptions& files);
-
-const char* signal_name(int signal);
-
-//! With a mesh: a spacing of about a hundredth of its box's longest side, rounded to two digits.
-double default_spacing(const Box& box);
-//! With a mesh: the axis of its box's longest side, y on a tie, so that standing figures and
-//! vessels come out upright.
-Axis longest_axis(const Box& box);
-
-//! Makes the look (the distance to `constraint`'s mesh feeds it, when there is one) and writes
-//! every file of `files` but the JSON, each on a thread of its own: the same bytes as one by
-//! one. With `scene_mesh`, the POV-Ray scene shows it.
-void write_files(const Cluster& cluster, const FileOptions& files, const PovOptions& pov, int threads,
-                 const MeshConstraint* constraint, const TriangleMesh* scene_mesh);
-
-class ModelRun;
-
-//! Grows `run` under `progress`, keeping what grew when growth fails part way (its reason goes
-//! in `error`), and fills `record`: the time taken, the command line `args`, and what stopped
-//! growth (the error, else the signal `stop_signal` holds when the structure is incomplete).
-Cluster grow_recorded(ModelRun& run, const ProgressFn& progress, const StopFlag& stop,
-                      const volatile std::sig_atomic_t& stop_signal, const std::vector<std::string>& args,
-                      RunRecord& record, std::string& error);
-
-//! The summary on stderr: the run's line, then the files written and how to render them.
-void print_summary(const ModelRun& run, const Cluster& cluster, const FileOptions& files, const RunRecord& record);
+inline std::string command_line(const std::vector<std::string>& args) {
+  std::string line = "dla3d";
+  for (const std::string& arg : args) {
+    const bool plain = !arg.empty() && arg.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                             "0123456789_-+=.,:/@%") == std::string::npos;
+    if (plain) {
+      line += " " + arg;
+      continue;
+    }
+    line += " '";
+    for (const char c : arg) line += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    line += "'";
+  }
+  return line;
+}
 
 }  // namespace dla::cli

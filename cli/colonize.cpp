@@ -1,0 +1,152 @@
+// `dla3d colonize`: space colonization's options, turned into the library's ColonizeRunOptions.
+
+#include "options.h"
+
+namespace dla::cli {
+
+namespace {
+
+struct ColonizeWords {
+  std::vector<std::string> root_at;
+  std::string attractor_region, attractor_center, attractor_box, noise, tropism, roots_in, collision;
+  long long max_nodes, attractor_count, max_iterations, root_count = 0;
+  CLI::Option *attractors, *roots, *roots_in_option, *roots_scale, *collision_option;
+  std::unique_ptr<SeedWords> seeds;
+  std::unique_ptr<OutputWords> files;
+};
+
+void finish(ColonizeRunOptions& c, const ColonizeWords& w) {
+  w.files->finish(c.files);
+  validate(c.files, c.colonization.dimensions, !c.stl.empty());
+  if (w.max_nodes < 1) throw InvalidInput("--max-nodes " + std::to_string(w.max_nodes) + " is not at least 1");
+  if (w.max_iterations < 1) throw InvalidInput("--max-iterations " + std::to_string(w.max_iterations) + " is not at least 1");
+  if (w.attractor_count < 1) throw InvalidInput("--attractors " + std::to_string(w.attractor_count) + " is not at least 1");
+  if (w.roots->count() && w.root_count < 1) throw InvalidInput("--roots " + std::to_string(w.root_count) + ": there must be a root");
+  c.colonization.max_nodes = static_cast<std::size_t>(w.max_nodes);
+  c.colonization.max_iterations = static_cast<std::size_t>(w.max_iterations);
+  c.attractors.count = static_cast<std::size_t>(w.attractor_count);
+  c.root_count = static_cast<std::size_t>(w.root_count);
+  c.attractors.region = parse_attractor_region(w.attractor_region);
+  c.sample_attractors = w.attractors->count() > 0 && !c.attractors_from.empty();
+  c.roots_in = parse_root_region(w.roots_in);
+  if (w.roots_in_option->count() && w.root_count == 0)
+    throw InvalidInput("--roots-in says where --roots K puts its roots: give --roots");
+  detail::require_in("--roots-scale", c.roots_scale, 0.01, 100.0);
+  if (w.roots_scale->count() && (w.root_count == 0 || c.roots_in != RootRegion::sphere))
+    throw InvalidInput("--roots-scale sizes the sphere of --roots K (--roots-in sphere): give --roots");
+  c.collision = parse_collision_mode(w.collision);
+  if (w.collision_option->count() && c.collide.empty())
+    throw InvalidInput("--collision says what --collide's mesh does: give one");
+  if (!w.attractor_center.empty()) c.attractors.center = parse_vec3("--attractor-center", w.attractor_center);
+  if (!w.attractor_box.empty()) {
+    const Box box = parse_box("--attractor-box", w.attractor_box);
+    c.attractors.box_min = box.min;
+    c.attractors.box_max = box.max;
+    if (c.attractors.region != AttractorRegion::box)
+      throw InvalidInput("--attractor-box is for --attractors-in box, not " + w.attractor_region);
+  }
+  if (!w.noise.empty()) {
+    const std::vector<double> n = parse_numbers("--noise", w.noise, 2);
+    c.colonization.noise_amplitude = n[0];
+    c.colonization.noise_scale = n[1];
+  }
+  if (!w.tropism.empty()) c.colonization.tropism = parse_vec3("--tropism", w.tropism);
+  c.root_at = parse_points("--root-at", w.root_at);
+  w.seeds->finish(c.seeds, !c.stl.empty() || !c.collide.empty());
+  validate(c);
+}
+
+}  // namespace
+
+Subcommand add_colonize_command(CLI::App& app) {
+  auto w = std::make_shared<ColonizeWords>();
+  auto c = std::make_shared<ColonizeRunOptions>();
+  auto quiet = std::make_shared<bool>(false);
+  CLI::App* command = app.add_subcommand(
+      "colonize", "grow a tree by space colonization: attractor points pull its nearest nodes (docs/colonization.md)");
+  command->get_formatter()->column_width(34);
+  const char* colonizing = "Colonization";
+  w->attractor_region = std::string(to_string(c->attractors.region));
+  w->max_nodes = static_cast<long long>(c->colonization.max_nodes);
+  w->attractor_count = static_cast<long long>(c->attractors.count);
+  w->max_iterations = static_cast<long long>(c->colonization.max_iterations);
+  command->add_option("-n,--max-nodes", w->max_nodes, "nodes at most, roots included")
+      ->capture_default_str()->group(colonizing);
+  command->add_option("--max-iterations", w->max_iterations, "growth steps at most")
+      ->capture_default_str()->group(colonizing);
+  command->add_option("--spacing", c->colonization.spacing, "the step: distance between a node and its parent, "
+                                                             "[1e-25, 1e25]")->capture_default_str()->group(colonizing);
+  command->add_option("--kill-distance", c->colonization.kill_distance, "an attractor dies once a node is this close, "
+                                                                         "in spacings, [1, 1e6]")
+      ->capture_default_str()->group(colonizing);
+  command->add_option("--influence", c->colonization.influence, "an attractor pulls its nearest node only this close, "
+                                                                 "in spacings, above the kill distance; default: any")
+      ->group(colonizing);
+  command->add_option("--noise", w->noise, "each new node moves by up to A spacings, in features S spacings wide; "
+                                           "A in [0, 10], S > 0")->type_name("A,S")->group(colonizing);
+  command->add_option("--tropism", w->tropism, "added to each step's unit direction (gravity, light), "
+                                               "each in [-10, 10]")->type_name("X,Y,Z")->group(colonizing);
+  command->add_option("--dimensions", c->colonization.dimensions, "3, or 2 for venation in the plane z = 0")
+      ->capture_default_str()->group(colonizing);
+  command->add_option("--rng-seed", c->colonization.rng_seed, "seeds the attractors, the roots and the noise")
+      ->capture_default_str()->group(colonizing);
+  const char* attracting = "Attractors and roots";
+  w->attractors = command->add_option("--attractors", w->attractor_count, "how many attractors, [1, 1e8]")
+                      ->capture_default_str()->group(attracting);
+  CLI::Option* attractors_in =
+      command->add_option("--attractors-in", w->attractor_region, "where they lie: sphere, box, mesh (inside "
+                                                                  "the --stl vessel, else the --collide mesh) or "
+                                                                  "surface (on it)")
+          ->capture_default_str()->group(attracting);
+  command->add_option("--attractors-from", c->attractors_from, "read them from a file: CSV rows x,y,z (or a "
+                                                               "header naming x, y, z) or PLY points; with "
+                                                               "--attractors N, a seeded sample of N")
+      ->type_name("FILE")->group(attracting)->excludes(attractors_in);
+  command->add_option("--attractor-center", w->attractor_center, "the sphere's centre; default the origin")
+      ->type_name("X,Y,Z")->group(attracting);
+  command->add_option("--attractor-radius", c->attractors.radius, "the sphere's radius, scene units, > 0")
+      ->capture_default_str()->group(attracting);
+  command->add_option("--attractor-box", w->attractor_box, "the box; default -50,-50,-50,50,50,50")
+      ->type_name("X0,Y0,Z0,X1,Y1,Z1")->group(attracting);
+  command->add_option("--attractor-falloff", c->attractors.falloff, "grading towards the sphere's centre, "
+                                                                    "[0, 100]; 0 is uniform")
+      ->capture_default_str()->group(attracting);
+  CLI::Option* root_at_option =
+      command->add_option("--root-at", w->root_at, "a root at x,y,z (repeat for several); default: one at "
+                                                   "the attractors' lowest point (-y)")
+          ->type_name("X,Y,Z")->allow_extra_args(false)->group(attracting);
+  w->roots = command->add_option("--roots", w->root_count, "K roots at random, where --roots-in says")
+                 ->type_name("K")->group(attracting)->excludes(root_at_option);
+  w->roots_in = std::string(to_string(c->roots_in));
+  w->roots_in_option = command->add_option("--roots-in", w->roots_in, "--roots K: on the sphere around the attractors, in the mesh "
+                                                                      "(the vessel, else the collision mesh) or on its surface")
+                           ->capture_default_str()->group(attracting);
+  w->roots_scale = command->add_option("--roots-scale", c->roots_scale, "--roots-in sphere: the roots' sphere is this times "
+                                                                        "the attractors', [0.01, 100]")
+                       ->capture_default_str()->group(attracting);
+  w->collision = std::string(to_string(c->collision));
+  const char* colliding = "Vessel and collision";
+  command->add_option("--stl", c->stl, "a vessel (STL, OFF, OBJ or PLY) that growth stays inside: a "
+                                       "step that would cross its surface is refused")
+      ->type_name("FILE")->group(colliding);
+  command->add_option("--collide", c->collide, "a collision mesh (STL, OFF, OBJ or PLY) that new nodes "
+                                               "are pushed out of or stuck to")
+      ->type_name("FILE")->group(colliding);
+  w->collision_option = command->add_option("--collision", w->collision, "push (growth flows around the mesh) or stick (it crawls "
+                                                                         "over its surface)")
+                            ->capture_default_str()->group(colliding);
+  w->seeds = std::make_unique<SeedWords>(
+      *command, c->seeds, colliding, root_at_option,
+      "roots on the mesh (the vessel, else the collision mesh): K far apart, or all: the surface, the paint or the "
+      "--seed-mesh curves at the spacing",
+      "roots over the whole surface (or the painted part), a spacing apart");
+  add_refused_mesh_controls(*command, colliding, "colonize");
+  w->files = std::make_unique<OutputWords>(*command, c->files, *quiet);
+  return {command, [w, c, quiet](CommandLine& line, const std::vector<std::string>&) {
+            finish(*c, *w);
+            line.quiet = *quiet;
+            line.run = *c;
+          }};
+}
+
+}  // namespace dla::cli

@@ -1,0 +1,85 @@
+#pragma once
+// What dla3d's subcommands share: the option groups every growth model has (Output and Look;
+// the count, plane, scale and seeds of drop and ballistic), the parsing of number lists, and
+// the hook each subcommand's file gives the parser.
+
+#include "command_line.h"
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace dla::cli {
+
+//! "x,y,z" (or more numbers for a box) as doubles; throws InvalidInput naming the flag.
+std::vector<double> parse_numbers(const std::string& flag, const std::string& text, std::size_t count);
+Vec3 parse_vec3(const std::string& flag, const std::string& text);
+std::vector<Vec3> parse_points(const std::string& flag, const std::vector<std::string>& texts);
+//! "X0,Y0,Z0,X1,Y1,Z1" as a box.
+Box parse_box(const std::string& flag, const std::string& text);
+//! A count given as a signed number, so that -1 is refused as negative rather than wrapped.
+std::size_t parse_count(const std::string& flag, long long value);
+
+//! A subcommand's options added to the parser, and what turns their words into the command
+//! line (`args` are its words) once it has parsed and the subcommand was given.
+struct Subcommand {
+  CLI::App* app;
+  std::function<void(CommandLine& line, const std::vector<std::string>& args)> finish;
+};
+
+//! The Output and Look options, the same for every growth model and for `frames`: added to
+//! `app`, bound to words kept here, then turned into `files` by finish().
+class OutputWords {
+ public:
+  OutputWords(CLI::App& app, OutputOptions& files, bool& quiet, std::string formats = "pov,csv,ply,json");
+  //! The words as values; the options the mesh gives defaults for only when given.
+  void finish(OutputOptions& files) const;
+
+ private:
+  std::string up_, radius_model_, color_by_, instance_set_, pov_style_, ply_format_, formats_;
+  double base_radius_ = 0.0, tip_radius_ = 0.0;
+  CLI::Option* radius_ = nullptr;
+  CLI::Option* base_radius_option_ = nullptr;
+  CLI::Option* tip_radius_option_ = nullptr;
+  CLI::Option* up_option_ = nullptr;
+};
+
+//! Where seeds (colonize: roots) go on the mesh: --seeds, --seed-surface, --seed-paint and
+//! --seed-mesh, the same for DLA, drop and colonize, none with `placed_by` (--seed-at, --root-at).
+class SeedWords {
+ public:
+  SeedWords(CLI::App& app, MeshSeeds& seeds, const char* group, CLI::Option* placed_by, const std::string& seeds_help,
+            const std::string& surface_help);
+  //! The words as `seeds`, refused without a mesh.
+  void finish(MeshSeeds& seeds, bool has_mesh) const;
+
+ private:
+  std::string count_, paint_;
+  CLI::Option *count_option_, *paint_option_, *placed_by_;
+};
+
+//! --fill and --shell for the models they mean nothing to: each refused with why.
+void add_refused_mesh_controls(CLI::App& app, const char* group, std::string_view model);
+
+//! What drop and ballistic share with DLA: the count, the plane, the scale, the seeds.
+struct SeededWords {
+  long long particles = 10000;
+  std::vector<std::string> seed_at;
+  CLI::Option* spacing = nullptr;
+  CLI::Option* seed_at_option = nullptr;
+};
+void add_seeded_options(CLI::App& command, const char* group, SeededWords& words, int& dimensions, double& spacing,
+                        std::uint64_t& rng_seed, const std::string& spacing_help);
+
+// Each growth subcommand's file adds its options and says how to finish them. DLA's are the
+// top level's (`dla3d [options]`), with --resume and the checkpoints.
+Subcommand add_grow_options(CLI::App& app);
+Subcommand add_colonize_command(CLI::App& app);
+Subcommand add_eden_command(CLI::App& app);
+Subcommand add_drop_command(CLI::App& app);
+Subcommand add_ballistic_command(CLI::App& app);
+
+}  // namespace dla::cli

@@ -1,0 +1,86 @@
+// Every growth subcommand's run: the library sets it up (dla/run/run.h), this file grows it
+// under the progress bar, saves DLA's checkpoints, writes the files and says what happened.
+
+#include "commands.h"
+#include "progress.h"
+
+#include "dla/io/checkpoint.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <memory>
+
+namespace dla::cli {
+
+int run(const CommandLine& line, const std::vector<std::string>& args, const Cluster* resumed,
+        std::uint64_t resumed_hash, const StopFlag& stop, const volatile std::sig_atomic_t& stop_signal) {
+  const OutputOptions& asked = output_of(line.run);
+  check_writable(file_names(asked).front());  // before a mesh's set-up and a long run
+  const std::string& checkpoint = line.checkpoint_path;
+  if (!checkpoint.empty()) check_writable(checkpoint);
+  const std::unique_ptr<Run> prepared = prepare_run(line.run, {}, resumed, resumed_hash);
+  Run& run = *prepared;
+  // Only once every option is known good: bad input gets its one line and nothing else.
+  if (!line.quiet && !run.mesh_line.empty()) std::fprintf(stderr, "dla3d: %s\n", run.mesh_line.c_str());
+
+  ProgressBar bar(run.total, !line.quiet && isatty(STDERR_FILENO));
+  Clock::time_point saved = Clock::now();
+  // A save that fails (a full disk) is reported once and does not stop the run.
+  bool save_failed = false;
+  const auto save = [&](const Cluster& so_far) {
+    if (checkpoint.empty()) return;
+    try {
+      write_checkpoint({args, run.input_hash, so_far}, checkpoint);
+    } catch (const IOError& e) {
+      bar.clear();
+      if (!save_failed) std::fprintf(stderr, "dla3d: warning: %s; growth goes on\n", e.what());
+      save_failed = true;
+    }
+  };
+  const auto progress = [&](const Cluster& so_far) {
+    bar.update(run.done(so_far), so_far.filled, run.fill);
+    if (stop.load()) return false;
+    if (!checkpoint.empty() && Clock::now() - saved >= std::chrono::duration<double>(line.checkpoint_every)) {
+      save(so_far);
+      saved = Clock::now();
+    }
+    return true;
+  };
+  RunRecord record;
+  record.command = command_line(args);
+  const Cluster cluster = grow_recorded(run, progress, &stop, record);
+  bar.clear();
+  const int signal = stop_signal;
+  const bool failed = !record.stopped_by.empty();  // part way, by an error
+  record.stopped_by = failed ? spell_options(record.stopped_by, OptionSpelling::cli)
+                      : cluster.complete ? "" : signal_name(signal);
+  write_run(run, cluster, record);
+  if (!cluster.complete) save(cluster);  // after the files: they matter more
+
+  const std::string grown = with_commas(static_cast<double>(run.done(cluster)));
+  const std::string& output = run.files.output;
+  if (failed) {
+    std::fprintf(stderr, "dla3d: error: %s; %s.* hold the %s %s grown before it\n", record.stopped_by.substr(7).c_str(),
+                 output.c_str(), grown.c_str(), run.unit);
+    return 1;
+  }
+  if (!line.quiet) {
+    std::string written;
+    for (const std::string& name : file_names(run.files)) written += (written.empty() ? "" : " ") + name;
+    const std::string render = run.files.formats.pov ? "; render: povray +W1280 +H960 +A " + output + ".pov" : "";
+    std::fprintf(stderr, "dla3d: %s\ndla3d: wrote %s%s\n", run.summary(cluster, record).c_str(), written.c_str(),
+                 render.c_str());
+  }
+  if (!cluster.complete) {
+    const std::string of = run.model == "grow" ? " of " + with_commas(static_cast<double>(run.total)) : "";
+    const std::string resume_hint = checkpoint.empty() ? "" : "; go on with: dla3d --resume " + checkpoint;
+    std::fprintf(stderr, "dla3d: stopped by %s after %s%s %s; the files hold them%s\n", signal_name(signal),
+                 grown.c_str(), of.c_str(), run.unit, resume_hint.c_str());
+    return 128 + signal;
+  }
+  if (!checkpoint.empty()) std::remove(checkpoint.c_str());  // whole: nothing to resume
+  return 0;
+}
+
+}  // namespace dla::cli

@@ -1,0 +1,158 @@
+#pragma once
+//! \file models.h
+//! The options of a run of each growth model: the model's own options, the meshes and files it
+//! reads, where it starts, and its files (output.h). They are what `dla3d MODEL [options]` and
+//! `dla3d.MODEL(**options)` set, checked by validate() before anything is read, and resolved
+//! against the meshes by prepare_run() (run.h). Options a mesh gives a default for are
+//! std::optional: unset, the mesh's default holds, or without a mesh the model's own.
+
+#include "dla/mesh/constraint.h"
+#include "dla/mesh/paint.h"
+#include "dla/mesh/text.h"
+#include "dla/models/ballistic.h"
+#include "dla/models/colonization.h"
+#include "dla/models/drop.h"
+#include "dla/models/eden.h"
+#include "dla/models/growth.h"
+#include "dla/run/output.h"
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace dla {
+
+//! Inside a mesh, DLA grows a root system: enough particles to fill a bust at the default
+//! spacing, short of the 35,000 or so that cover its skin, where the surface spawn starts them.
+inline constexpr std::size_t kMeshParticles = 30000;
+//! Growing to fill a mesh: the particles at most, unless `particles` says otherwise.
+inline constexpr std::size_t kFillParticles = 10'000'000;
+//! Inside a mesh: thick trunks and fine tips, in spacings (docs/look.md).
+inline constexpr double kMeshBaseRadius = 3.0, kMeshTipRadius = 0.05;
+
+//! Where seeds go on a mesh, for the models that grow from seeds in or on one.
+struct MeshSeeds {
+  //! `seeds`: K seeds on the growing side, far apart; 0: one (text: one in each letter), or
+  //! with `surface`, `paint` or `meshes`, all of them at the spacing.
+  std::size_t count = 0;
+  bool surface = false;               //!< `seed_surface`: the whole surface, sampled at the spacing
+  std::optional<Paint> paint;         //!< `seed_paint`: the part of the surface painted this colour
+  std::vector<std::string> meshes;    //!< `seed_mesh`: where these meshes' surfaces meet the mesh
+
+  bool on_surface() const { return surface || paint || !meshes.empty(); }
+};
+
+//! `dla3d [options]`, `dla3d.grow()`: DLA, in or around a mesh or text when one is given.
+struct DlaRunOptions {
+  //! The walk. Its `particles`, `spacing`, `spawn` and `seeds` are the defaults without a
+  //! mesh; the optionals below replace them.
+  GrowthOptions growth;
+  std::optional<std::size_t> particles;      //!< default 10,000; with a mesh 30,000; filling 1e7
+  std::optional<double> spacing;             //!< with a mesh: its longest side / 100 (text: size / 100)
+  std::optional<SpawnMode> spawn;            //!< with a mesh: surface inside, else sphere (docs/dla.md)
+  std::optional<std::vector<Vec3>> seed_at;  //!< with a mesh: placed on its growing side
+  std::string stl;                           //!< the constraint mesh's file; empty: none
+  std::optional<TextOptions> text;           //!< the constraint is this text, extruded
+  ConstraintOptions constraint;              //!< side, reject or clip, shell
+  MeshSeeds seeds;
+  bool scene_mesh = true;                    //!< the POV-Ray scene shows the mesh as glass
+  OutputOptions files;
+
+  bool has_mesh() const { return !stl.empty() || text.has_value(); }
+};
+
+//! Where `dla3d colonize --roots K` puts its roots.
+enum class RootRegion {
+  sphere,   //!< at random on the sphere around the attractors
+  mesh,     //!< inside the mesh, deep and far apart
+  surface,  //!< on the mesh's surface, half a spacing inside
+};
+
+std::string_view to_string(RootRegion region);
+RootRegion parse_root_region(std::string_view word);
+
+//! `dla3d colonize`, `dla3d.colonize()`: space colonization among attractors.
+struct ColonizeRunOptions {
+  ColonizationOptions colonization;
+  AttractorOptions attractors;
+  //! The attractors from a file (CSV rows x,y,z or PLY points) instead of scattered; with
+  //! `sample_attractors`, a seeded sample of attractors.count of them.
+  std::string attractors_from;
+  bool sample_attractors = false;
+  std::vector<Vec3> root_at;      //!< roots here; none: see root_count
+  //! K roots in `roots_in`; 0, with no `root_at`: one at the attractors' lowest point (-y).
+  std::size_t root_count = 0;
+  RootRegion roots_in = RootRegion::sphere;
+  double roots_scale = 1.0;       //!< the sphere of RootRegion::sphere, times the attractors', [0.01, 100]
+  std::string stl;                //!< a vessel growth stays inside; empty: none
+  std::string collide;            //!< a collision mesh; empty: none
+  CollisionMode collision = CollisionMode::push;
+  //! Roots on the mesh (the vessel, else the collision mesh) as DLA's seeds go: K far apart,
+  //! the surface, the paint, or where other meshes meet it; instead of `root_at` or `roots`.
+  MeshSeeds seeds;
+  OutputOptions files;
+};
+
+//! `dla3d eden`, `dla3d.eden()`: an Eden cluster on a lattice.
+struct EdenRunOptions {
+  EdenOptions eden;
+  std::string mask_file;  //!< the mask drawn in a file; empty: a preset (eden.mask) or none
+  OutputOptions files;
+};
+
+//! `dla3d drop`, `dla3d.drop()`: random-drop ballistic aggregation, in or around a mesh.
+struct DropRunOptions {
+  DropOptions drop;               //!< its `spacing` and `seeds` are the defaults without a mesh
+  std::optional<double> spacing;  //!< with a mesh: its longest side / 100
+  std::optional<std::vector<Vec3>> seed_at;  //!< with a mesh: one on its growing side
+  std::string stl;                //!< the constraint mesh's file; empty: none
+  ConstraintOptions constraint;   //!< side, reject or clip; no shell: drops fall through space
+  MeshSeeds seeds;                //!< with a mesh: where the seeds go; default one on the growing side
+  bool scene_mesh = true;
+  OutputOptions files;
+};
+
+//! `dla3d ballistic`, `dla3d.ballistic()`: ballistic aggregation along straight lines.
+struct BallisticRunOptions {
+  BallisticOptions ballistic;
+  OutputOptions files;
+};
+
+//! The roots a colonize run grows from: its `root_at` points; or `root_count` on the sphere
+//! around the attractors, or in or on `mesh` (the vessel, else the collision mesh); or one at
+//! the attractors' lowest point (-y).
+std::vector<Vec3> colonize_roots(const ColonizeRunOptions& options, const std::vector<Vec3>& attractors,
+                                 const MeshConstraint* mesh);
+
+//! Seeds on a mesh as `seeds` asks: K far apart (default 1), or the surface, the paint, or
+//! the curves where the `entering` meshes meet it, at the spacing (K of them far apart when K is
+//! given). Throws InvalidInput when there is nowhere to put them.
+std::vector<Vec3> seeds_on(const MeshConstraint& mesh, const MeshSeeds& seeds, std::uint64_t rng_seed,
+                           const std::vector<TriangleMesh>& entering = {});
+
+//! The one-line refusal of a control that means nothing to `model`, and why; for the front ends
+//! that offer every model the same controls.
+[[noreturn]] void refuse_for(std::string_view model, std::string_view option);
+
+//! A run of any model.
+using RunOptions = std::variant<DlaRunOptions, ColonizeRunOptions, EdenRunOptions, DropRunOptions, BallisticRunOptions>;
+
+//! The model's name, as the CLI's subcommand and Python's function: grow (DLA), colonize,
+//! eden, drop, ballistic.
+std::string_view model_name(const RunOptions& options);
+const OutputOptions& output_of(const RunOptions& options);
+OutputOptions& output_of(RunOptions& options);
+
+//! Throws InvalidInput, with one line naming the option, for options that cannot work
+//! together; what needs the meshes (the spacing's default, seeds in them) is checked when
+//! prepare_run() has read them.
+void validate(const DlaRunOptions& options);
+void validate(const ColonizeRunOptions& options);
+void validate(const EdenRunOptions& options);
+void validate(const DropRunOptions& options);
+void validate(const BallisticRunOptions& options);
+void validate(const RunOptions& options);
+
+}  // namespace dla

@@ -1,0 +1,76 @@
+#pragma once
+//! \file output.h
+//! What a run of any model writes and how it looks: the files under one prefix, the look they
+//! share, the POV-Ray scene's settings and the instancing points. See docs/formats.md.
+
+#include "dla/io/ply_writer.h"
+#include "dla/io/png_writer.h"
+#include "dla/io/pov_writer.h"
+#include "dla/look/instances.h"
+#include "dla/look/look.h"
+#include "dla/mesh/constraint.h"
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace dla {
+
+//! The files a run writes (`formats`), each PREFIX.EXT; tips writes PREFIX_tips.ply (and with
+//! pov, PREFIX_tips.inc).
+struct Formats {
+  bool pov = true, csv = true, ply = true, json = true;
+  bool glb = false, obj = false, tips = false, svg = false, png = false, html = false;
+};
+
+//! The formats' words, in the order file_names() lists them.
+inline constexpr const char* kFormatWords = "pov, csv, ply, json, glb, obj, tips, svg, png, html";
+
+//! "pov,csv,glb" as formats. Throws InvalidInput, naming `formats`, for an unknown or no word,
+//! and for html when this build has no web viewer.
+Formats parse_formats(std::string_view words);
+//! The formats as their comma-separated words.
+std::string to_string(const Formats& formats);
+
+struct OutputOptions {
+  std::string output = "dla";                      //!< prefix of the files written
+  Formats formats;
+  PlyEncoding ply_encoding = PlyEncoding::binary;  //!< the PLYs (and PREFIX_tips.ply)
+  PngOptions png;                                  //!< png: scale and bands
+  LookOptions look;                                //!< radius model, colour, tubes
+  InstanceOptions instances;                       //!< tips: which particles, how near the mesh
+  PovOptions pov;                                  //!< the scene: style, up axis
+  //! Defaults a mesh changes when they are not given: the up axis (the mesh's longest side's),
+  //! and for DLA in a mesh the radius model (pipe) and range (3 to 0.05 spacings). Unset, the
+  //! values in `pov` and `look` hold.
+  std::optional<Axis> up;
+  std::optional<RadiusModel> radius;
+  std::optional<double> base_radius, tip_radius;
+};
+
+//! The files `output` writes, in `formats` order, for a summary.
+std::vector<std::string> file_names(const OutputOptions& output);
+
+//! Throws InvalidInput, with one line naming the option, for output that cannot work with a
+//! run of `dimensions`, with or without a mesh to measure to (the mesh's defaults resolved).
+void validate(const OutputOptions& output, int dimensions, bool with_mesh);
+
+//! What the files of a structure measure to and show, beside their options.
+struct WriteContext {
+  int threads = 1;                             //!< for the look's measurements
+  const MeshConstraint* constraint = nullptr;  //!< the boundary radius model measures to its mesh
+  const TriangleMesh* scene_mesh = nullptr;    //!< the POV-Ray scene and the web viewer show it
+  std::string comment;                         //!< the POV-Ray scene's first line (the command)
+};
+
+//! Makes the look and writes every file `files.formats` asks for but the JSON record (which
+//! needs a run: run.h's write_run), each by its writer behind one signature and on a thread of
+//! its own: the same bytes as one by one. Throws IOError if a file cannot be written.
+void write_files(const Cluster& cluster, const OutputOptions& files, const WriteContext& context = {});
+
+//! Fails early, before a long run, if `path` cannot be created (its temporary name is tried):
+//! throws InvalidInput.
+void check_writable(const std::string& path);
+
+}  // namespace dla

@@ -1,0 +1,102 @@
+#pragma once
+//! \file run.h
+//! A run of any growth model, as the CLI, the Python module and C++ users make it: its meshes
+//! read, the defaults they give taken, its seeds, roots or attractors placed and every option
+//! checked (prepare_run); then grown, recorded and written. See docs/dev/architecture.md.
+//!
+//! \code
+//! dla::DlaRunOptions options;
+//! options.stl = "bust.stl";
+//! options.seeds.count = 2;                    // dla3d --stl bust.stl --seeds 2
+//! const auto run = dla::prepare_run(options);
+//! dla::RunRecord record;
+//! const dla::Cluster tree = dla::grow_recorded(*run, {}, nullptr, record);
+//! dla::write_run(*run, tree, record);         // dla.pov .inc .csv .ply .json
+//! \endcode
+
+#include "dla/core/cluster.h"
+#include "dla/io/run_report.h"
+#include "dla/mesh/constraint.h"
+#include "dla/run/models.h"
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace dla {
+
+//! Reads the mesh a path names, with the hash of its file when `hash` is not null. The default
+//! is read_mesh(); the Python module hands over meshes held in memory under a name.
+using MeshReader = std::function<TriangleMesh(const std::string& path, std::uint64_t* hash)>;
+
+//! A run set up and ready to grow, of any model.
+class Run {
+ public:
+  virtual ~Run() = default;
+
+  //! Grows the structure (once: a run's seeds and statistics are its own). Throws
+  //! PartialGrowth, with what grew, when growth fails part way.
+  virtual Cluster grow(const ProgressFn& progress, const StopFlag* stop) = 0;
+  //! The first line of a summary of the structure grown: counts, time, size.
+  virtual std::string summary(const Cluster& cluster, const RunRecord& record) const = 0;
+  //! How much of `total` a structure growing has: its particles (DLA: without the seeds).
+  virtual std::size_t done(const Cluster& so_far) const { return so_far.particles.size(); }
+  //! Writes the JSON record of the run to `path`: the model's options and statistics.
+  virtual void write_report(const Cluster& cluster, const OutputOptions& files, const RunRecord& record,
+                            const std::string& path) const = 0;
+
+  std::string_view model;          //!< grow (DLA), colonize, eden, drop or ballistic
+  //! The files, with the defaults the mesh gives resolved (the up axis, the radii).
+  OutputOptions files;
+  std::size_t total = 0;           //!< particles at most, for a progress bar
+  const char* unit = "particles";  //!< what they are called in a summary
+  int threads = 1;                 //!< for the look's measurements and the writers
+  //! "NAME: 1,234 triangles; REPAIRS; spacing S", for a run with a constraint mesh, else empty.
+  std::string mesh_line;
+  //! The mesh the look measures distances to (the boundary radius model), or null.
+  const MeshConstraint* constraint = nullptr;
+  //! The mesh the POV-Ray scene and the web viewer show, or null.
+  const TriangleMesh* scene_mesh = nullptr;
+  //! DLA growing to fill a mesh: the fraction of its volume asked for, else 0.
+  double fill = 0.0;
+  //! The hash of the mesh's file (or text), which a checkpoint keeps to know it again.
+  std::uint64_t input_hash = 0;
+};
+
+//! Sets up the run `options` ask for: validates them, reads the meshes with `read` (default
+//! read_mesh), takes their defaults and places seeds, roots or attractors. `resumed` is the
+//! checkpointed structure a DLA run goes on from, with the hash of the mesh it grew in. Throws
+//! InvalidInput, with one line, for options that cannot work with the meshes or this machine,
+//! and IOError for a file that cannot be read.
+std::unique_ptr<Run> prepare_run(const RunOptions& options, const MeshReader& read = {},
+                                 const Cluster* resumed = nullptr, std::uint64_t resumed_hash = 0);
+
+//! Grows `run` under `progress` and `stop`, keeping what grew when growth fails part way, and
+//! records the time taken and, when growth failed part way, "error: " and why in
+//! `record.stopped_by`. What stopped a structure short otherwise (a signal, a callback) only
+//! the caller knows, and records.
+Cluster grow_recorded(Run& run, const ProgressFn& progress, const StopFlag* stop, RunRecord& record);
+
+//! Writes the files `files` asks for, the JSON record among them, of what `run` grew, each
+//! writer on a thread of its own (the same bytes as one by one), and records the time taken in
+//! `record`. The POV-Ray scene's first line is `record.command`.
+void write_run(const Run& run, const Cluster& cluster, const OutputOptions& files, RunRecord& record);
+inline void write_run(const Run& run, const Cluster& cluster, RunRecord& record) {
+  write_run(run, cluster, run.files, record);
+}
+
+//! With a mesh: a spacing of about a hundredth of its box's longest side, rounded to two digits.
+double default_spacing(const Box& box);
+//! With a mesh: the axis of its box's longest side, y on a tie, so that standing figures and
+//! vessels come out upright.
+Axis longest_axis(const Box& box);
+
+namespace detail {
+//! A non-negative amount rounded to a whole number, thousands grouped: "64,687".
+std::string with_commas(double value);
+}  // namespace detail
+
+}  // namespace dla

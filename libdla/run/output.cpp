@@ -1,0 +1,114 @@
+// The files a run writes: their words, names and checks (output.h).
+
+#include "dla/run/output.h"
+
+#include "dla/io/html_writer.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+
+namespace dla {
+
+namespace {
+
+//! Each format's word, its flag in Formats, and the files it writes after PREFIX.
+struct FormatEntry {
+  const char* word;
+  bool Formats::*flag;
+  std::vector<const char*> suffixes;
+};
+
+const std::vector<FormatEntry>& format_table() {
+  static const std::vector<FormatEntry> table = {
+      {"pov", &Formats::pov, {".pov", ".inc", "_growth.inc"}},
+      {"csv", &Formats::csv, {".csv"}},
+      {"ply", &Formats::ply, {".ply"}},
+      {"glb", &Formats::glb, {".glb"}},
+      {"obj", &Formats::obj, {".obj"}},
+      {"tips", &Formats::tips, {"_tips.ply"}},
+      {"svg", &Formats::svg, {".svg"}},
+      {"png", &Formats::png, {".png"}},
+      {"html", &Formats::html, {".html"}},
+      {"json", &Formats::json, {".json"}},
+  };
+  return table;
+}
+
+}  // namespace
+
+Formats parse_formats(std::string_view words) {
+  Formats formats;
+  formats.pov = formats.csv = formats.ply = formats.json = false;
+  bool any = false;
+  std::size_t start = 0;
+  while (start <= words.size()) {
+    const std::size_t comma = std::min(words.find(',', start), words.size());
+    const std::string_view word = words.substr(start, comma - start);
+    start = comma + 1;
+    if (word.empty() && comma == words.size()) break;  // "pov," ends as "pov" does
+    const FormatEntry* entry = nullptr;
+    for (const FormatEntry& e : format_table())
+      if (word == e.word) entry = &e;
+    if (!entry)
+      throw InvalidInput("`formats` '" + std::string(words) + "': '" + std::string(word) + "' is not one of " +
+                         kFormatWords);
+    formats.*(entry->flag) = any = true;
+  }
+  if (!any) throw InvalidInput(std::string("`formats` is empty: name at least one of ") + kFormatWords);
+  if (formats.html && !has_web_viewer())
+    throw InvalidInput("`formats` html: this dla3d was built without npm, which fetches the web viewer's three.js; "
+                       "install npm and build again");
+  return formats;
+}
+
+std::string to_string(const Formats& formats) {
+  std::string words;
+  for (const char* word : {"pov", "csv", "ply", "json", "glb", "obj", "tips", "svg", "png", "html"})
+    for (const FormatEntry& e : format_table())
+      if (word == std::string_view(e.word) && formats.*(e.flag)) words += (words.empty() ? "" : ",") + std::string(word);
+  return words;
+}
+
+std::vector<std::string> file_names(const OutputOptions& output) {
+  std::vector<std::string> names;
+  for (const FormatEntry& e : format_table())
+    if (output.formats.*(e.flag))
+      for (const char* suffix : e.suffixes) names.push_back(output.output + suffix);
+  return names;
+}
+
+void validate(const OutputOptions& f, int dimensions, bool with_mesh) {
+  LookOptions look = f.look;
+  if (f.radius) look.radius.model = *f.radius;
+  if (f.base_radius) look.radius.base_radius = *f.base_radius;
+  if (f.tip_radius) look.radius.tip_radius = *f.tip_radius;
+  validate(look);
+  validate(f.instances);
+  if (f.formats.svg && dimensions != 2)
+    throw InvalidInput("`formats` svg draws 2D growth: add `dimensions` 2, or leave svg out");
+  if (f.formats.png && dimensions != 2)
+    throw InvalidInput("`formats` png draws 2D growth: add `dimensions` 2, or leave png out");
+  validate(f.png);
+  if (!with_mesh) {
+    if (look.radius.model == RadiusModel::boundary)
+      throw InvalidInput("`radius` boundary measures to a constraint mesh: give one with `stl`");
+    if (f.instances.within != std::numeric_limits<double>::infinity())
+      throw InvalidInput("`tips_within` measures to a constraint mesh: give one with `stl`");
+  }
+  if (f.output.empty()) throw InvalidInput("`output` is empty");
+  if (f.output.back() == '/') throw InvalidInput("`output` '" + f.output + "' names a folder, not a file prefix");
+  if (f.formats.pov) validate_pov_prefix(f.output);
+}
+
+void check_writable(const std::string& path) {
+  const std::string probe = path + ".tmp";
+  {
+    std::ofstream out(probe);
+    if (!out) throw InvalidInput("cannot write '" + path + "': " + std::strerror(errno));
+  }
+  std::remove(probe.c_str());
+}
+
+}  // namespace dla

@@ -1,0 +1,112 @@
+// write_run(): every file of a run, each by a writer behind one signature, on threads of their
+// own (run.h).
+
+#include "dla/run/run.h"
+
+#include "dla/io/csv_writer.h"
+#include "dla/io/html_writer.h"
+#include "dla/io/mesh_writers.h"
+#include "dla/io/ply_writer.h"
+#include "dla/io/png_writer.h"
+#include "dla/io/pov_writer.h"
+#include "dla/io/svg_writer.h"
+#include "dla/mesh/surface_distance.h"
+
+#include <malloc.h>
+
+#include <chrono>
+#include <future>
+#include <memory>
+
+namespace dla {
+
+namespace {
+
+//! What every writer is handed: the structure, its look, the run's files and the path (or, for
+//! the POV-Ray scene, the prefix) to write.
+struct WriteJob {
+  const Cluster& cluster;
+  const Look& look;
+  const OutputOptions& files;
+  const PovOptions& pov;
+  const TriangleMesh* scene_mesh;
+};
+
+using Writer = void (*)(const WriteJob& job, const std::string& path);
+
+//! One writer a format, by the flag that asks for it and the suffix of its file.
+struct WriterEntry {
+  bool Formats::*wanted;
+  const char* suffix;
+  Writer write;
+};
+
+const WriterEntry kWriters[] = {
+    {&Formats::csv, ".csv", [](const WriteJob& j, const std::string& path) { write_csv(j.cluster, j.look, path); }},
+    {&Formats::ply, ".ply",
+     [](const WriteJob& j, const std::string& path) { write_ply(j.cluster, j.look, path, j.files.ply_encoding); }},
+    {&Formats::glb, ".glb", [](const WriteJob& j, const std::string& path) { write_glb(j.cluster, j.look, path); }},
+    {&Formats::obj, ".obj", [](const WriteJob& j, const std::string& path) { write_obj(j.cluster, j.look, path); }},
+    {&Formats::tips, "_tips.ply",
+     [](const WriteJob& j, const std::string& path) {
+       write_instances_ply(j.cluster, j.look.attributes, j.files.instances, path, j.files.ply_encoding);
+     }},
+    {&Formats::svg, ".svg", [](const WriteJob& j, const std::string& path) { write_svg(j.cluster, j.look, path); }},
+    {&Formats::png, ".png", [](const WriteJob& j, const std::string& path) { write_png(j.cluster, path, j.files.png); }},
+    {&Formats::html, ".html",
+     [](const WriteJob& j, const std::string& path) {
+       HtmlOptions html;
+       html.up = j.pov.up;
+       const std::string& output = j.files.output;
+       const std::size_t slash = output.find_last_of('/');
+       html.title = "dla3d: " + (slash == std::string::npos ? output : output.substr(slash + 1));
+       write_html(j.cluster, j.look, path, html, j.scene_mesh);
+     }},
+    // The scene writes PREFIX.pov, .inc and _growth.inc (and _mesh.inc, _tips.inc) itself.
+    {&Formats::pov, "",
+     [](const WriteJob& j, const std::string& prefix) { write_pov(j.cluster, prefix, j.pov, j.scene_mesh, &j.look); }},
+};
+
+}  // namespace
+
+void write_files(const Cluster& cluster, const OutputOptions& files, const WriteContext& context) {
+  PovOptions pov = files.pov;
+  pov.comment = context.comment;
+  pov.tips = files.formats.tips;    // the scene reads its tips from PREFIX_tips.inc
+  pov.instances = files.instances;  // at the same points as PREFIX_tips.ply
+  // What growth freed (the index) goes back to the system before the writers take theirs.
+  malloc_trim(0);
+  // The writers' threads free buffers of a few hundred kB: mapped, not kept in each thread's
+  // heap, where glibc's adaptive threshold would leave them (about 1 byte a particle at 10^7).
+  mallopt(M_MMAP_THRESHOLD, 128 * 1024);
+  const Look look = [&] {
+    // The distance to the mesh feeds the boundary model and the scene's switch to it.
+    const std::unique_ptr<SurfaceDistance> surface =
+        context.constraint ? std::make_unique<SurfaceDistance>(context.constraint->mesh()) : nullptr;
+    // The tips' gaps only for the files with instancing points: PREFIX_tips.ply and .inc.
+    return make_look(cluster, files.look, {surface.get(), nullptr, context.threads, files.formats.tips});
+  }();
+  const WriteJob job{cluster, look, files, pov, context.scene_mesh};
+  std::vector<std::future<void>> writers;
+  const WriterEntry* scene = nullptr;
+  for (const WriterEntry& writer : kWriters) {
+    if (!(files.formats.*(writer.wanted))) continue;
+    if (writer.wanted == &Formats::pov) {
+      scene = &writer;  // on this thread, as the others write
+      continue;
+    }
+    const std::string path = files.output + writer.suffix;
+    writers.push_back(std::async(std::launch::async, [&job, &writer, path] { writer.write(job, path); }));
+  }
+  if (scene) scene->write(job, files.output);
+  for (std::future<void>& writer : writers) writer.get();
+}
+
+void write_run(const Run& run, const Cluster& cluster, const OutputOptions& files, RunRecord& record) {
+  const auto start = std::chrono::steady_clock::now();
+  write_files(cluster, files, {run.threads, run.constraint, run.scene_mesh, record.command});
+  record.write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (files.formats.json) run.write_report(cluster, files, record, files.output + ".json");
+}
+
+}  // namespace dla
