@@ -9,7 +9,7 @@
 
 #include "dla/mesh/constraint.h"
 #include "dla/index/grid_index.h"
-#include "dla/models/growth.h"
+#include "dla/models/dla.h"
 
 #include <benchmark/benchmark.h>
 
@@ -29,8 +29,8 @@ const dla::MeshConstraint* bust() {
   return constraint.get();
 }
 
-dla::GrowthOptions bust_options(std::size_t particles) {
-  dla::GrowthOptions o;
+dla::DlaOptions bust_options(std::size_t particles) {
+  dla::DlaOptions o;
   o.particles = particles;
   o.spacing = kSpacing;
   o.spawn = dla::SpawnMode::inside;
@@ -40,7 +40,7 @@ dla::GrowthOptions bust_options(std::size_t particles) {
 
 void grow(benchmark::State& state, bool constrained) {
   if (!bust()) return state.SkipWithError("the bust is missing: install libcgal-demo and run cmake again");
-  dla::GrowthOptions o = bust_options(static_cast<std::size_t>(state.range(0)));
+  dla::DlaOptions o = bust_options(static_cast<std::size_t>(state.range(0)));
   if (!constrained) o.spawn = dla::SpawnMode::sphere;
   dla::WalkStats stats;
   for (auto _ : state) {
@@ -94,7 +94,7 @@ void grow_in_shell(benchmark::State& state) {
   const auto start = std::chrono::steady_clock::now();
   const dla::MeshConstraint shell(dla::read_mesh(BUST_OFF_PATH), frost, kSpacing);
   const double setup = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  dla::GrowthOptions o;
+  dla::DlaOptions o;
   o.particles = static_cast<std::size_t>(state.range(0));
   o.spacing = kSpacing;
   o.spawn = dla::SpawnMode::inside;

@@ -5,7 +5,7 @@
 // (medians in docs/performance.md).
 
 #include "dla/index/grid_index.h"
-#include "dla/models/growth.h"
+#include "dla/models/dla.h"
 #include "dla/index/kdtree_index.h"
 #include "dla/index/spatial_index.h"
 
@@ -25,7 +25,7 @@ double heap_in_use() {
 
 template <class Index>
 void grow_cluster(benchmark::State& state) {
-  dla::GrowthOptions options;
+  dla::DlaOptions options;
   options.particles = static_cast<std::size_t>(state.range(0));
   options.threads = static_cast<int>(state.range(1));
   double peak_bytes = 0.0;

@@ -35,7 +35,7 @@ void check_resume_company(const std::vector<std::string>& args) {
 }
 
 void add_options(CLI::App& app, DlaRunOptions& g, CommandLine& line, GrowWords& w) {
-  GrowthOptions& options = g.growth;
+  DlaOptions& options = g.growth;
   const char* growth = "Growth";
   w.particles_option = app.add_option("-n,--particles", w.particles, "particles to attach, seeds not counted; with a mesh, "
                                                                      "default 30000")->capture_default_str()->group(growth);
@@ -124,7 +124,7 @@ void add_options(CLI::App& app, DlaRunOptions& g, CommandLine& line, GrowWords& 
 //! The words as DLA's run options. The checks that need to know what was given, which the run
 //! options cannot tell, are made here; the library checks the rest.
 void finish(CommandLine& line, DlaRunOptions& g, const GrowWords& w) {
-  GrowthOptions& options = g.growth;
+  DlaOptions& options = g.growth;
   if (!(line.checkpoint_every >= 0.0))
     throw InvalidInput("--checkpoint-every " + detail::format_number(line.checkpoint_every) + " is not a number of seconds");
   const std::size_t particles = parse_count("--particles", w.particles);

@@ -7,7 +7,7 @@
 //   povray +W1280 +H960 +A open_can.pov
 
 #include "dla/mesh/constraint.h"
-#include "dla/models/growth.h"
+#include "dla/models/dla.h"
 #include "dla/io/pov_writer.h"
 #include "dla/mesh/shapes.h"
 
@@ -17,7 +17,7 @@
 
 int main(int argc, char** argv) {
   try {
-    dla::GrowthOptions options;
+    dla::DlaOptions options;
     options.particles = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 30000;
     const std::string prefix = argc > 2 ? argv[2] : "open_can";
     const double radius = 40.0, height = 80.0;

@@ -77,7 +77,7 @@ void finish_model_report(detail::OutputFile& out, const Cluster& cluster, const 
 
 }  // namespace
 
-void write_run_report(const Cluster& cluster, const GrowthOptions& o, const LookOptions& look,
+void write_run_report(const Cluster& cluster, const DlaOptions& o, const LookOptions& look,
                       const PovOptions& pov, const RunRecord& record, const std::string& path, const MeshConstraint* constraint,
                       const std::string& mesh_file) {
   detail::OutputFile out(path);

@@ -2,7 +2,7 @@
 // one ends as the uninterrupted run does, with a constraint mesh too.
 
 #include "dla/io/checkpoint.h"
-#include "dla/models/growth.h"
+#include "dla/models/dla.h"
 #include "dla/mesh/shapes.h"
 #include "test_util.h"
 
@@ -17,7 +17,7 @@ using testing::ScratchDir;
 
 TEST(Checkpoint, ReadsBackWhatWasWritten) {
   ScratchDir dir;
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 700;
   Checkpoint saved{{"-n", "700", "--seed-at", "1,2,3", "a word with spaces"}, 0x1234, grow(o)};
   write_checkpoint(saved, dir / "run.ck");
@@ -36,7 +36,7 @@ TEST(Checkpoint, ReadsBackWhatWasWritten) {
 
 TEST(Checkpoint, DamagedOrForeignFilesAreClearErrors) {
   ScratchDir dir;
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 300;
   write_checkpoint({{"-n", "300"}, 0, grow(o)}, dir / "run.ck");
   const std::string bytes = testing::read_file(dir / "run.ck");
@@ -60,7 +60,7 @@ TEST(Checkpoint, DamagedOrForeignFilesAreClearErrors) {
 
 TEST(Checkpoint, ResumedConstrainedGrowthIsTheUninterruptedOne) {
   const MeshConstraint tube(make_open_can(Vec3::Zero(), 4.0, 30.0, 24), {}, 1.0);
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 900;
   o.spawn = SpawnMode::inside;
   o.seeds = tube.place_seeds(2, o.rng_seed);

@@ -5,7 +5,7 @@
 #include "test_util.h"
 
 #include "dla/io/checkpoint.h"
-#include "dla/models/growth.h"
+#include "dla/models/dla.h"
 
 #include <gtest/gtest.h>
 
@@ -35,7 +35,7 @@ std::set<std::string> files_in(const std::filesystem::path& dir) {
 // as it was.
 TEST(Faults, AFullDiskIsAClearErrorAndKeepsTheCheckpoint) {
   ScratchDir dir;
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 30000;
   Cluster part = grow(o);
   part.complete = false;

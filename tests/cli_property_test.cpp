@@ -22,7 +22,7 @@
 
 #include "dla/io/checkpoint.h"
 #include "dla/io/csv_writer.h"
-#include "dla/models/growth.h"
+#include "dla/models/dla.h"
 #include "dla/mesh/mesh.h"
 #include "dla/mesh/shapes.h"
 
@@ -116,8 +116,20 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
 
 //! `dla3d colonize`'s own options, drawn as the table's; its Output and Look options are the
 //! table's.
+//! `table` with the mesh controls drop and colonize share with DLA: seeds (roots) on the mesh,
+//! and DLA's --fill and --shell, which they refuse.
+std::map<std::string, std::vector<std::string>> with_mesh_seeds(std::map<std::string, std::vector<std::string>> table) {
+  table.insert({{"--seeds", {"2", "all", "1", "0", "-1", "x"}},
+                {"--seed-surface", {}},
+                {"--seed-paint", {"red", "ff0000", "pink", "''"}},
+                {"--seed-mesh", {"rod.stl", "box.off", "missing.stl", "noise.stl"}},
+                {"--fill", {"0.5", "x"}},
+                {"--shell", {"3", "0"}}});
+  return table;
+}
+
 const std::map<std::string, std::vector<std::string>>& colonize_table() {
-  static const std::map<std::string, std::vector<std::string>> table = {
+  static const std::map<std::string, std::vector<std::string>> table = with_mesh_seeds({
       {"--max-nodes", {"30", "200", "1", "0", "-5", "3e9", "x"}},
       {"--max-iterations", {"50", "1000", "1", "0", "-1"}},
       {"--spacing", {"1", "0.5", "1e-6", "1e6", "1e-25", "1e25", "0", "-1", "nan", "1e-300", "1e100"}},
@@ -141,14 +153,7 @@ const std::map<std::string, std::vector<std::string>>& colonize_table() {
       {"--stl", {"ball.stl", "box.off", "paint.ply", "missing.stl", "noise.stl"}},
       {"--collide", {"ball.stl", "box.off", "missing.stl", "noise.stl", "out.csv"}},
       {"--collision", {"push", "stick", "bounce"}},
-      // Roots on the mesh as DLA's seeds; DLA's fill and shell, refused.
-      {"--seeds", {"2", "all", "1", "0", "-1", "x"}},
-      {"--seed-surface", {}},
-      {"--seed-paint", {"red", "ff0000", "pink", "''"}},
-      {"--seed-mesh", {"rod.stl", "box.off", "missing.stl", "noise.stl"}},
-      {"--fill", {"0.5", "x"}},
-      {"--shell", {"3", "0"}},
-  };
+  });
   return table;
 }
 
@@ -184,7 +189,7 @@ std::map<std::string, std::vector<std::string>> seeded_table(std::map<std::strin
 //! `dla3d drop`'s own options, drawn as the table's; its Output and Look options are the
 //! table's.
 const std::map<std::string, std::vector<std::string>>& drop_table() {
-  static const std::map<std::string, std::vector<std::string>> table = seeded_table({
+  static const std::map<std::string, std::vector<std::string>> table = with_mesh_seeds(seeded_table({
       {"--stickiness", {"0.5", "1", "1e-4", "0", "2", "nan"}},
       {"--zone", {"box", "ball", "mesh", "cone"}},
       {"--zone-radius", {"30", "3", "1e6", "0.5", "-1", "1e300", "nan"}},
@@ -196,14 +201,7 @@ const std::map<std::string, std::vector<std::string>>& drop_table() {
       {"--constraint", {"clip", "reject", "bounce"}},
       {"--scene-mesh", {}},
       {"--no-scene-mesh", {}},
-      // Seeds on the mesh as DLA's; DLA's fill and shell, refused.
-      {"--seeds", {"2", "all", "1", "0", "-1", "x"}},
-      {"--seed-surface", {}},
-      {"--seed-paint", {"red", "ff0000", "pink", "''"}},
-      {"--seed-mesh", {"rod.stl", "box.off", "missing.stl", "noise.stl"}},
-      {"--fill", {"0.5", "x"}},
-      {"--shell", {"3", "0"}},
-  });
+  }));
   return table;
 }
 
@@ -255,7 +253,7 @@ void make_inputs(const ScratchDir& dir) {
   std::ofstream(dir / "mask.txt") << "; the 3x3 block\nxxx\nxox\nxxx\n";
   std::ofstream(dir / "points.ply") << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                                        "property float z\nend_header\n1 2 0\n-4 5 0\n0 -9 0\n";
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 60;
   Cluster part = grow(o);
   write_csv(part, dir / "grown.csv");  // for dla3d frames

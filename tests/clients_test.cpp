@@ -7,7 +7,7 @@
 #include "mesh_util.h"
 #include "png_util.h"
 #include "dla/mesh/shapes.h"
-#include "dla/models/growth.h"
+#include "dla/models/dla.h"
 #include "dla/io/mesh_writers.h"
 #include "dla/io/ply_writer.h"
 
@@ -90,7 +90,7 @@ Tubes tubes_of(const Cluster& c, const Look& look) {
 }
 
 Cluster sample() {
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 1500;
   o.rng_seed = 3;
   o.seeds = {Vec3(-6, 0, 0), Vec3(6, 0, 0)};

@@ -4,7 +4,7 @@
 
 #include "dla/mesh/constraint.h"
 #include "dla/models/fill.h"
-#include "dla/models/growth.h"
+#include "dla/models/dla.h"
 #include "dla/mesh/mesh_repair.h"
 #include "dla/mesh/shapes.h"
 #include "mesh_util.h"
@@ -50,8 +50,8 @@ Checked expect_constrained(const Cluster& cluster, const MeshConstraint& constra
   return checked;
 }
 
-GrowthOptions options_for(const MeshConstraint& constraint, std::size_t particles, std::size_t seeds) {
-  GrowthOptions o;
+DlaOptions options_for(const MeshConstraint& constraint, std::size_t particles, std::size_t seeds) {
+  DlaOptions o;
   o.particles = particles;
   o.spacing = constraint.spacing();
   o.spawn = SpawnMode::inside;
@@ -64,7 +64,7 @@ TEST(Constraint, TwoSeedsGrowInsideTheBustWithoutCrossingIt) {
   const MeshConstraint constraint(read_mesh(path), {}, 0.2);
   EXPECT_TRUE(constraint.repair_report().closed);
   EXPECT_EQ(constraint.repair_report().holes_closed, 1u);
-  const GrowthOptions o = options_for(constraint, 2500, 2);
+  const DlaOptions o = options_for(constraint, 2500, 2);
   const Cluster cluster = grow(o, constraint);
   ASSERT_EQ(cluster.particles.size(), 2502u);
   const Checked checked = expect_constrained(cluster, constraint);
@@ -81,7 +81,7 @@ TEST(Constraint, SameResultOnEveryThreadCount) {
     ConstraintOptions c;
     c.mode = mode;
     const MeshConstraint constraint(read_mesh(path), c, 0.5);
-    GrowthOptions o = options_for(constraint, 3000, 2);
+    DlaOptions o = options_for(constraint, 3000, 2);
     const Cluster one = grow(o, constraint);
     o.threads = 2;
     const Cluster two = grow(o, constraint);
@@ -111,7 +111,7 @@ TEST(Constraint, RejectedBranchesWalkOnInAThinVessel) {
   // A narrow tube: most walkers meet the wall before the structure, so many branches cross it.
   const MeshConstraint constraint(make_open_can(Vec3::Zero(), 3.0, 40.0, 24), {}, 1.0);
   EXPECT_EQ(constraint.repair_report().holes_closed, 1u);
-  GrowthOptions o = options_for(constraint, 600, 1);
+  DlaOptions o = options_for(constraint, 600, 1);
   o.seeds = {Vec3(0, 0, 20)};
   const Cluster cluster = grow(o, constraint);
   expect_constrained(cluster, constraint);
@@ -122,7 +122,7 @@ TEST(Constraint, RadialSpawnGrowsInATube) {
   ConstraintOptions c;
   c.mode = ConstraintMode::clip;
   const MeshConstraint constraint(make_open_can(Vec3::Zero(), 3.0, 40.0, 24), c, 1.0);
-  GrowthOptions o = options_for(constraint, 600, 1);
+  DlaOptions o = options_for(constraint, 600, 1);
   o.spawn = SpawnMode::radial;
   const Cluster cluster = grow(o, constraint);
   EXPECT_GT(expect_constrained(cluster, constraint).clipped, 0u);
@@ -143,7 +143,7 @@ TEST(Constraint, SurfaceSpawnStartsHalfASpacingOffTheSurfaceOnTheGrowingSide) {
       EXPECT_LE(d, 0.25 + 1e-9);
       EXPECT_GE(d, side == Side::inside ? 0.2 : 0.25 - 1e-9);
     }
-    GrowthOptions o;
+    DlaOptions o;
     o.particles = 800;
     o.spacing = 0.5;
     o.spawn = SpawnMode::surface;
@@ -158,7 +158,7 @@ TEST(Constraint, SurfaceSpawnStartsHalfASpacingOffTheSurfaceOnTheGrowingSide) {
 // minutes).
 TEST(Constraint, SurfaceSpawnThatFillsTheSkinEndsWithAnError) {
   const MeshConstraint constraint(make_sphere(Vec3::Zero(), 4.0), {}, 0.5);
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 100000;  // a sphere of 16 spacings across holds nothing like it
   o.spacing = 0.5;
   o.spawn = SpawnMode::surface;
@@ -178,7 +178,7 @@ TEST(Constraint, GrowsAroundAnObjectOutside) {
   ConstraintOptions c;
   c.side = Side::outside;
   const MeshConstraint constraint(make_sphere(Vec3::Zero(), 6.0), c, 0.5);
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 1500;
   o.spacing = 0.5;
   o.seeds = constraint.place_seeds(2, o.rng_seed);
@@ -193,7 +193,7 @@ TEST(Constraint, OpenCanOfBourkesFigure4) {
   const MeshConstraint constraint(make_open_can(Vec3::Zero(), 10.0, 20.0), c, 0.5);
   EXPECT_EQ(constraint.repair_report().holes_closed, 0u);
   EXPECT_FALSE(constraint.repair_report().closed);
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 2000;
   o.spacing = 0.5;
   o.seeds = {Vec3(0, 0, 20)};
@@ -242,7 +242,7 @@ TEST(Constraint, FillGaugeMatchesASampledFraction) {
 
 TEST(Constraint, FillStopsGrowthOnceTheVolumeIsCovered) {
   const MeshConstraint constraint(make_sphere(Vec3::Zero(), 8.0), {}, 0.5);
-  GrowthOptions o = options_for(constraint, 100000, 1);
+  DlaOptions o = options_for(constraint, 100000, 1);
   o.fill = 0.6;
   o.fill_distance = 3.0;
   const Cluster c = grow(o, constraint);
@@ -291,7 +291,7 @@ TEST(Constraint, SurfaceSamplesLineTheGrowingSideASpacingApart) {
     }
     EXPECT_EQ(constraint.sample_surface(3), seeds);
     // The surface as the start: every seed is a root, and growth inside stays inside.
-    GrowthOptions o = options_for(constraint, 1500, 1);
+    DlaOptions o = options_for(constraint, 1500, 1);
     o.seeds = seeds;
     if (side == Side::outside) o.spawn = SpawnMode::sphere;
     const Cluster grown = grow(o, constraint);
@@ -484,7 +484,7 @@ TEST(Constraint, ShellKeepsGrowthOverTheSurface) {
     c.shell = 3.0;
     const MeshConstraint constraint(sphere, c, 0.5);
     EXPECT_DOUBLE_EQ(constraint.shell(), 1.5);
-    GrowthOptions o;
+    DlaOptions o;
     o.particles = 1500;
     o.spacing = 0.5;
     o.spawn = SpawnMode::inside;  // uniform in the shell
@@ -509,7 +509,7 @@ TEST(Constraint, ShellKeepsGrowthOverTheSurface) {
   on.side = Side::surface;
   const MeshConstraint leaf(sheet, on, 0.5);
   EXPECT_DOUBLE_EQ(leaf.shell(), 1.5);  // three spacings by default
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 1500;
   o.spacing = 0.5;
   o.spawn = SpawnMode::inside;
@@ -536,7 +536,7 @@ TEST(Constraint, FrostOverTheBust) {
   c.side = Side::outside;
   c.shell = 3.0;
   const MeshConstraint constraint(read_mesh(path), c, 0.4);
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 2000;
   o.spacing = 0.4;
   o.spawn = SpawnMode::inside;
@@ -551,7 +551,7 @@ TEST(Constraint, FrostOverTheBust) {
 
 TEST(Constraint, BadSetupsAreClearErrors) {
   const MeshConstraint constraint(make_sphere(Vec3::Zero(), 5.0), {}, 1.0);
-  GrowthOptions o;
+  DlaOptions o;
   o.seeds = {Vec3(9, 0, 0)};
   EXPECT_THROW(grow(o, constraint), InvalidInput);  // a seed outside
   o.seeds = {Vec3::Zero()};
@@ -572,7 +572,7 @@ TEST(Constraint, BadSetupsAreClearErrors) {
   thin.shell = 0.5;
   EXPECT_THROW(MeshConstraint(make_sphere(Vec3::Zero(), 5.0), thin, 1.0), InvalidInput);
   thin.shell = 2.0;
-  GrowthOptions filling;
+  DlaOptions filling;
   filling.spacing = 1.0;
   filling.fill = 0.5;
   filling.spawn = SpawnMode::inside;

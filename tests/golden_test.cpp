@@ -4,7 +4,7 @@
 // When a change is meant to, update the value in a commit of its own that says why.
 
 #include "dla/io/csv_writer.h"
-#include "dla/models/growth.h"
+#include "dla/models/dla.h"
 #include "dla/core/hash.h"
 #include "cli_util.h"
 #include "test_util.h"
@@ -19,7 +19,7 @@ namespace {
 
 TEST(Golden, TwoThousandParticlesFromSeedOne) {
   testing::ScratchDir dir;
-  GrowthOptions options;
+  DlaOptions options;
   options.particles = 2000;
   options.rng_seed = 1;
   write_csv(grow(options), dir / "golden.csv");

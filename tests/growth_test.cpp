@@ -2,7 +2,7 @@
 // walk, determinism, the fractal dimension, and that bad options are refused.
 
 #include "dla/core/analysis.h"
-#include "dla/models/growth.h"
+#include "dla/models/dla.h"
 #include "tree_check.h"
 
 #include <gtest/gtest.h>
@@ -23,7 +23,7 @@ namespace dla {
 namespace {
 
 // The counts asked for, and a tree (tree_check.h) whose particles are a spacing apart.
-void expect_valid_tree(const Cluster& c, const GrowthOptions& o) {
+void expect_valid_tree(const Cluster& c, const DlaOptions& o) {
   ASSERT_EQ(c.particles.size(), o.seeds.size() + o.particles);
   ASSERT_EQ(c.seed_count, o.seeds.size());
   EXPECT_EQ(testing::tree_fault(c), "");
@@ -35,25 +35,25 @@ double mean_z(const Cluster& c) {
   return sum / static_cast<double>(c.particles.size());
 }
 
-GrowthOptions small(std::size_t n = 3000) {
-  GrowthOptions o;
+DlaOptions small(std::size_t n = 3000) {
+  DlaOptions o;
   o.particles = n;
   return o;
 }
 
 TEST(Growth, TreeInvariantsDefault) {
-  const GrowthOptions o = small();
+  const DlaOptions o = small();
   expect_valid_tree(grow(o), o);
 }
 
 TEST(Growth, TreeInvariantsPlanar) {
-  GrowthOptions o = small();
+  DlaOptions o = small();
   o.dimensions = 2;
   expect_valid_tree(grow(o), o);
 }
 
 TEST(Growth, TreeInvariantsLowStickinessAndShortSteps) {
-  GrowthOptions o = small(2000);
+  DlaOptions o = small(2000);
   o.stickiness = 0.2;
   o.min_step = 0.2;
   o.spacing = 2.5;
@@ -64,14 +64,14 @@ TEST(Growth, TreeInvariantsLowStickinessAndShortSteps) {
 
 TEST(Growth, TreeInvariantsEveryIndex) {
   for (IndexKind kind : {IndexKind::kdtree, IndexKind::brute}) {
-    GrowthOptions o = small(800);
+    DlaOptions o = small(800);
     o.index = kind;
     expect_valid_tree(grow(o), o);
   }
 }
 
 TEST(Growth, DiskSpawnGrowsTowardsTheDisk) {
-  GrowthOptions o = small();
+  DlaOptions o = small();
   o.spawn = SpawnMode::disk;
   o.spawn_axis = Axis::z;
   const Cluster c = grow(o);
@@ -81,7 +81,7 @@ TEST(Growth, DiskSpawnGrowsTowardsTheDisk) {
 
 TEST(Growth, DriftBiasesGrowthAgainstIt) {
   // Walkers falling along -z land on the top of the structure, which grows up towards them.
-  GrowthOptions o = small();
+  DlaOptions o = small();
   o.drift = Vec3(0, 0, -0.5);
   const Cluster c = grow(o);
   expect_valid_tree(c, o);
@@ -89,7 +89,7 @@ TEST(Growth, DriftBiasesGrowthAgainstIt) {
 }
 
 TEST(Growth, BoxSpawn) {
-  GrowthOptions o = small(1500);
+  DlaOptions o = small(1500);
   o.spawn = SpawnMode::box;
   expect_valid_tree(grow(o), o);
   o.spawn_box = Box{Vec3(-20, -20, -20), Vec3(20, 20, 20)};
@@ -97,7 +97,7 @@ TEST(Growth, BoxSpawn) {
 }
 
 TEST(Growth, SeveralSeedsAllGrow) {
-  GrowthOptions o = small(3000);
+  DlaOptions o = small(3000);
   o.seeds = {Vec3(-30, 0, 0), Vec3(30, 0, 0), Vec3(0, 40, 0)};
   const Cluster c = grow(o);
   expect_valid_tree(c, o);
@@ -109,7 +109,7 @@ TEST(Growth, SeveralSeedsAllGrow) {
 }
 
 TEST(Growth, SameSeedSameStructureOtherSeedOther) {
-  GrowthOptions o = small(2000);
+  DlaOptions o = small(2000);
   o.rng_seed = 42;
   const Cluster a = grow(o), b = grow(o);
   ASSERT_EQ(a.particles.size(), b.particles.size());
@@ -123,7 +123,7 @@ TEST(Growth, SameSeedSameStructureOtherSeedOther) {
 }
 
 TEST(Growth, ProgressCanStopGrowth) {
-  GrowthOptions o = small(5000);
+  DlaOptions o = small(5000);
   std::size_t calls = 0;
   const Cluster c = grow(o, [&](const Cluster& so_far) {
     const std::size_t done = attached(so_far);
@@ -136,7 +136,7 @@ TEST(Growth, ProgressCanStopGrowth) {
 }
 
 TEST(Growth, ResumedGrowthIsTheUninterruptedOne) {
-  GrowthOptions o = small(3000);
+  DlaOptions o = small(3000);
   o.seeds = {Vec3(-6, 0, 0), Vec3(6, 0, 0)};
   const Cluster whole = grow(o);
   const Cluster part = grow(o, [](const Cluster& so_far) { return attached(so_far) < 1280; });
@@ -158,7 +158,7 @@ TEST(Growth, ResumedGrowthIsTheUninterruptedOne) {
 
 // Walkers on several threads commit in launch order and run again when a particle attached
 // meanwhile could have changed their path: every thread count gives the one-thread result.
-void expect_same_for_every_thread_count(GrowthOptions o) {
+void expect_same_for_every_thread_count(DlaOptions o) {
   o.threads = 1;
   const Cluster one = grow(o);
   std::uint64_t replays = 0;
@@ -185,13 +185,13 @@ void expect_same_for_every_thread_count(GrowthOptions o) {
 TEST(Threads, SameResultForEveryCount3D) { expect_same_for_every_thread_count(small(20000)); }
 
 TEST(Threads, SameResultForEveryCount2D) {
-  GrowthOptions o = small(8000);
+  DlaOptions o = small(8000);
   o.dimensions = 2;
   expect_same_for_every_thread_count(o);
 }
 
 TEST(Threads, SameResultWithDriftStickinessAndSeveralSeeds) {
-  GrowthOptions o = small(6000);
+  DlaOptions o = small(6000);
   o.drift = Vec3(0.0, 0.0, -0.3);
   o.stickiness = 0.4;
   o.seeds = {Vec3(-10, 0, 0), Vec3(10, 0, 0), Vec3(0, 12, 0)};
@@ -199,7 +199,7 @@ TEST(Threads, SameResultWithDriftStickinessAndSeveralSeeds) {
 }
 
 TEST(Threads, StoppedAndResumedGrowthIsTheOneThreadRun) {
-  GrowthOptions o = small(4000);
+  DlaOptions o = small(4000);
   const Cluster whole = grow(o);
   o.threads = 2;
   const Cluster part = grow(o, [](const Cluster& so_far) { return attached(so_far) < 1536; });
@@ -213,7 +213,7 @@ TEST(Threads, StoppedAndResumedGrowthIsTheOneThreadRun) {
 }
 
 TEST(Threads, ErrorsAreTheOneThreadErrors) {
-  GrowthOptions o = small(10);
+  DlaOptions o = small(10);
   o.spawn = SpawnMode::box;
   o.spawn_box = Box{Vec3(-0.5, -0.5, -0.5), Vec3(0.5, 0.5, 0.5)};
   o.threads = 2;
@@ -225,7 +225,7 @@ TEST(Growth, RotationTurnsTheDriftAndSoTheGrowth) {
   // particles, the drift sweeps half a turn over the first 1000 and the second half over the
   // next: growth leans to -y (the mean of -(cos t, sin t) over the half turn), then back
   // towards +y. Without rotation all of it leans to -x alone.
-  GrowthOptions o = small(2000);
+  DlaOptions o = small(2000);
   o.dimensions = 2;
   o.drift = Vec3(0.5, 0.0, 0.0);
   const auto lean = [](const Cluster& c, std::size_t from, std::size_t to) {
@@ -247,7 +247,7 @@ TEST(Growth, RotationTurnsTheDriftAndSoTheGrowth) {
 }
 
 TEST(Growth, FilledSpawnBoxIsAnErrorNotAHang) {
-  GrowthOptions o = small(10);
+  DlaOptions o = small(10);
   o.spawn = SpawnMode::box;
   o.spawn_box = Box{Vec3(-0.5, -0.5, -0.5), Vec3(0.5, 0.5, 0.5)};
   EXPECT_THROW(grow(o), GrowthError);
@@ -256,14 +256,14 @@ TEST(Growth, FilledSpawnBoxIsAnErrorNotAHang) {
 // Radius of gyration against n over the growth history: 3D off-lattice DLA has D close to 2.5
 // (Tolman & Meakin 1989: 2.495), 2D close to 1.71. The bands allow for one cluster's noise.
 TEST(Growth, FractalDimension3D) {
-  GrowthOptions o = small(20000);
+  DlaOptions o = small(20000);
   const FractalFit fit = fractal_dimension_by_gyration(grow(o), 200);
   EXPECT_GE(fit.dimension, 2.3);
   EXPECT_LE(fit.dimension, 2.7);
 }
 
 TEST(Growth, FractalDimension2D) {
-  GrowthOptions o = small(10000);
+  DlaOptions o = small(10000);
   o.dimensions = 2;
   const FractalFit fit = fractal_dimension_by_gyration(grow(o), 200);
   EXPECT_GE(fit.dimension, 1.55);
@@ -271,7 +271,7 @@ TEST(Growth, FractalDimension2D) {
 }
 
 TEST(Growth, NoTwoParticlesCloserThanTheSpacing) {
-  GrowthOptions o = small(20000);
+  DlaOptions o = small(20000);
   o.spacing = 0.7;
   const Cluster c = grow(o);
   // Every pair within two spacings, found through a hash of cells one spacing wide.
@@ -305,13 +305,13 @@ TEST(Growth, MassRadiusDimension3D) {
 // 10^5 each (the standard error of the mean is about 0.01 in 3D), about 40 s, so only in the
 // full tier (ctest -L full sets DLA_FULL_TESTS). The fit takes the last decade of the growth history: the local slope
 // of log R_g against log n still falls at n = 10^3 (on the same ten 3D clusters, 2.550 from
-// n = 10^3 and 2.513 from 10^4; docs/algorithm.md).
+// n = 10^3 and 2.513 from 10^4; docs/dla.md).
 void expect_ensemble_dimension(int dimensions, double expected, double tolerance) {
   if (!std::getenv("DLA_FULL_TESTS")) GTEST_SKIP() << "in the full tier: ctest -L full";
   double sum_gyration = 0.0, sum_mass = 0.0;
   constexpr int clusters = 20;
   for (int i = 0; i < clusters; ++i) {
-    GrowthOptions o = small(100000);
+    DlaOptions o = small(100000);
     o.dimensions = dimensions;
     o.rng_seed = 1000 + static_cast<std::uint64_t>(i);
     const Cluster c = grow(o);
@@ -334,7 +334,7 @@ TEST(Slow, EnsembleDimension2D) { expect_ensemble_dimension(2, 1.71, 0.02); }
 // the flag stops them before the first beat, on one thread and on two.
 TEST(Growth, AStopFlagEndsGrowthInsideAWalk) {
   for (const int threads : {1, 2}) {
-    GrowthOptions o;
+    DlaOptions o;
     o.particles = 100000;
     o.stickiness = 1e-4;
     o.threads = threads;
@@ -360,7 +360,7 @@ TEST(Growth, AStopFlagEndsGrowthInsideAWalk) {
 // Growth that cannot go on throws PartialGrowth with what grew before: here the spawn box
 // fills up after a few dozen particles.
 TEST(Growth, AFailurePartWayKeepsWhatGrew) {
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 1000;
   o.spawn = SpawnMode::box;
   o.spawn_box = Box{Vec3(-2, -2, -2), Vec3(2, 2, 2)};
@@ -379,7 +379,7 @@ TEST(Growth, AFailurePartWayKeepsWhatGrew) {
     }
   }
   // A drift that carries every walker away from the disk they start on: an error, not a hang.
-  GrowthOptions away;
+  DlaOptions away;
   away.particles = 10;
   away.spawn = SpawnMode::disk;
   away.spawn_axis = Axis::y;
@@ -389,7 +389,7 @@ TEST(Growth, AFailurePartWayKeepsWhatGrew) {
 
 TEST(Options, BadValuesAreRefusedWithAClearMessage) {
   const auto message = [](auto change) {
-    GrowthOptions o;
+    DlaOptions o;
     change(o);
     try {
       validate(o);
@@ -398,42 +398,42 @@ TEST(Options, BadValuesAreRefusedWithAClearMessage) {
     }
     return std::string("accepted");
   };
-  EXPECT_EQ(message([](GrowthOptions& o) { o.stickiness = 1.7; }), "stickiness 1.7 is not in [0.0001, 1]");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.stickiness = 0; }), "stickiness 0 is not in [0.0001, 1]");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = -1; }), "spacing -1 is not in [1e-25, 1e+25]");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = NAN; }), "spacing nan is not in [1e-25, 1e+25]");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.dimensions = 4; }), "dimensions 4 is not 2 or 3");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.seeds.clear(); }), "there is no seed");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.seeds.push_back(Vec3(0.5, 0, 0)); }),
+  EXPECT_EQ(message([](DlaOptions& o) { o.stickiness = 1.7; }), "stickiness 1.7 is not in [0.0001, 1]");
+  EXPECT_EQ(message([](DlaOptions& o) { o.stickiness = 0; }), "stickiness 0 is not in [0.0001, 1]");
+  EXPECT_EQ(message([](DlaOptions& o) { o.spacing = -1; }), "spacing -1 is not in [1e-25, 1e+25]");
+  EXPECT_EQ(message([](DlaOptions& o) { o.spacing = NAN; }), "spacing nan is not in [1e-25, 1e+25]");
+  EXPECT_EQ(message([](DlaOptions& o) { o.dimensions = 4; }), "dimensions 4 is not 2 or 3");
+  EXPECT_EQ(message([](DlaOptions& o) { o.seeds.clear(); }), "there is no seed");
+  EXPECT_EQ(message([](DlaOptions& o) { o.seeds.push_back(Vec3(0.5, 0, 0)); }),
             "seeds 1 and 2 are closer than the spacing 1");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.dimensions = 2, o.seeds = {Vec3(0, 0, 1)}; }),
+  EXPECT_EQ(message([](DlaOptions& o) { o.dimensions = 2, o.seeds = {Vec3(0, 0, 1)}; }),
             "seed 1 has z = 1 but growth in 2 dimensions is in the plane z = 0");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.drift = Vec3(0, 0, 1); }), "drift length 1 is not below 1");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.min_step = 2; }), "min step 2 is not in [0.01, 1]");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.spawn_box = Box{Vec3(1, 0, 0), Vec3(0, 1, 1)}; }),
+  EXPECT_EQ(message([](DlaOptions& o) { o.drift = Vec3(0, 0, 1); }), "drift length 1 is not below 1");
+  EXPECT_EQ(message([](DlaOptions& o) { o.min_step = 2; }), "min step 2 is not in [0.01, 1]");
+  EXPECT_EQ(message([](DlaOptions& o) { o.spawn_box = Box{Vec3(1, 0, 0), Vec3(0, 1, 1)}; }),
             "spawn box is empty: its min corner is not below its max corner");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.dimensions = 2, o.spawn = SpawnMode::disk; }),
+  EXPECT_EQ(message([](DlaOptions& o) { o.dimensions = 2, o.spawn = SpawnMode::disk; }),
             "the disk spawn axis must be x or y in 2 dimensions");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.threads = 0; }), "threads 0 is not in 1-256");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.dimensions = 2, o.rotate_degrees = 10, o.rotate_axis = Axis::y; }),
+  EXPECT_EQ(message([](DlaOptions& o) { o.threads = 0; }), "threads 0 is not in 1-256");
+  EXPECT_EQ(message([](DlaOptions& o) { o.dimensions = 2, o.rotate_degrees = 10, o.rotate_axis = Axis::y; }),
             "growth in 2 dimensions turns about z, not y");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.rotate_degrees = NAN; }),
+  EXPECT_EQ(message([](DlaOptions& o) { o.rotate_degrees = NAN; }),
             "rotation, in degrees per 1000 particles, nan is not in [-36000, 36000]");
   // Where the walk's arithmetic breaks down or a walker would practically never stick.
-  EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = 1e300; }), "spacing 1e+300 is not in [1e-25, 1e+25]");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.spacing = 1e-300; }), "spacing 1e-300 is not in [1e-25, 1e+25]");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.stickiness = 1e-9; }), "stickiness 1e-09 is not in [0.0001, 1]");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.min_step = 1e-300; }), "min step 1e-300 is not in [0.01, 1]");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.disk_radius = INFINITY; }), "disk radius inf is not in (0, 1000]");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.seeds = {Vec3(1e12, 0, 0)}; }),
+  EXPECT_EQ(message([](DlaOptions& o) { o.spacing = 1e300; }), "spacing 1e+300 is not in [1e-25, 1e+25]");
+  EXPECT_EQ(message([](DlaOptions& o) { o.spacing = 1e-300; }), "spacing 1e-300 is not in [1e-25, 1e+25]");
+  EXPECT_EQ(message([](DlaOptions& o) { o.stickiness = 1e-9; }), "stickiness 1e-09 is not in [0.0001, 1]");
+  EXPECT_EQ(message([](DlaOptions& o) { o.min_step = 1e-300; }), "min step 1e-300 is not in [0.01, 1]");
+  EXPECT_EQ(message([](DlaOptions& o) { o.disk_radius = INFINITY; }), "disk radius inf is not in (0, 1000]");
+  EXPECT_EQ(message([](DlaOptions& o) { o.seeds = {Vec3(1e12, 0, 0)}; }),
             "seed 1 lies more than 1e+09 spacings from the origin, beyond what double precision resolves");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.seeds = {Vec3(0, NAN, 0)}; }), "seed 1 is not finite");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.spawn = SpawnMode::box, o.spawn_box = Box{Vec3(0, 0, 0), Vec3(1e10, 1, 1)}; }),
+  EXPECT_EQ(message([](DlaOptions& o) { o.seeds = {Vec3(0, NAN, 0)}; }), "seed 1 is not finite");
+  EXPECT_EQ(message([](DlaOptions& o) { o.spawn = SpawnMode::box, o.spawn_box = Box{Vec3(0, 0, 0), Vec3(1e10, 1, 1)}; }),
             "spawn box's max corner lies more than 1e+09 spacings from the origin, beyond what double precision "
             "resolves");
-  EXPECT_EQ(message([](GrowthOptions& o) { o.threads = 2, o.index = IndexKind::kdtree; }),
+  EXPECT_EQ(message([](DlaOptions& o) { o.threads = 2, o.index = IndexKind::kdtree; }),
             "threads above 1 need the grid index, not kdtree");
-  EXPECT_EQ(message([](GrowthOptions&) {}), "accepted");
+  EXPECT_EQ(message([](DlaOptions&) {}), "accepted");
   EXPECT_THROW(parse_spawn_mode("cube"), InvalidInput);
   EXPECT_EQ(parse_spawn_mode("disk"), SpawnMode::disk);
   EXPECT_EQ(parse_index_kind(to_string(IndexKind::kdtree)), IndexKind::kdtree);

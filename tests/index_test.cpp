@@ -158,7 +158,7 @@ TEST(GridIndex, FarBoundsAreTight) {
 }
 
 TEST(GridIndex, AParticleOutsideAProbesReachChangesNothing) {
-  // What lets walkers run ahead on other threads (growth.h): a probe's answer stays the same
+  // What lets walkers run ahead on other threads (dla.h): a probe's answer stays the same
   // when a particle is inserted outside its reach box, and outside its opening box unless it
   // opens a cell; a particle inside them may change it.
   for (int dimensions : {3, 2}) {

@@ -5,7 +5,7 @@
 #include "dla/mesh/constraint.h"
 #include "dla/io/csv_reader.h"
 #include "dla/io/csv_writer.h"
-#include "dla/models/growth.h"
+#include "dla/models/dla.h"
 #include "dla/look/instances.h"
 #include "dla/look/look.h"
 #include "dla/io/mesh_writers.h"
@@ -34,7 +34,7 @@ using testing::ScratchDir;
 using testing::read_file;
 
 Cluster grown(std::size_t particles, int dimensions = 3, std::vector<Vec3> seeds = {Vec3::Zero()}) {
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = particles;
   o.dimensions = dimensions;
   o.seeds = std::move(seeds);
@@ -47,7 +47,7 @@ struct GrownInBall {
   Cluster cluster;
   GrownInBall(double radius, std::size_t particles)
       : ball(make_sphere(Vec3::Zero(), radius, 12, 24), {}, 1.0), cluster([&] {
-          GrowthOptions o;
+          DlaOptions o;
           o.particles = particles;
           o.spawn = SpawnMode::inside;
           return grow(o, ball);

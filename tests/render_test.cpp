@@ -4,7 +4,7 @@
 #include "dla/models/ballistic.h"
 #include "dla/models/drop.h"
 #include "dla/models/eden.h"
-#include "dla/models/growth.h"
+#include "dla/models/dla.h"
 #include "dla/io/pov_writer.h"
 #include "dla/mesh/constraint.h"
 #include "dla/mesh/text.h"
@@ -115,7 +115,7 @@ std::function<void(std::string&)> set(const std::string& name, const std::string
 // (the base radius everywhere) covers more than the taper.
 TEST(Render, EveryRadiusModelIsASwitchInTheScene) {
   const MeshConstraint ball(make_sphere(Vec3::Zero(), 16.0, 12, 24), {}, 1.0);
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 2000;
   o.spawn = SpawnMode::inside;
   const Cluster c = grow(o, ball);
@@ -136,7 +136,7 @@ TEST(Render, EveryRadiusModelIsASwitchInTheScene) {
 // The blob look (metaballs) renders in frame, and so does DLA_Tip at every tip, a leaf of a
 // user's own here: the tips cover more of the picture than the branches alone.
 TEST(Render, BlobLookAndTipsRender) {
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 1200;
   const Cluster c = grow(o);
   PovOptions blob;
@@ -178,7 +178,7 @@ TEST(Render, BlobLookAndTipsRender) {
 
 TEST(Render, PovRayShowsTheStructure3D) {
   ScratchDir dir;
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 1500;
   expect_framed_render(grow(o), dir);
 }
@@ -188,7 +188,7 @@ TEST(Render, PovRayShowsTheStructure3D) {
 // under the taper and the pipe model). Just short of 1 the scene is built from
 // PREFIX_growth.inc by the scene's own code, and shows what PREFIX.inc does, up to rounding.
 TEST(Render, GrowthFramesShowTheStructureAsItGrew) {
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 2000;
   const Cluster c = grow(o);
   const auto count = [](const std::vector<bool>& pixels) { return std::count(pixels.begin(), pixels.end(), true); };
@@ -219,7 +219,7 @@ TEST(Render, GrowthFramesShowTheStructureAsItGrew) {
 // An animation follows the clock: three frames, each with more structure than the one before;
 // every radius model, the blob look and the tips of the moment render part way.
 TEST(Render, AnAnimationRendersGrowth) {
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 1500;
   const Cluster c = grow(o);
   {
@@ -254,7 +254,7 @@ TEST(Render, AnAnimationRendersGrowth) {
 TEST(Render, PovRayShowsTheStructureInTheBust) {
   DLA_NEED_BUST(path);
   const MeshConstraint constraint(read_mesh(path), {}, 0.3);
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 3000;
   o.spacing = 0.3;
   o.spawn = SpawnMode::inside;
@@ -274,7 +274,7 @@ TEST(Render, PovRayShowsGrowthFromPaintAndFromARodEntering) {
   const std::vector<std::vector<Vec3>> starts = {constraint.sample_surface(1, &red),
                                                  constraint.sample_intersection({make_open_can(Vec3(0, 0, 5), 2.0, 10.0)}, 1)};
   for (const std::vector<Vec3>& seeds : starts) {
-    GrowthOptions o;
+    DlaOptions o;
     o.particles = 3000;
     o.spacing = 0.4;
     o.spawn = SpawnMode::surface;
@@ -289,7 +289,7 @@ TEST(Render, PovRayShowsGrowthInText) {
   words.text = "DLA";
   const TextMesh text = text_mesh(words);
   const MeshConstraint constraint(text.mesh, {}, 1.0);
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 6000;
   o.spawn = SpawnMode::surface;
   o.seeds = text.glyph_seeds;
@@ -305,7 +305,7 @@ TEST(Render, PovRayShowsGrowthOverASurface) {
   frost.side = Side::outside;
   frost.shell = 3.0;
   const MeshConstraint constraint(make_sphere(Vec3::Zero(), 10.0), frost, 0.4);
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 4000;
   o.spacing = 0.4;
   o.spawn = SpawnMode::inside;
@@ -316,7 +316,7 @@ TEST(Render, PovRayShowsGrowthOverASurface) {
 
 // Bourke's rotation, growth until a ball is filled, and the ball's whole surface as the start.
 TEST(Render, PovRayShowsRotationFillAndSurfaceSeeds) {
-  GrowthOptions turning;
+  DlaOptions turning;
   turning.particles = 2000;
   turning.spawn = SpawnMode::disk;
   turning.spawn_axis = Axis::x;
@@ -326,7 +326,7 @@ TEST(Render, PovRayShowsRotationFillAndSurfaceSeeds) {
   expect_framed_render(grow(turning), spiral);
 
   const MeshConstraint ball(make_sphere(Vec3::Zero(), 10.0), {}, 0.5);
-  GrowthOptions filling;
+  DlaOptions filling;
   filling.particles = 100000;
   filling.spacing = 0.5;
   filling.spawn = SpawnMode::inside;
@@ -340,7 +340,7 @@ TEST(Render, PovRayShowsRotationFillAndSurfaceSeeds) {
   ConstraintOptions around;
   around.side = Side::outside;
   const MeshConstraint skin(make_sphere(Vec3::Zero(), 10.0), around, 0.5);
-  GrowthOptions furry;
+  DlaOptions furry;
   furry.particles = 3000;
   furry.spacing = 0.5;
   furry.seeds = skin.sample_surface(1);
@@ -363,7 +363,7 @@ TEST(Render, PovRayShowsStructuresAtUnusualScales) {
   for (const auto& c : cases) {
     SCOPED_TRACE("spacing " + std::to_string(c.spacing));
     ScratchDir dir;
-    GrowthOptions o;
+    DlaOptions o;
     o.particles = 1500;
     o.spacing = c.spacing;
     o.seeds = {c.seed * c.spacing};
@@ -374,7 +374,7 @@ TEST(Render, PovRayShowsStructuresAtUnusualScales) {
 
 TEST(Render, PovRayShowsTheStructurePlanar) {
   ScratchDir dir;
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 1500;
   o.dimensions = 2;
   o.seeds = {Vec3(10, -5, 0)};

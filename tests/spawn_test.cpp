@@ -11,7 +11,7 @@ namespace dla {
 namespace {
 
 TEST(Spawn, SphereIsUniformOnTheLaunchSphere) {
-  GrowthOptions o;
+  DlaOptions o;
   const Vec3 center(5, -2, 1);
   Rng rng(1);
   std::array<int, 8> octants{};
@@ -27,7 +27,7 @@ TEST(Spawn, SphereIsUniformOnTheLaunchSphere) {
 }
 
 TEST(Spawn, DiskIsUniformInASmallDiskOnTheAxis) {
-  GrowthOptions o;
+  DlaOptions o;
   o.spawn = SpawnMode::disk;
   o.spawn_axis = Axis::y;
   o.disk_radius = 0.2;
@@ -45,7 +45,7 @@ TEST(Spawn, DiskIsUniformInASmallDiskOnTheAxis) {
 }
 
 TEST(Spawn, PlanarDiskIsASegmentInThePlane) {
-  GrowthOptions o;
+  DlaOptions o;
   o.dimensions = 2;
   o.spawn = SpawnMode::disk;
   o.spawn_axis = Axis::x;
@@ -59,7 +59,7 @@ TEST(Spawn, PlanarDiskIsASegmentInThePlane) {
 }
 
 TEST(Spawn, BoxIsUniformInTheBox) {
-  GrowthOptions o;
+  DlaOptions o;
   o.spawn = SpawnMode::box;
   o.spawn_box = Box{Vec3(-1, 2, 3), Vec3(5, 4, 13)};
   Rng rng(4);
@@ -81,7 +81,7 @@ TEST(Spawn, BoxIsUniformInTheBox) {
 }
 
 TEST(Spawn, DefaultBoxIsTheCubeAroundTheLaunchSphere) {
-  GrowthOptions o;
+  DlaOptions o;
   o.spawn = SpawnMode::box;
   Rng rng(5);
   for (int i = 0; i < 1000; ++i) {

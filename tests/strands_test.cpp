@@ -1,6 +1,6 @@
 // Strands cover every branch exactly once and run from a start to a tip.
 
-#include "dla/models/growth.h"
+#include "dla/models/dla.h"
 #include "dla/look/strands.h"
 
 #include <gtest/gtest.h>
@@ -12,7 +12,7 @@ namespace dla {
 namespace {
 
 TEST(Strands, CoverEveryBranchOnceFromStartToTip) {
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 3000;
   o.seeds = {Vec3(-20, 0, 0), Vec3(20, 0, 0)};
   const Cluster c = grow(o);
@@ -44,7 +44,7 @@ TEST(Strands, CoverEveryBranchOnceFromStartToTip) {
 
 // What the POV-Ray writer relies on to format ranges on several threads.
 TEST(Strands, RangesOfTipsGiveTheWholeSequenceInOrder) {
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 2000;
   const Cluster c = grow(o);
   const std::vector<bool> tips = tip_flags(c);

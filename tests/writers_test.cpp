@@ -2,7 +2,7 @@
 // bytes, and a file that cannot be written fails cleanly with nothing left behind.
 
 #include "dla/io/csv_writer.h"
-#include "dla/models/growth.h"
+#include "dla/models/dla.h"
 #include "dla/io/ply_writer.h"
 #include "dla/io/png_writer.h"
 #include "dla/io/pov_writer.h"
@@ -26,7 +26,7 @@ using testing::ScratchDir;
 using testing::read_file;
 
 Cluster small_cluster(std::uint64_t seed = 1) {
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 1500;
   o.rng_seed = seed;
   return grow(o);
@@ -36,7 +36,7 @@ void write_all(const Cluster& c, const std::string& prefix) {
   write_csv(c, prefix + ".csv");
   write_ply(c, prefix + ".ply");
   write_pov(c, prefix);
-  write_run_report(c, GrowthOptions{}, LookOptions{}, PovOptions{}, RunRecord{}, prefix + ".json");
+  write_run_report(c, DlaOptions{}, LookOptions{}, PovOptions{}, RunRecord{}, prefix + ".json");
 }
 
 TEST(Csv, ReadsBackExactly) {
@@ -185,7 +185,7 @@ TEST(Writers, UnwritablePathFailsCleanly) {
 
 TEST(RunReport, RecordsOptionsSeedAndCounts) {
   ScratchDir dir;
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 500;
   o.rng_seed = 99;
   o.stickiness = 0.5;
@@ -202,7 +202,7 @@ using testing::Picture;
 using testing::read_png;
 
 TEST(Png, EveryParticleIsADotInItsBandOnTheBackground) {
-  GrowthOptions o;
+  DlaOptions o;
   o.particles = 800;
   o.dimensions = 2;
   o.spacing = 0.5;

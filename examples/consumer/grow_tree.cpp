@@ -2,7 +2,7 @@
 // Usage: grow_tree PREFIX
 
 #include <dla/io/csv_writer.h>
-#include <dla/models/growth.h>
+#include <dla/models/dla.h>
 #include <dla/io/pov_writer.h>
 
 #include <cstdio>
@@ -12,7 +12,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: grow_tree PREFIX\n");
     return 2;
   }
-  dla::GrowthOptions options;
+  dla::DlaOptions options;
   options.particles = 5000;
   options.seeds = {{-15, 0, 0}, {15, 0, 0}};
   options.rng_seed = 7;

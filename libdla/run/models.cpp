@@ -74,8 +74,8 @@ Vec3 lowest_point(const ColonizeRunOptions& c, const std::vector<Vec3>& attracto
 }
 
 //! The walk's options as a run without a mesh grows them.
-GrowthOptions resolved_without_mesh(const DlaRunOptions& o) {
-  GrowthOptions g = o.growth;
+DlaOptions resolved_without_mesh(const DlaRunOptions& o) {
+  DlaOptions g = o.growth;
   if (o.particles) g.particles = *o.particles;
   if (o.spacing) g.spacing = *o.spacing;
   if (o.spawn) g.spawn = *o.spawn;
@@ -146,7 +146,7 @@ void validate(const DlaRunOptions& o) {
   validate_mesh_seeds(o.seeds, mesh, "seed_at");
   if (!mesh) {
     if (o.constraint.shell != 0.0) throw InvalidInput("`shell` keeps growth near a mesh's surface: give one with `stl`");
-    const GrowthOptions growth = resolved_without_mesh(o);
+    const DlaOptions growth = resolved_without_mesh(o);
     validate(growth);
     if (spawns_from_mesh(growth.spawn))
       throw InvalidInput("spawn " + std::string(to_string(growth.spawn)) + " needs a mesh (`stl`)");

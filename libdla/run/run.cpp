@@ -211,7 +211,7 @@ class DlaRun : public Run {
     mesh_line = dla::mesh_line(mesh_name_, *constraint_, options_.spacing);
   }
 
-  GrowthOptions options_;
+  DlaOptions options_;
   const Cluster* resumed_;
   std::string mesh_name_;
   std::unique_ptr<MeshConstraint> constraint_;

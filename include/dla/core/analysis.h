@@ -63,7 +63,7 @@ inline double slope(const std::vector<double>& x, const std::vector<double>& y) 
 
 //! The fit runs from n_min particles to all; n_min = 0 takes the last decade (but from at least
 //! 100), where the corrections to scaling of small clusters have faded: on ten 3D clusters of
-//! 10^5, the fit from 10^3 reads 2.550 and from 10^4 2.513 (docs/algorithm.md).
+//! 10^5, the fit from 10^3 reads 2.550 and from 10^4 2.513 (docs/dla.md).
 inline FractalFit fractal_dimension_by_gyration(const Cluster& cluster, std::size_t n_min = 0) {
   if (n_min == 0) n_min = std::max<std::size_t>(100, cluster.particles.size() / 10);
   const std::vector<GyrationSample> history = gyration_history(cluster, n_min);

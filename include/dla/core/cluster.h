@@ -20,7 +20,7 @@ namespace dla {
 struct Particle {
   Vec3 position;
   std::int32_t parent;  //!< index of the particle it attached to (always earlier); -1 for a seed
-  std::int32_t seed;    //!< which seed's tree it belongs to, 0-based in GrowthOptions::seeds
+  std::int32_t seed;    //!< which seed's tree it belongs to, 0-based in DlaOptions::seeds
 };
 
 //! Counters of the walk, for the JSON sidecar and for tuning.
@@ -47,7 +47,7 @@ struct Cluster {
   WalkStats stats;
   std::uint64_t replays = 0;        //!< walkers run again because a particle attached by an
                                     //!< earlier walker on another thread changed their path
-  double filled = 0.0;              //!< growing to fill a mesh (GrowthOptions::fill): the
+  double filled = 0.0;              //!< growing to fill a mesh (DlaOptions::fill): the
                                     //!< fraction of its volume covered so far; else 0
 };
 

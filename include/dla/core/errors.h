@@ -5,6 +5,7 @@
 //! writes those names as a front end's user typed them: dla3d's --seed-paint, Python's
 //! seed_paint=.
 
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -29,6 +30,23 @@ class IOError : public std::runtime_error {
 class GrowthError : public std::runtime_error {
  public:
   explicit GrowthError(const std::string& what) : std::runtime_error(what) {}
+};
+
+struct Cluster;
+
+//! Growth that failed part way, in any model (a walker that cannot stick, a structure beyond
+//! the index's reach, memory run out), with what had grown before the failure, marked
+//! incomplete: it can still be written out.
+class PartialGrowth : public GrowthError {
+ public:
+  //! `partial` is the Cluster grown so far (cluster.h).
+  template <class Grown>
+  PartialGrowth(const std::string& what, Grown partial)
+      : GrowthError(what), partial_(std::make_shared<const Grown>(std::move(partial))) {}
+  const Cluster& partial() const { return *partial_; }
+
+ private:
+  std::shared_ptr<const Cluster> partial_;  // shared: exceptions are copied
 };
 
 //! How a front end spells an option.

@@ -31,7 +31,7 @@ enum class SpawnMode {
 //! A coordinate axis, for the disk spawn.
 enum class Axis { x, y, z };
 
-//! The nearest-particle look-up behind the walk (`--index grid|kdtree|brute`); see docs/index.md.
+//! The nearest-particle look-up behind the walk (`--index grid|kdtree|brute`); see docs/spatial-index.md.
 enum class IndexKind {
   grid,    //!< cell grid with a pyramid of occupancy bits: the fastest, the default
   kdtree,  //!< nanoflann's dynamic k-d tree
@@ -45,7 +45,7 @@ struct Box {
 };
 
 //! Options of one growth run. Lengths are in scene units; the spacing sets the scale.
-struct GrowthOptions {
+struct DlaOptions {
   std::size_t particles = 10000;     //!< particles to attach, seeds not counted
   double spacing = 1.0;              //!< distance between a particle and its parent, and the
                                      //!< contact distance: no two particles come closer;
@@ -108,7 +108,7 @@ Axis parse_axis(std::string_view word);
 IndexKind parse_index_kind(std::string_view word);
 
 //! Throws InvalidInput with a one-line message at the first option that cannot work.
-void validate(const GrowthOptions& options);
+void validate(const DlaOptions& options);
 
 // ---------------------------------------------------------------------------------------------
 
@@ -224,7 +224,7 @@ inline IndexKind parse_index_kind(std::string_view word) {
   return detail::parse_word(word, values, "index");
 }
 
-inline void validate(const GrowthOptions& o) {
+inline void validate(const DlaOptions& o) {
   using detail::format_number;
   // Parents are stored as 32-bit indices.
   if (o.particles + o.seeds.size() > 2'000'000'000u)

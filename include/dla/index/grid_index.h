@@ -12,7 +12,7 @@
 //! reach the eight nodes about the point, and beyond theirs one bit per pyramid level, and
 //! returns a lower bound on the distance: the walk only needs a ball free of particles.
 //! nearest() finds the exact nearest particle however far the point (random drops), bound()
-//! the probe's bound without reading a particle (straight lines). See docs/index.md for the
+//! the probe's bound without reading a particle (straight lines). See docs/spatial-index.md for the
 //! layout and the measurements that chose it.
 
 #include "dla/core/errors.h"
@@ -56,7 +56,7 @@ class GridIndex {
   }
 
   //! Whether inserting a particle within `radius` of `center`, or covering that ball, leaves the
-  //! domain as it is. Only a change of domain moves what probes on other threads read: growth.h
+  //! domain as it is. Only a change of domain moves what probes on other threads read: dla.h
   //! stops them first.
   bool holds(const Vec3& center, double radius) const { return cells_ > 0 && inside(center, radius); }
 
@@ -293,7 +293,7 @@ class GridIndex {
   using Cell = std::array<int, 3>;
 
   // What probes read may be written meanwhile by the one thread that inserts (see
-  // growth.h): word-sized atomic loads and stores, which cost nothing more than plain ones.
+  // dla.h): word-sized atomic loads and stores, which cost nothing more than plain ones.
   template <class T>
   static T load(const T& v) { return __atomic_load_n(&v, __ATOMIC_RELAXED); }
   template <class T>
@@ -783,7 +783,7 @@ class GridIndex {
   }
 
   const std::vector<Particle>& particles_;
-  double cell_;  // cell edge: four spacings (with the gap map, faster than five; docs/index.md)
+  double cell_;  // cell edge: four spacings (with the gap map, faster than five; docs/spatial-index.md)
   bool planar_;
   bool distance_maps_;  // whether the gap and node maps are kept
   // Cells a side at most: 3D DLA reaches ~1,900 spacings (480 cells) at 10^8 particles, 2D

@@ -1,7 +1,7 @@
 #pragma once
 //! \file kdtree_index.h
 //! A dynamic k-d tree (nanoflann's logarithmic forest of static trees) behind the index
-//! interface of spatial_index.h. Exact at every query; slower than GridIndex (see docs/index.md).
+//! interface of spatial_index.h. Exact at every query; slower than GridIndex (see docs/spatial-index.md).
 
 #include "dla/index/spatial_index.h"
 

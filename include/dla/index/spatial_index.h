@@ -18,7 +18,7 @@
 //!   bool holds(const Vec3& center, double radius) const;
 //!                                                  // whether inserting or covering within the
 //!                                                  // ball keeps the index's layout: probes on
-//!                                                  // other threads may run meanwhile (growth.h;
+//!                                                  // other threads may run meanwhile (dla.h;
 //!                                                  // only GridIndex is used so)
 //!   template <class Visit> void for_each_within(const Vec3& x, double radius, Visit&& visit) const;
 //!                                                  // visit(id, squared distance) for every
@@ -50,7 +50,7 @@ struct Probe {
                                                               //!< else a lower bound
   //! No particle inserted outside this box would change the answer, except one that opens a
   //! cell (insert() returns true) in the `opening` box: what a walker running ahead of others
-  //! must check (growth.h). Unbounded unless the index says otherwise.
+  //! must check (dla.h). Unbounded unless the index says otherwise.
   Vec3 reach_min = Vec3::Constant(-std::numeric_limits<double>::infinity());
   Vec3 reach_max = Vec3::Constant(std::numeric_limits<double>::infinity());
   //! Where only a particle that opens a cell would change the answer: coarse bounds that read
@@ -73,7 +73,7 @@ inline bool in_box(const Vec3& p, const Vec3& min, const Vec3& max) {
 }
 
 //! Whether a probe must bound its reach. Only a walker running ahead of others reads it
-//! (growth.h); on one thread the grid saves the few percent its boxes cost.
+//! (dla.h); on one thread the grid saves the few percent its boxes cost.
 enum class Reach { skip, set };
 
 //! Checks every particle: exact, O(n) per query. The reference the fast indexes are tested

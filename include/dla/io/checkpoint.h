@@ -1,6 +1,6 @@
 #pragma once
 //! \file checkpoint.h
-//! A growth run saved part way, to be grown on later with resume() (growth.h): the structure
+//! A growth run saved part way, to be grown on later with resume() (dla.h): the structure
 //! so far, its walk statistics, and what made it. See docs/formats.md.
 
 #include "dla/core/cluster.h"

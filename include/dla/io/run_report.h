@@ -27,7 +27,7 @@ struct RunRecord {
 
 //! Throws IOError if the file cannot be written. Everything but the timings is the same for the
 //! same options and seed. With a `constraint`, records it and the file it came from.
-void write_run_report(const Cluster& cluster, const GrowthOptions& options, const LookOptions& look,
+void write_run_report(const Cluster& cluster, const DlaOptions& options, const LookOptions& look,
                       const PovOptions& pov, const RunRecord& record, const std::string& path,
                       const MeshConstraint* constraint = nullptr, const std::string& mesh_file = "");
 

@@ -21,7 +21,6 @@
 #include "dla/core/cluster.h"
 #include "dla/mesh/constraint.h"
 #include "dla/core/errors.h"
-#include "dla/models/growth.h"
 #include "dla/core/options.h"
 #include "dla/core/random.h"
 #include "dla/index/attractor_tree.h"

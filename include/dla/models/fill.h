@@ -2,7 +2,7 @@
 //! \file fill.h
 //! How much of a mesh's growing side the structure covers: the fraction of the enclosed volume
 //! within a distance of some particle, kept on a voxel grid as particles attach (never by a
-//! rescan). Growth with GrowthOptions::fill stops when it reaches the asked fraction: the
+//! rescan). Growth with DlaOptions::fill stops when it reaches the asked fraction: the
 //! Houdini thesis' "until the object is covered".
 
 #include "dla/core/options.h"
@@ -24,7 +24,7 @@ class FillGauge {
   //! Classifies the centre of every voxel of the mesh's box, half the distance wide (or as
   //! wide as the inside grid's cells, or wider to stay within kMaxVoxels), as enclosed by the
   //! mesh or not: the volume growth inside it
-  //! fills (GrowthOptions::fill needs `--side inside`).
+  //! fills (DlaOptions::fill needs `--side inside`).
   FillGauge(const MeshConstraint& constraint, double distance) : distance_(distance) {
     const Box& box = constraint.box();
     const Vec3 size = box.max - box.min;

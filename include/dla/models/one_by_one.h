@@ -2,12 +2,11 @@
 //! \file one_by_one.h
 //! What random drops (drop.h) and ballistic lines (ballistic.h) share: a structure grown from
 //! seeds one particle at a time into an index, with the progress calls, the stop flag and the
-//! partial result on failure that DLA has (growth.h).
+//! partial result on failure that DLA has (dla.h).
 
 #include "dla/core/cluster.h"
 #include "dla/core/errors.h"
 #include "dla/index/grid_index.h"
-#include "dla/models/growth.h"
 
 #include <algorithm>
 #include <cstdint>

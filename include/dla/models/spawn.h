@@ -1,6 +1,6 @@
 #pragma once
 //! \file spawn.h
-//! Where walkers start: the spawn distributions of GrowthOptions::spawn that need no mesh.
+//! Where walkers start: the spawn distributions of DlaOptions::spawn that need no mesh.
 
 #include "dla/core/options.h"
 #include "dla/core/random.h"
@@ -12,7 +12,7 @@ namespace dla {
 //! A start drawn from the spawn distribution, for a structure centred at `center` whose
 //! walkers launch at `launch_radius` (just outside the structure). A box start may fall inside
 //! the structure; the caller checks it is clear.
-inline Vec3 draw_spawn(const GrowthOptions& o, const Vec3& center, double launch_radius, Rng& rng) {
+inline Vec3 draw_spawn(const DlaOptions& o, const Vec3& center, double launch_radius, Rng& rng) {
   const double R = launch_radius;
   switch (o.spawn) {
     case SpawnMode::sphere:

@@ -13,7 +13,7 @@
 #include "dla/models/colonization.h"
 #include "dla/models/drop.h"
 #include "dla/models/eden.h"
-#include "dla/models/growth.h"
+#include "dla/models/dla.h"
 #include "dla/run/output.h"
 
 #include <cstddef>
@@ -48,7 +48,7 @@ struct MeshSeeds {
 struct DlaRunOptions {
   //! The walk. Its `particles`, `spacing`, `spawn` and `seeds` are the defaults without a
   //! mesh; the optionals below replace them.
-  GrowthOptions growth;
+  DlaOptions growth;
   std::optional<std::size_t> particles;      //!< default 10,000; with a mesh 30,000; filling 1e7
   std::optional<double> spacing;             //!< with a mesh: its longest side / 100 (text: size / 100)
   std::optional<SpawnMode> spawn;            //!< with a mesh: surface inside, else sphere (docs/dla.md)

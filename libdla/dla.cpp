@@ -1,7 +1,7 @@
 // The non-template entry points: validate the options and run the engine with the chosen
 // index, so programs that call grow() compile the engine once, here.
 
-#include "dla/models/growth.h"
+#include "dla/models/dla.h"
 
 #include "dla/index/grid_index.h"
 #include "dla/index/kdtree_index.h"
@@ -11,7 +11,7 @@ namespace dla {
 
 namespace {
 
-Cluster grow_any(const GrowthOptions& options, const ProgressFn& progress, const MeshConstraint* constraint,
+Cluster grow_any(const DlaOptions& options, const ProgressFn& progress, const MeshConstraint* constraint,
                  const Cluster* partial, const StopFlag* stop) {
   switch (options.index) {
     case IndexKind::grid: return grow_with<GridIndex>(options, progress, constraint, partial, stop);
@@ -23,7 +23,7 @@ Cluster grow_any(const GrowthOptions& options, const ProgressFn& progress, const
 
 //! Whether `partial` can be a structure these options grew and stopped: its seeds, scale and
 //! tree are those the options give.
-void validate_partial(const GrowthOptions& options, const Cluster& partial) {
+void validate_partial(const DlaOptions& options, const Cluster& partial) {
   if (partial.seed_count != options.seeds.size() || partial.particles.size() < partial.seed_count)
     throw InvalidInput("the saved structure has " + std::to_string(partial.seed_count) + " seeds, the options " +
                        std::to_string(options.seeds.size()));
@@ -49,7 +49,7 @@ std::string point(const Vec3& p) {
 }
 
 //! What needs a mesh and has none.
-void require_no_mesh_options(const GrowthOptions& options) {
+void require_no_mesh_options(const DlaOptions& options) {
   if (spawns_from_mesh(options.spawn))
     throw InvalidInput("spawn " + std::string(to_string(options.spawn)) + " needs a constraint mesh");
   if (options.fill != 0.0) throw InvalidInput("`fill` fills a mesh's volume: give one with `stl`");
@@ -57,13 +57,13 @@ void require_no_mesh_options(const GrowthOptions& options) {
 
 }  // namespace
 
-Cluster grow(const GrowthOptions& options, const ProgressFn& progress, const StopFlag* stop) {
+Cluster grow(const DlaOptions& options, const ProgressFn& progress, const StopFlag* stop) {
   validate(options);
   require_no_mesh_options(options);
   return grow_any(options, progress, nullptr, nullptr, stop);
 }
 
-Cluster resume(const GrowthOptions& options, const Cluster& partial, const ProgressFn& progress,
+Cluster resume(const DlaOptions& options, const Cluster& partial, const ProgressFn& progress,
                const StopFlag* stop) {
   validate(options);
   require_no_mesh_options(options);
@@ -71,14 +71,14 @@ Cluster resume(const GrowthOptions& options, const Cluster& partial, const Progr
   return grow_any(options, progress, nullptr, &partial, stop);
 }
 
-Cluster resume(const GrowthOptions& options, const MeshConstraint& constraint, const Cluster& partial,
+Cluster resume(const DlaOptions& options, const MeshConstraint& constraint, const Cluster& partial,
                const ProgressFn& progress, const StopFlag* stop) {
   validate(options, constraint);
   validate_partial(options, partial);
   return grow_any(options, progress, &constraint, &partial, stop);
 }
 
-void validate(const GrowthOptions& options, const MeshConstraint& constraint) {
+void validate(const DlaOptions& options, const MeshConstraint& constraint) {
   validate(options);
   const Side side = constraint.options().side;
   if (options.dimensions != 3) throw InvalidInput("a constraint mesh needs growth in 3 dimensions");
@@ -111,7 +111,7 @@ void validate(const GrowthOptions& options, const MeshConstraint& constraint) {
                                       std::string(to_string(side)) + " it"));
 }
 
-Cluster grow(const GrowthOptions& options, const MeshConstraint& constraint, const ProgressFn& progress,
+Cluster grow(const DlaOptions& options, const MeshConstraint& constraint, const ProgressFn& progress,
              const StopFlag* stop) {
   validate(options, constraint);
   return grow_any(options, progress, &constraint, nullptr, stop);
