@@ -170,6 +170,26 @@ def test_a_mesh_as_arrays_grows_as_the_same_mesh_from_a_file(sphere_mesh, tmp_pa
         dla3d.grow(stl=(vertices[:99], faces))
 
 
+# drop and colonize take DLA's mesh controls as keywords: seeds (colonize: roots) on the mesh,
+# and DLA's fill and shell refused with why.
+def test_drop_and_colonize_take_the_mesh_controls(sphere_mesh):
+    for model, options in [(dla3d.drop, {"particles": 100}),
+                           (dla3d.colonize, {"attractors_in": "mesh", "attractors": 400, "max_nodes": 50000})]:
+        three = model(stl=sphere_mesh, spacing=0.5, seeds=3, **options)
+        assert three.seed_count == 3
+        surface = model(stl=sphere_mesh, spacing=0.5, seed_surface=True, **options)
+        assert surface.seed_count > 100
+        radii = np.linalg.norm(surface.positions[:surface.seed_count], axis=1)
+        assert (radii < 10).all() and (radii > 9).all()  # half a spacing inside the surface
+        expect_tree(three)
+    with pytest.raises(ValueError, match="^fill grows DLA until a mesh is full; drop grows to its count, particles$"):
+        dla3d.drop(fill=0.5)
+    with pytest.raises(ValueError, match="^shell keeps DLA's walkers near a surface; colonization"):
+        dla3d.colonize(shell=3)
+    with pytest.raises(ValueError, match="seeds places seeds in a mesh given with stl; without one, use root_at"):
+        dla3d.colonize(seeds=2)
+
+
 def test_tubes_and_strands_follow_the_look(cli, tmp_path):
     result = dla3d.grow(particles=1500, rng_seed=3)
     tubes = result.tubes(sides=6)
