@@ -73,8 +73,9 @@ Vec3 lowest_point(const ColonizeRunOptions& c, const std::vector<Vec3>& attracto
                            [](const Vec3& p, const Vec3& q) { return p.y() < q.y(); });
 }
 
-//! The walk's options as a run without a mesh grows them.
-DlaOptions resolved_without_mesh(const DlaRunOptions& o) {
+}  // namespace
+
+DlaOptions walk_options(const DlaRunOptions& o) {
   DlaOptions g = o.growth;
   if (o.particles) g.particles = *o.particles;
   if (o.spacing) g.spacing = *o.spacing;
@@ -82,8 +83,6 @@ DlaOptions resolved_without_mesh(const DlaRunOptions& o) {
   if (o.seed_at) g.seeds = *o.seed_at;
   return g;
 }
-
-}  // namespace
 
 std::vector<Vec3> colonize_roots(const ColonizeRunOptions& options, const std::vector<Vec3>& attractors,
                                  const MeshConstraint* mesh) {
@@ -146,7 +145,7 @@ void validate(const DlaRunOptions& o) {
   validate_mesh_seeds(o.seeds, mesh, "seed_at");
   if (!mesh) {
     if (o.constraint.shell != 0.0) throw InvalidInput("`shell` keeps growth near a mesh's surface: give one with `stl`");
-    const DlaOptions growth = resolved_without_mesh(o);
+    const DlaOptions growth = walk_options(o);
     validate(growth);
     if (spawns_from_mesh(growth.spawn))
       throw InvalidInput("spawn " + std::string(to_string(growth.spawn)) + " needs a mesh (`stl`)");

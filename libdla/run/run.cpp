@@ -104,13 +104,9 @@ auto with_mesh(const MeshReader& read, const std::string& path, Make&& make) {
 class DlaRun : public Run {
  public:
   DlaRun(const DlaRunOptions& o, const MeshReader& read, const Cluster* resumed, std::uint64_t resumed_hash)
-      : options_(o.growth), resumed_(resumed) {
+      : options_(walk_options(o)), resumed_(resumed) {
     model = "grow";
-    if (o.particles) options_.particles = *o.particles;
-    else if (o.has_mesh()) options_.particles = o.growth.fill > 0.0 ? kFillParticles : kMeshParticles;
-    if (o.spacing) options_.spacing = *o.spacing;
-    if (o.spawn) options_.spawn = *o.spawn;
-    if (o.seed_at) options_.seeds = *o.seed_at;
+    if (!o.particles && o.has_mesh()) options_.particles = o.growth.fill > 0.0 ? kFillParticles : kMeshParticles;
     threads = options_.threads;
     mesh_name_ = o.text ? "the text '" + o.text->text + "'" : o.stl;
     if (o.has_mesh()) {

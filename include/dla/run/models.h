@@ -63,6 +63,10 @@ struct DlaRunOptions {
   bool has_mesh() const { return !stl.empty() || text.has_value(); }
 };
 
+//! DLA's options with the run's optionals that are set put in place; what a mesh gives for
+//! those unset, prepare_run() resolves.
+DlaOptions walk_options(const DlaRunOptions& options);
+
 //! Where `dla3d colonize --roots K` puts its roots.
 enum class RootRegion {
   sphere,   //!< at random on the sphere around the attractors
