@@ -72,7 +72,10 @@ Vec3 ShellBand::draw(Rng& rng) const {
   const std::size_t nx = grid_.dims[0], ny = grid_.dims[1];
   const std::size_t v = voxels_[std::min(voxels_.size() - 1, static_cast<std::size_t>(rng.uniform() * voxels_.size()))];
   const std::size_t i = v % nx, j = v / nx % ny, k = v / (nx * ny);
-  return grid_.origin + grid_.cell * Vec3(i + rng.uniform(), j + rng.uniform(), k + rng.uniform());
+  // One draw a statement: the order of a call's arguments is the compiler's to choose (GCC and
+  // clang differ); z, y, x is the order of the files dla3d has written.
+  const double dz = rng.uniform(), dy = rng.uniform(), dx = rng.uniform();
+  return grid_.origin + grid_.cell * Vec3(i + dx, j + dy, k + dz);
 }
 
 }  // namespace dla

@@ -286,7 +286,10 @@ class RandomDrop {
   }
 
   Vec3 in_unit_ball() {
-    return random_direction(rng_, o_.dimensions) * std::pow(rng_.uniform(), 1.0 / o_.dimensions);
+    // One draw a statement: the order of a call's arguments is the compiler's to choose (GCC
+    // and clang differ), and the radius came first in the files dla3d has written.
+    const double radius = std::pow(rng_.uniform(), 1.0 / o_.dimensions);
+    return random_direction(rng_, o_.dimensions) * radius;
   }
 
   //! The box zone: the given one, or the square or cube around the ball.
