@@ -123,6 +123,8 @@ void refuse_for(std::string_view model, std::string_view option) {
   throw InvalidInput("`" + name + "` is not an option of " + std::string(model));
 }
 
+namespace {
+
 //! Seeds or roots placed on a mesh need one, and one way of placing them.
 void validate_mesh_seeds(const MeshSeeds& seeds, bool mesh, const char* placed_by) {
   if (!mesh) {
@@ -136,6 +138,8 @@ void validate_mesh_seeds(const MeshSeeds& seeds, bool mesh, const char* placed_b
   if (seeds.paint && !seeds.meshes.empty())
     throw InvalidInput("`seed_paint` and `seed_mesh` both say where the seeds go: give one");
 }
+
+}  // namespace
 
 void validate(const DlaRunOptions& o) {
   const bool mesh = o.has_mesh();
