@@ -26,10 +26,6 @@ const OutputOptions& output_of(const RunOptions& options) {
   return std::visit([](const auto& o) -> const OutputOptions& { return o.files; }, options);
 }
 
-OutputOptions& output_of(RunOptions& options) {
-  return std::visit([](auto& o) -> OutputOptions& { return o.files; }, options);
-}
-
 namespace {
 
 std::string point_text(const Vec3& p) {

@@ -63,14 +63,6 @@ Formats parse_formats(std::string_view words) {
   return formats;
 }
 
-std::string to_string(const Formats& formats) {
-  std::string words;
-  for (const char* word : {"pov", "csv", "ply", "json", "glb", "obj", "tips", "svg", "png", "html"})
-    for (const FormatEntry& e : format_table())
-      if (word == std::string_view(e.word) && formats.*(e.flag)) words += (words.empty() ? "" : ",") + std::string(word);
-  return words;
-}
-
 std::vector<std::string> file_names(const OutputOptions& output) {
   std::vector<std::string> names;
   for (const FormatEntry& e : format_table())

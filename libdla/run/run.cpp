@@ -105,7 +105,6 @@ class DlaRun : public Run {
  public:
   DlaRun(const DlaRunOptions& o, const MeshReader& read, const Cluster* resumed, std::uint64_t resumed_hash)
       : options_(walk_options(o)), resumed_(resumed) {
-    model = "grow";
     if (!o.particles && o.has_mesh()) options_.particles = o.growth.fill > 0.0 ? kFillParticles : kMeshParticles;
     threads = options_.threads;
     mesh_name_ = o.text ? "the text '" + o.text->text + "'" : o.stl;
@@ -219,7 +218,6 @@ class ColonizeRun : public Run {
  public:
   ColonizeRun(const ColonizeRunOptions& o, const MeshReader& read)
       : options_(o.colonization), attractor_options_(o.attractors) {
-    model = "colonize";
     files = resolve(o.files, nullptr, false);
     unit = "nodes";
     total = options_.max_nodes;
@@ -295,7 +293,6 @@ class ColonizeRun : public Run {
 class EdenRun : public Run {
  public:
   explicit EdenRun(const EdenRunOptions& o) : options_(o.eden), mask_file_(o.mask_file) {
-    model = "eden";
     files = resolve(o.files, nullptr, false);
     unit = "sites";
     total = options_.sites;
@@ -338,7 +335,6 @@ class EdenRun : public Run {
 class DropRun : public Run {
  public:
   DropRun(const DropRunOptions& o, const MeshReader& read) : options_(o.drop), mesh_file_(o.stl) {
-    model = "drop";
     if (o.spacing) options_.spacing = *o.spacing;
     if (o.seed_at) options_.seeds = *o.seed_at;
     if (mesh_file_.empty()) {
@@ -396,7 +392,6 @@ class DropRun : public Run {
 class BallisticRun : public Run {
  public:
   explicit BallisticRun(const BallisticRunOptions& o) : options_(o.ballistic) {
-    model = "ballistic";
     files = resolve(o.files, nullptr, false);
     total = options_.seeds.size() + options_.particles;
   }
@@ -450,6 +445,7 @@ std::unique_ptr<Run> prepare_run(const RunOptions& options, const MeshReader& re
           [&](const BallisticRunOptions& o) -> std::unique_ptr<Run> { return std::make_unique<BallisticRun>(o); },
       },
       options);
+  run->model = model_name(options);
   if (resumed && run->model != "grow") throw InvalidInput("only DLA runs go on from a checkpoint");
   return run;
 }

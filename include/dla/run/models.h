@@ -147,7 +147,6 @@ using RunOptions = std::variant<DlaRunOptions, ColonizeRunOptions, EdenRunOption
 //! eden, drop, ballistic.
 std::string_view model_name(const RunOptions& options);
 const OutputOptions& output_of(const RunOptions& options);
-OutputOptions& output_of(RunOptions& options);
 
 //! Throws InvalidInput, with one line naming the option, for options that cannot work
 //! together; what needs the meshes (the spacing's default, seeds in them) is checked when

@@ -30,8 +30,6 @@ inline constexpr const char* kFormatWords = "pov, csv, ply, json, glb, obj, tips
 //! "pov,csv,glb" as formats. Throws InvalidInput, naming `formats`, for an unknown or no word,
 //! and for html when this build has no web viewer.
 Formats parse_formats(std::string_view words);
-//! The formats as their comma-separated words.
-std::string to_string(const Formats& formats);
 
 struct OutputOptions {
   std::string output = "dla";                      //!< prefix of the files written
