@@ -42,12 +42,12 @@ void grow(benchmark::State& state, bool constrained) {
   if (!bust()) return state.SkipWithError("the bust is missing: install libcgal-demo and run cmake again");
   dla::DlaOptions o = bust_options(static_cast<std::size_t>(state.range(0)));
   if (!constrained) o.spawn = dla::SpawnMode::sphere;
-  dla::WalkStats stats;
+  dla::DlaStats grown;
   for (auto _ : state) {
     ++o.rng_seed;
-    const dla::Cluster cluster = dla::grow_with<dla::GridIndex>(o, {}, constrained ? bust() : nullptr);
-    stats = cluster.stats;
+    dla::grow_with<dla::GridIndex>(o, {}, constrained ? bust() : nullptr, nullptr, nullptr, &grown);
   }
+  const dla::WalkStats& stats = grown.walk;
   const double n = static_cast<double>(o.particles);
   state.counters["particles_per_s"] = benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["steps_per_particle"] = static_cast<double>(stats.steps) / n;
@@ -99,11 +99,12 @@ void grow_in_shell(benchmark::State& state) {
   o.spacing = kSpacing;
   o.spawn = dla::SpawnMode::inside;
   o.seeds = shell.place_seeds(2, o.rng_seed);
-  dla::WalkStats stats;
+  dla::DlaStats grown;
   for (auto _ : state) {
     ++o.rng_seed;
-    stats = dla::grow_with<dla::GridIndex>(o, {}, &shell).stats;
+    dla::grow_with<dla::GridIndex>(o, {}, &shell, nullptr, nullptr, &grown);
   }
+  const dla::WalkStats& stats = grown.walk;
   const double n = static_cast<double>(o.particles);
   state.counters["particles_per_s"] = benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["steps_per_particle"] = static_cast<double>(stats.steps) / n;

@@ -86,11 +86,11 @@ void html(benchmark::State& state) {
 }
 void json(benchmark::State& state) {
   write_file(state, [](const dla::Cluster& c, const std::string& p) {
-    dla::write_run_report(c, {}, {}, {}, {}, p + ".json");
+    dla::write_run_report(c, {"dla", 1}, {}, {}, {}, p + ".json");
   });
 }
 void checkpoint(benchmark::State& state) {
-  write_file(state, [](const dla::Cluster& c, const std::string& p) { dla::write_checkpoint({{}, 0, c}, p + ".ck"); });
+  write_file(state, [](const dla::Cluster& c, const std::string& p) { dla::write_checkpoint({{}, 0, c, {}}, p + ".ck"); });
 }
 
 }  // namespace

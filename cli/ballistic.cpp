@@ -5,7 +5,7 @@
 
 namespace dla::cli {
 
-Subcommand add_ballistic_command(CLI::App& app) {
+Subcommand add_ballistic_command(CLI::App& app, const Model& model) {
   struct Words {
     SeededWords seeded;
     std::string direction;
@@ -14,9 +14,7 @@ Subcommand add_ballistic_command(CLI::App& app) {
   auto w = std::make_shared<Words>();
   auto b = std::make_shared<BallisticRunOptions>();
   auto quiet = std::make_shared<bool>(false);
-  CLI::App* command = app.add_subcommand(
-      "ballistic", "grow by ballistic aggregation: particles fly in straight lines and stick where they first touch "
-                   "(docs/ballistic.md)");
+  CLI::App* command = app.add_subcommand(std::string(model.name), std::string(model.summary));
   command->get_formatter()->column_width(34);
   const char* flying = "Ballistic";
   BallisticOptions& o = b->ballistic;

@@ -58,12 +58,11 @@ void finish(ColonizeRunOptions& c, const ColonizeWords& w) {
 
 }  // namespace
 
-Subcommand add_colonize_command(CLI::App& app) {
+Subcommand add_colonize_command(CLI::App& app, const Model& model) {
   auto w = std::make_shared<ColonizeWords>();
   auto c = std::make_shared<ColonizeRunOptions>();
   auto quiet = std::make_shared<bool>(false);
-  CLI::App* command = app.add_subcommand(
-      "colonize", "grow a tree by space colonization: attractor points pull its nearest nodes (docs/colonization.md)");
+  CLI::App* command = app.add_subcommand(std::string(model.name), std::string(model.summary));
   command->get_formatter()->column_width(34);
   const char* colonizing = "Colonization";
   w->attractor_region = std::string(to_string(c->attractors.region));

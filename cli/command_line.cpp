@@ -11,6 +11,17 @@ namespace dla::cli {
 
 Subcommand add_frames_command(CLI::App& app);
 
+Subcommand add_model_command(CLI::App& app, const Model& model) {
+  using Add = Subcommand (*)(CLI::App&, const Model&);
+  static const std::pair<std::string_view, Add> commands[] = {
+      {"grow", add_grow_options},    {"colonize", add_colonize_command},   {"eden", add_eden_command},
+      {"drop", add_drop_command},    {"ballistic", add_ballistic_command},
+  };
+  for (const auto& [name, add] : commands)
+    if (name == model.name) return add(app, model);
+  throw std::logic_error("the model " + std::string(model.name) + " has no command line");
+}
+
 CommandLine parse_command_line(const std::vector<std::string>& args) {
   CommandLine line;
   CLI::App app{"Grows a branching structure by off-lattice diffusion-limited aggregation and writes\n"
@@ -19,9 +30,9 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   app.set_version_flag("--version", std::string("dla3d ") + version);
   app.get_formatter()->column_width(34);
 
-  const Subcommand grow = add_grow_options(app);
-  const Subcommand subcommands[] = {add_colonize_command(app), add_eden_command(app), add_drop_command(app),
-                                    add_ballistic_command(app)};
+  // Every model's options: DLA's are the top level's, the others' a subcommand each.
+  std::vector<Subcommand> models;
+  for (const Model& model : dla::models()) models.push_back(add_model_command(app, model));
   CLI::App* convert = app.add_subcommand("convert", "read a mesh (STL, OFF, OBJ, PLY) and write it as binary STL, then stop");
   convert->add_option("in", line.convert_in, "the mesh to read")->required();
   convert->add_option("out", line.convert_out, "the .stl to write")->required();
@@ -50,9 +61,9 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     throw InvalidInput(std::string(e.what()) + " (see dla3d --help)");
   }
 
-  for (const Subcommand& subcommand : subcommands)
-    if (subcommand.app->parsed()) {
-      subcommand.finish(line, args);
+  for (const Subcommand& model : models)
+    if (model.app != &app && model.app->parsed()) {
+      model.finish(line, args);
       return line;
     }
   if (convert->parsed()) {
@@ -70,7 +81,8 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     frames.finish(line, args);
     return line;
   }
-  grow.finish(line, args);
+  for (const Subcommand& model : models)
+    if (model.app == &app) model.finish(line, args);
   return line;
 }
 

@@ -4,6 +4,7 @@
 #include "command_line.h"
 
 #include "dla/core/cluster.h"
+#include "dla/run/run.h"
 
 #include <csignal>
 #include <cstdint>
@@ -13,14 +14,13 @@
 namespace dla::cli {
 
 //! Grows the run `line` asks for, of any model, and writes its files; with `resumed`, a DLA
-//! run grows on from that structure (its checkpoint's, made in the mesh of hash
-//! `resumed_hash`), and `args` are the checkpoint's command. `stop` and `stop_signal` are set by
+//! run grows on from its checkpoint's structure, and `args` are the checkpoint's command. `stop` and `stop_signal` are set by
 //! SIGINT and SIGTERM (main.cpp). Throws InvalidInput, before growing and writing anything, for
 //! options that cannot work with the meshes or this machine. Returns the exit code: 0, 1 when
 //! growth failed part way (the files hold what grew, marked incomplete), or 128 + the signal
 //! when stopped.
-int run(const CommandLine& line, const std::vector<std::string>& args, const Cluster* resumed,
-        std::uint64_t resumed_hash, const StopFlag& stop, const volatile std::sig_atomic_t& stop_signal);
+int run(const CommandLine& line, const std::vector<std::string>& args, const Resumed& resumed, const StopFlag& stop,
+        const volatile std::sig_atomic_t& stop_signal);
 
 //! `dla3d convert IN OUT.stl`: the project's own mesh reading, to make bust.stl at setup.
 int convert(const std::string& in, const std::string& out, bool quiet);

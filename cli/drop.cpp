@@ -33,13 +33,11 @@ void finish(DropRunOptions& d, const DropWords& w) {
 
 }  // namespace
 
-Subcommand add_drop_command(CLI::App& app) {
+Subcommand add_drop_command(CLI::App& app, const Model& model) {
   auto w = std::make_shared<DropWords>();
   auto d = std::make_shared<DropRunOptions>();
   auto quiet = std::make_shared<bool>(false);
-  CLI::App* command = app.add_subcommand(
-      "drop", "grow by random-drop ballistic aggregation: particles dropped at random join the closest particle "
-              "(docs/drop.md)");
+  CLI::App* command = app.add_subcommand(std::string(model.name), std::string(model.summary));
   command->get_formatter()->column_width(34);
   const char* dropping = "Random drops";
   w->zone = std::string(to_string(d->drop.zone));

@@ -36,13 +36,11 @@ void finish(EdenRunOptions& e, const EdenWords& w) {
 
 }  // namespace
 
-Subcommand add_eden_command(CLI::App& app) {
+Subcommand add_eden_command(CLI::App& app, const Model& model) {
   auto w = std::make_shared<EdenWords>();
   auto e = std::make_shared<EdenRunOptions>();
   auto quiet = std::make_shared<bool>(false);
-  CLI::App* command = app.add_subcommand(
-      "eden", "grow an Eden cluster on a lattice: sites join at random on its edge, or where a mask counts "
-              "enough of it (docs/eden.md)");
+  CLI::App* command = app.add_subcommand(std::string(model.name), std::string(model.summary));
   command->get_formatter()->column_width(34);
   const char* group = "Eden";
   w->sites = static_cast<long long>(e->eden.sites);

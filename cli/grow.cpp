@@ -166,7 +166,7 @@ void finish(CommandLine& line, DlaRunOptions& g, const GrowWords& w) {
 
 }  // namespace
 
-Subcommand add_grow_options(CLI::App& app) {
+Subcommand add_grow_options(CLI::App& app, const Model&) {
   auto words = std::make_shared<GrowWords>();
   auto run = std::make_shared<DlaRunOptions>();
   auto line = std::make_shared<CommandLine>();  // the Long runs' and the quiet flag's words

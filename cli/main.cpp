@@ -48,7 +48,7 @@ int run(const std::vector<std::string>& args) {
       return dla::cli::frames(line.frames, line.quiet, stop_requested, stop_signal);
     case Kind::run:
       catch_stop_signals();
-      return dla::cli::run(line, args, nullptr, 0, stop_requested, stop_signal);
+      return dla::cli::run(line, args, {}, stop_requested, stop_signal);
     case Kind::resume: break;
   }
   // The checkpoint's own command, with this thread count and -q: the count changes how fast it
@@ -66,7 +66,8 @@ int run(const std::vector<std::string>& args) {
   if (resumed.kind != Kind::run || resumed.run.index() != 0)
     throw dla::InvalidInput(line.resume_path + ": its command is not a growth run");
   catch_stop_signals();
-  return dla::cli::run(resumed, command, &checkpoint.cluster, checkpoint.input_hash, stop_requested, stop_signal);
+  return dla::cli::run(resumed, command, {&checkpoint.cluster, &checkpoint.walk, checkpoint.input_hash}, stop_requested,
+                       stop_signal);
 }
 
 }  // namespace

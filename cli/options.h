@@ -5,6 +5,8 @@
 
 #include "command_line.h"
 
+#include "dla/run/run.h"
+
 #include <CLI/CLI.hpp>
 
 #include <functional>
@@ -74,12 +76,17 @@ struct SeededWords {
 void add_seeded_options(CLI::App& command, const char* group, SeededWords& words, int& dimensions, double& spacing,
                         std::uint64_t& rng_seed, const std::string& spacing_help);
 
-// Each growth subcommand's file adds its options and says how to finish them. DLA's are the
-// top level's (`dla3d [options]`), with --resume and the checkpoints.
-Subcommand add_grow_options(CLI::App& app);
-Subcommand add_colonize_command(CLI::App& app);
-Subcommand add_eden_command(CLI::App& app);
-Subcommand add_drop_command(CLI::App& app);
-Subcommand add_ballistic_command(CLI::App& app);
+// Each model's file adds its options, named and described as the library's registry says
+// (dla/run/run.h), and says how to finish them. DLA's are the top level's (`dla3d [options]`),
+// with --resume and the checkpoints.
+Subcommand add_grow_options(CLI::App& app, const Model& model);
+Subcommand add_colonize_command(CLI::App& app, const Model& model);
+Subcommand add_eden_command(CLI::App& app, const Model& model);
+Subcommand add_drop_command(CLI::App& app, const Model& model);
+Subcommand add_ballistic_command(CLI::App& app, const Model& model);
+
+//! Adds the options of `model`, registered in the library, to `app`; throws std::logic_error
+//! for a model with no command line here.
+Subcommand add_model_command(CLI::App& app, const Model& model);
 
 }  // namespace dla::cli

@@ -13,13 +13,13 @@
 
 namespace dla::cli {
 
-int run(const CommandLine& line, const std::vector<std::string>& args, const Cluster* resumed,
-        std::uint64_t resumed_hash, const StopFlag& stop, const volatile std::sig_atomic_t& stop_signal) {
+int run(const CommandLine& line, const std::vector<std::string>& args, const Resumed& resumed, const StopFlag& stop,
+        const volatile std::sig_atomic_t& stop_signal) {
   const OutputOptions& asked = output_of(line.run);
   check_writable(file_names(asked).front());  // before a mesh's set-up and a long run
   const std::string& checkpoint = line.checkpoint_path;
   if (!checkpoint.empty()) check_writable(checkpoint);
-  const std::unique_ptr<Run> prepared = prepare_run(line.run, {}, resumed, resumed_hash);
+  const std::unique_ptr<Run> prepared = prepare_run(line.run, {}, resumed);
   Run& run = *prepared;
   // Only once every option is known good: bad input gets its one line and nothing else.
   if (!line.quiet && !run.mesh_line.empty()) std::fprintf(stderr, "dla3d: %s\n", run.mesh_line.c_str());
@@ -31,7 +31,7 @@ int run(const CommandLine& line, const std::vector<std::string>& args, const Clu
   const auto save = [&](const Cluster& so_far) {
     if (checkpoint.empty()) return;
     try {
-      write_checkpoint({args, run.input_hash, so_far}, checkpoint);
+      write_checkpoint({args, run.input_hash, so_far, run.walks() ? *run.walks() : WalkStats{}}, checkpoint);
     } catch (const IOError& e) {
       bar.clear();
       if (!save_failed) std::fprintf(stderr, "dla3d: warning: %s; growth goes on\n", e.what());
@@ -39,7 +39,7 @@ int run(const CommandLine& line, const std::vector<std::string>& args, const Clu
     }
   };
   const auto progress = [&](const Cluster& so_far) {
-    bar.update(run.done(so_far), so_far.filled, run.fill);
+    bar.update(run.done(so_far), run.filled(), run.fill);
     if (stop.load()) return false;
     if (!checkpoint.empty() && Clock::now() - saved >= std::chrono::duration<double>(line.checkpoint_every)) {
       save(so_far);

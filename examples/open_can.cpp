@@ -27,13 +27,14 @@ int main(int argc, char** argv) {
     dla::ConstraintOptions wall;
     wall.side = dla::Side::both;
     const dla::MeshConstraint can(dla::make_open_can(dla::Vec3::Zero(), radius, height), wall, options.spacing);
-    const dla::Cluster cluster = dla::grow(options, can);
+    dla::DlaStats stats;
+    const dla::Cluster cluster = dla::grow(options, can, {}, nullptr, &stats);
 
     dla::PovOptions look;
     look.up = dla::Axis::z;
     dla::write_pov(cluster, prefix, look, &can.mesh());
     std::printf("open_can: %zu particles, %llu branches refused by the can; wrote %s.pov\n", cluster.particles.size(),
-                static_cast<unsigned long long>(cluster.stats.rejected), prefix.c_str());
+                static_cast<unsigned long long>(stats.walk.rejected), prefix.c_str());
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "open_can: error: %s\n", e.what());

@@ -116,7 +116,7 @@ void write_checkpoint(const Checkpoint& checkpoint, const std::string& path) {
   out.put(c.spacing);
   out.put(static_cast<std::int32_t>(c.dimensions));
   for (int a = 0; a < 3; ++a) out.put(c.center[a]);
-  const WalkStats& s = c.stats;
+  const WalkStats& s = checkpoint.walk;
   for (std::uint64_t v : {s.walkers, s.steps, s.near_steps, s.contacts, s.returns, s.relaunches, s.lost, s.rejected,
                           s.clipped})
     out.put(v);
@@ -153,7 +153,7 @@ Checkpoint read_checkpoint(const std::string& path) {
   c.spacing = r.get<double>();
   c.dimensions = r.get<std::int32_t>();
   for (int a = 0; a < 3; ++a) c.center[a] = r.get<double>();
-  WalkStats& s = c.stats;
+  WalkStats& s = checkpoint.walk;
   for (std::uint64_t* v : {&s.walkers, &s.steps, &s.near_steps, &s.contacts, &s.returns, &s.relaunches, &s.lost,
                            &s.rejected, &s.clipped})
     *v = r.get<std::uint64_t>();

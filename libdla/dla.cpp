@@ -12,11 +12,11 @@ namespace dla {
 namespace {
 
 Cluster grow_any(const DlaOptions& options, const ProgressFn& progress, const MeshConstraint* constraint,
-                 const Cluster* partial, const StopFlag* stop) {
+                 const Cluster* partial, const StopFlag* stop, DlaStats* stats) {
   switch (options.index) {
-    case IndexKind::grid: return grow_with<GridIndex>(options, progress, constraint, partial, stop);
-    case IndexKind::kdtree: return grow_with<KdTreeIndex>(options, progress, constraint, partial, stop);
-    case IndexKind::brute: return grow_with<BruteForceIndex>(options, progress, constraint, partial, stop);
+    case IndexKind::grid: return grow_with<GridIndex>(options, progress, constraint, partial, stop, stats);
+    case IndexKind::kdtree: return grow_with<KdTreeIndex>(options, progress, constraint, partial, stop, stats);
+    case IndexKind::brute: return grow_with<BruteForceIndex>(options, progress, constraint, partial, stop, stats);
   }
   throw InvalidInput("unknown index");
 }
@@ -57,25 +57,28 @@ void require_no_mesh_options(const DlaOptions& options) {
 
 }  // namespace
 
-Cluster grow(const DlaOptions& options, const ProgressFn& progress, const StopFlag* stop) {
+Cluster grow(const DlaOptions& options, const ProgressFn& progress, const StopFlag* stop, DlaStats* stats) {
   validate(options);
   require_no_mesh_options(options);
-  return grow_any(options, progress, nullptr, nullptr, stop);
+  if (stats) *stats = {};
+  return grow_any(options, progress, nullptr, nullptr, stop, stats);
 }
 
-Cluster resume(const DlaOptions& options, const Cluster& partial, const ProgressFn& progress,
-               const StopFlag* stop) {
+Cluster resume(const DlaOptions& options, const Cluster& partial, const ProgressFn& progress, const StopFlag* stop,
+               DlaStats* stats) {
   validate(options);
   require_no_mesh_options(options);
   validate_partial(options, partial);
-  return grow_any(options, progress, nullptr, &partial, stop);
+  if (stats) *stats = {stats->walk};
+  return grow_any(options, progress, nullptr, &partial, stop, stats);
 }
 
 Cluster resume(const DlaOptions& options, const MeshConstraint& constraint, const Cluster& partial,
-               const ProgressFn& progress, const StopFlag* stop) {
+               const ProgressFn& progress, const StopFlag* stop, DlaStats* stats) {
   validate(options, constraint);
   validate_partial(options, partial);
-  return grow_any(options, progress, &constraint, &partial, stop);
+  if (stats) *stats = {stats->walk};
+  return grow_any(options, progress, &constraint, &partial, stop, stats);
 }
 
 void validate(const DlaOptions& options, const MeshConstraint& constraint) {
@@ -112,9 +115,10 @@ void validate(const DlaOptions& options, const MeshConstraint& constraint) {
 }
 
 Cluster grow(const DlaOptions& options, const MeshConstraint& constraint, const ProgressFn& progress,
-             const StopFlag* stop) {
+             const StopFlag* stop, DlaStats* stats) {
   validate(options, constraint);
-  return grow_any(options, progress, &constraint, nullptr, stop);
+  if (stats) *stats = {};
+  return grow_any(options, progress, &constraint, nullptr, stop, stats);
 }
 
 }  // namespace dla

@@ -443,29 +443,53 @@ void settle(RunOptions& run, const Given& given) {
   }
 }
 
-//! The run options `model`'s keywords ask for, and the meshes they hand over as arrays.
+//! The run options of `model` that `keywords` ask for, from its defaults, with `table`.
 template <class Options>
-RunOptions set_all(const Table<Options>& table, const std::string& model, const py::dict& keywords, Given& given) {
-  Options options;
+RunOptions set_all(const Table<Options>& table, const Model& model, const py::dict& keywords, Given& given) {
+  RunOptions run = model.options();
+  Options& options = std::get<Options>(run);
+  const std::string name(model.name);
   for (const auto& [key, value] : keywords) {
-    const std::string name = key.template cast<std::string>();
-    const auto setter = table.find(name);
+    const std::string keyword = key.template cast<std::string>();
+    const auto setter = table.find(keyword);
     if (setter == table.end())
-      throw InvalidInput(name + " is not an option of " + model + "(): see docs/python.md, or `dla3d " +
-                         (model == "grow" ? "" : model + " ") + "--help`");
+      throw InvalidInput(keyword + " is not an option of " + name + "(): see docs/python.md, or `dla3d " +
+                         (name == "grow" ? "" : name + " ") + "--help`");
     if (!value.is_none()) setter->second(options, value, given);
   }
-  return options;
+  return run;
+}
+
+template <class Options, Table<Options> (*make_table)()>
+RunOptions keywords_of(const Model& model, const py::dict& keywords, Given& given) {
+  static const Table<Options> table = make_table();
+  return set_all(table, model, keywords, given);
+}
+
+using Keywords = RunOptions (*)(const Model& model, const py::dict& keywords, Given& given);
+
+//! Each model's keywords, by its name in the library's registry (dla/run/run.h).
+Keywords keywords_of(const Model& model) {
+  static const std::pair<std::string_view, Keywords> tables[] = {
+      {"grow", keywords_of<DlaRunOptions, dla_table>},
+      {"colonize", keywords_of<ColonizeRunOptions, colonize_table>},
+      {"eden", keywords_of<EdenRunOptions, eden_table>},
+      {"drop", keywords_of<DropRunOptions, drop_table>},
+      {"ballistic", keywords_of<BallisticRunOptions, ballistic_table>},
+  };
+  for (const auto& [name, set] : tables)
+    if (name == model.name) return set;
+  throw std::logic_error("the model " + std::string(model.name) + " has no keywords in Python");
 }
 
 RunOptions run_options(const std::string& model, const py::dict& keywords, Given& given) {
-  RunOptions run;
-  if (model == "grow") run = set_all(dla_table(), model, keywords, given);
-  else if (model == "colonize") run = set_all(colonize_table(), model, keywords, given);
-  else if (model == "eden") run = set_all(eden_table(), model, keywords, given);
-  else if (model == "drop") run = set_all(drop_table(), model, keywords, given);
-  else if (model == "ballistic") run = set_all(ballistic_table(), model, keywords, given);
-  else throw InvalidInput("'" + model + "' is not one of grow, colonize, eden, drop, ballistic");
+  const Model* found = find_model(model);
+  if (!found) {
+    std::string names;
+    for (const Model& m : models()) names += (names.empty() ? "" : ", ") + std::string(m.name);
+    throw InvalidInput("'" + model + "' is not one of " + names);
+  }
+  RunOptions run = keywords_of(*found)(*found, keywords, given);
   settle(run, given);
   validate(run);
   return run;
@@ -699,6 +723,17 @@ PYBIND11_MODULE(_core, m) {
       .def("write", &write, py::arg("prefix"), py::arg("formats"),
            "writes PREFIX.EXT for each of `formats` (the CLI's --formats words)");
 
+  m.def(
+      "models",
+      [] {
+        py::list names;
+        for (const Model& model : models()) {
+          keywords_of(model);  // every model has its keywords, or the import fails
+          names.append(py::make_tuple(std::string(model.name), std::string(model.summary)));
+        }
+        return names;
+      },
+      "(name, summary) of every growth model, in the order dla3d --help lists them");
   m.def("grow_run", &grow_run, py::arg("model"), py::arg("keywords"), py::arg("command"), py::arg("progress"),
         "grows the run the keywords ask of the model (grow, colonize, eden, drop, ballistic)");
   m.def(

@@ -39,7 +39,7 @@ TEST(Faults, AFullDiskIsAClearErrorAndKeepsTheCheckpoint) {
   o.particles = 30000;
   Cluster part = grow(o);
   part.complete = false;
-  write_checkpoint({{"-n", "60000", "-q", "-o", "out", "--checkpoint", "part.ck", "--checkpoint-every", "0"}, 0, part},
+  write_checkpoint({{"-n", "60000", "-q", "-o", "out", "--checkpoint", "part.ck", "--checkpoint-every", "0"}, 0, part, {}},
                    dir / "part.ck");
   const std::string saved = read_file(dir / "part.ck");
   const std::string small = (dir.path() / "small").string();

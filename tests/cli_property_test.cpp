@@ -258,7 +258,7 @@ void make_inputs(const ScratchDir& dir) {
   Cluster part = grow(o);
   write_csv(part, dir / "grown.csv");  // for dla3d frames
   part.complete = false;
-  write_checkpoint({{"-n", "120", "-q", "-o", "resumed"}, 0, part}, dir / "saved.ck");
+  write_checkpoint({{"-n", "120", "-q", "-o", "resumed"}, 0, part, {}}, dir / "saved.ck");
 }
 
 bool balanced(const std::string& text, char open, char close) {

@@ -65,12 +65,13 @@ TEST(Constraint, TwoSeedsGrowInsideTheBustWithoutCrossingIt) {
   EXPECT_TRUE(constraint.repair_report().closed);
   EXPECT_EQ(constraint.repair_report().holes_closed, 1u);
   const DlaOptions o = options_for(constraint, 2500, 2);
-  const Cluster cluster = grow(o, constraint);
+  DlaStats stats;
+  const Cluster cluster = grow(o, constraint, {}, nullptr, &stats);
   ASSERT_EQ(cluster.particles.size(), 2502u);
   const Checked checked = expect_constrained(cluster, constraint);
   EXPECT_EQ(checked.clipped, 0u);
   for (std::size_t count : checked.per_seed) EXPECT_GT(count, cluster.particles.size() / 5) << "a seed hardly grew";
-  EXPECT_GT(cluster.stats.lost, 0u);
+  EXPECT_GT(stats.walk.lost, 0u);
   EXPECT_EQ(grow(o, constraint).particles.back().position, cluster.particles.back().position) << "not deterministic";
 }
 
@@ -82,16 +83,17 @@ TEST(Constraint, SameResultOnEveryThreadCount) {
     c.mode = mode;
     const MeshConstraint constraint(read_mesh(path), c, 0.5);
     DlaOptions o = options_for(constraint, 3000, 2);
-    const Cluster one = grow(o, constraint);
+    DlaStats one_stats, two_stats;
+    const Cluster one = grow(o, constraint, {}, nullptr, &one_stats);
     o.threads = 2;
-    const Cluster two = grow(o, constraint);
+    const Cluster two = grow(o, constraint, {}, nullptr, &two_stats);
     ASSERT_EQ(two.particles.size(), one.particles.size());
     for (std::size_t i = 0; i < one.particles.size(); ++i)
       ASSERT_EQ(two.particles[i].position, one.particles[i].position) << to_string(mode) << ", particle " << i;
-    EXPECT_EQ(two.stats.lost, one.stats.lost);
-    EXPECT_EQ(two.stats.rejected, one.stats.rejected);
-    EXPECT_EQ(two.stats.clipped, one.stats.clipped);
-    replays += two.replays;
+    EXPECT_EQ(two_stats.walk.lost, one_stats.walk.lost);
+    EXPECT_EQ(two_stats.walk.rejected, one_stats.walk.rejected);
+    EXPECT_EQ(two_stats.walk.clipped, one_stats.walk.clipped);
+    replays += two_stats.replays;
   }
   if (replays == 0) GTEST_SKIP() << "no walker ran alongside another: the threads never met";
 }
@@ -101,10 +103,11 @@ TEST(Constraint, ClippedBranchesTouchTheBustButDoNotCross) {
   ConstraintOptions c;
   c.mode = ConstraintMode::clip;
   const MeshConstraint constraint(read_mesh(path), c, 1.0);
-  const Cluster cluster = grow(options_for(constraint, 3000, 2), constraint);
+  DlaStats stats;
+  const Cluster cluster = grow(options_for(constraint, 3000, 2), constraint, {}, nullptr, &stats);
   const Checked checked = expect_constrained(cluster, constraint);
   EXPECT_GT(checked.clipped, 0u);
-  EXPECT_EQ(checked.clipped, cluster.stats.clipped);
+  EXPECT_EQ(checked.clipped, stats.walk.clipped);
 }
 
 TEST(Constraint, RejectedBranchesWalkOnInAThinVessel) {
@@ -113,9 +116,10 @@ TEST(Constraint, RejectedBranchesWalkOnInAThinVessel) {
   EXPECT_EQ(constraint.repair_report().holes_closed, 1u);
   DlaOptions o = options_for(constraint, 600, 1);
   o.seeds = {Vec3(0, 0, 20)};
-  const Cluster cluster = grow(o, constraint);
+  DlaStats stats;
+  const Cluster cluster = grow(o, constraint, {}, nullptr, &stats);
   expect_constrained(cluster, constraint);
-  EXPECT_GT(cluster.stats.rejected, 0u);
+  EXPECT_GT(stats.walk.rejected, 0u);
 }
 
 TEST(Constraint, RadialSpawnGrowsInATube) {
@@ -197,12 +201,13 @@ TEST(Constraint, OpenCanOfBourkesFigure4) {
   o.particles = 2000;
   o.spacing = 0.5;
   o.seeds = {Vec3(0, 0, 20)};
-  const Cluster cluster = grow(o, constraint);
+  DlaStats stats;
+  const Cluster cluster = grow(o, constraint, {}, nullptr, &stats);
   expect_constrained(cluster, constraint);
   std::size_t in_can = 0;
   for (const Particle& p : cluster.particles) in_can += p.position.z() < 19.0 && p.position.head<2>().norm() < 10.0;
   EXPECT_GT(in_can, 0u) << "nothing grew down into the can";
-  EXPECT_GT(cluster.stats.rejected, 0u);
+  EXPECT_GT(stats.walk.rejected, 0u);
 }
 
 //! The fraction of the mesh's volume within `distance` of a particle, by Monte Carlo: points
@@ -245,17 +250,18 @@ TEST(Constraint, FillStopsGrowthOnceTheVolumeIsCovered) {
   DlaOptions o = options_for(constraint, 100000, 1);
   o.fill = 0.6;
   o.fill_distance = 3.0;
-  const Cluster c = grow(o, constraint);
+  DlaStats stats;
+  const Cluster c = grow(o, constraint, {}, nullptr, &stats);
   EXPECT_TRUE(c.complete);
   EXPECT_LT(attached(c), o.particles);
-  EXPECT_GE(c.filled, 0.6);
+  EXPECT_GE(stats.filled, 0.6);
   // The particle before the last had not covered it: growth stopped at the first that did.
   FillGauge gauge(constraint, 1.5);
   for (std::size_t i = 0; i + 1 < c.particles.size(); ++i) gauge.add(c.particles[i].position);
   EXPECT_LT(gauge.fraction(), 0.6);
   gauge.add(c.particles.back().position);
-  EXPECT_EQ(gauge.fraction(), c.filled);
-  EXPECT_NEAR(c.filled, sampled_fill(constraint, c.particles, 1.5), 0.03);
+  EXPECT_EQ(gauge.fraction(), stats.filled);
+  EXPECT_NEAR(stats.filled, sampled_fill(constraint, c.particles, 1.5), 0.03);
   // Threads stop at the same particle.
   o.threads = 2;
   const Cluster two = grow(o, constraint);

@@ -57,9 +57,10 @@ TEST(Growth, TreeInvariantsLowStickinessAndShortSteps) {
   o.stickiness = 0.2;
   o.min_step = 0.2;
   o.spacing = 2.5;
-  const Cluster c = grow(o);
+  DlaStats stats;
+  const Cluster c = grow(o, {}, nullptr, &stats);
   expect_valid_tree(c, o);
-  EXPECT_GT(c.stats.contacts, 2 * c.stats.walkers) << "refused contacts must happen";
+  EXPECT_GT(stats.walk.contacts, 2 * stats.walk.walkers) << "refused contacts must happen";
 }
 
 TEST(Growth, TreeInvariantsEveryIndex) {
@@ -138,18 +139,19 @@ TEST(Growth, ProgressCanStopGrowth) {
 TEST(Growth, ResumedGrowthIsTheUninterruptedOne) {
   DlaOptions o = small(3000);
   o.seeds = {Vec3(-6, 0, 0), Vec3(6, 0, 0)};
-  const Cluster whole = grow(o);
-  const Cluster part = grow(o, [](const Cluster& so_far) { return attached(so_far) < 1280; });
+  DlaStats whole_stats, stats;
+  const Cluster whole = grow(o, {}, nullptr, &whole_stats);
+  const Cluster part = grow(o, [](const Cluster& so_far) { return attached(so_far) < 1280; }, nullptr, &stats);
   ASSERT_EQ(attached(part), 1280u);
-  const Cluster resumed = resume(o, part);
+  const Cluster resumed = resume(o, part, {}, nullptr, &stats);
   EXPECT_TRUE(resumed.complete);
   ASSERT_EQ(resumed.particles.size(), whole.particles.size());
   for (std::size_t i = 0; i < whole.particles.size(); ++i) {
     ASSERT_EQ(resumed.particles[i].position, whole.particles[i].position) << i;
     ASSERT_EQ(resumed.particles[i].parent, whole.particles[i].parent) << i;
   }
-  EXPECT_EQ(resumed.stats.steps, whole.stats.steps);
-  EXPECT_EQ(resumed.stats.walkers, whole.stats.walkers);
+  EXPECT_EQ(stats.walk.steps, whole_stats.walk.steps);
+  EXPECT_EQ(stats.walk.walkers, whole_stats.walk.walkers);
 
   Cluster foreign = part;
   foreign.particles[1].position.x() += 1.0;  // a seed that is not the options'
@@ -160,22 +162,25 @@ TEST(Growth, ResumedGrowthIsTheUninterruptedOne) {
 // meanwhile could have changed their path: every thread count gives the one-thread result.
 void expect_same_for_every_thread_count(DlaOptions o) {
   o.threads = 1;
-  const Cluster one = grow(o);
+  DlaStats one_stats;
+  const Cluster one = grow(o, {}, nullptr, &one_stats);
+  const WalkStats& walk = one_stats.walk;
   std::uint64_t replays = 0;
   for (int threads : {2, 3, 4}) {
     o.threads = threads;
-    const Cluster many = grow(o);
+    DlaStats stats;
+    const Cluster many = grow(o, {}, nullptr, &stats);
     ASSERT_EQ(many.particles.size(), one.particles.size());
     for (std::size_t i = 0; i < one.particles.size(); ++i) {
       ASSERT_EQ(many.particles[i].position, one.particles[i].position) << threads << " threads, particle " << i;
       ASSERT_EQ(many.particles[i].parent, one.particles[i].parent) << threads << " threads, particle " << i;
     }
-    EXPECT_EQ(many.stats.steps, one.stats.steps);
-    EXPECT_EQ(many.stats.near_steps, one.stats.near_steps);
-    EXPECT_EQ(many.stats.returns, one.stats.returns);
-    EXPECT_EQ(many.stats.relaunches, one.stats.relaunches);
-    EXPECT_EQ(many.stats.contacts, one.stats.contacts);
-    replays += many.replays;
+    EXPECT_EQ(stats.walk.steps, walk.steps);
+    EXPECT_EQ(stats.walk.near_steps, walk.near_steps);
+    EXPECT_EQ(stats.walk.returns, walk.returns);
+    EXPECT_EQ(stats.walk.relaunches, walk.relaunches);
+    EXPECT_EQ(stats.walk.contacts, walk.contacts);
+    replays += stats.replays;
   }
   // Whether walkers overlap is up to the scheduler: on a machine too busy to run two at once
   // nothing was run again, and only the plain path was tested.
@@ -200,16 +205,17 @@ TEST(Threads, SameResultWithDriftStickinessAndSeveralSeeds) {
 
 TEST(Threads, StoppedAndResumedGrowthIsTheOneThreadRun) {
   DlaOptions o = small(4000);
-  const Cluster whole = grow(o);
+  DlaStats whole_stats, stats;
+  const Cluster whole = grow(o, {}, nullptr, &whole_stats);
   o.threads = 2;
-  const Cluster part = grow(o, [](const Cluster& so_far) { return attached(so_far) < 1536; });
+  const Cluster part = grow(o, [](const Cluster& so_far) { return attached(so_far) < 1536; }, nullptr, &stats);
   ASSERT_EQ(attached(part), 1536u);
   EXPECT_FALSE(part.complete);
-  const Cluster resumed = resume(o, part);
+  const Cluster resumed = resume(o, part, {}, nullptr, &stats);
   ASSERT_EQ(resumed.particles.size(), whole.particles.size());
   for (std::size_t i = 0; i < whole.particles.size(); ++i)
     ASSERT_EQ(resumed.particles[i].position, whole.particles[i].position) << i;
-  EXPECT_EQ(resumed.stats.steps, whole.stats.steps);
+  EXPECT_EQ(stats.walk.steps, whole_stats.walk.steps);
 }
 
 TEST(Threads, ErrorsAreTheOneThreadErrors) {

@@ -332,8 +332,9 @@ TEST(Render, PovRayShowsRotationFillAndSurfaceSeeds) {
   filling.spawn = SpawnMode::inside;
   filling.fill = 0.3;
   filling.seeds = ball.place_seeds(1, 1);
-  const Cluster filled = grow(filling, ball);
-  EXPECT_GE(filled.filled, 0.3);
+  DlaStats stats;
+  const Cluster filled = grow(filling, ball, {}, nullptr, &stats);
+  EXPECT_GE(stats.filled, 0.3);
   ScratchDir full;
   expect_framed_render(filled, full, &ball.mesh());
 

@@ -7,6 +7,7 @@
 #include "dla/io/png_writer.h"
 #include "dla/io/pov_writer.h"
 #include "dla/io/run_report.h"
+#include "dla/run/run.h"
 #include "png_util.h"
 #include "test_util.h"
 
@@ -36,7 +37,7 @@ void write_all(const Cluster& c, const std::string& prefix) {
   write_csv(c, prefix + ".csv");
   write_ply(c, prefix + ".ply");
   write_pov(c, prefix);
-  write_run_report(c, DlaOptions{}, LookOptions{}, PovOptions{}, RunRecord{}, prefix + ".json");
+  write_run_report(c, ModelRecord{"dla", 1}, LookOptions{}, PovOptions{}, RunRecord{}, prefix + ".json");
 }
 
 TEST(Csv, ReadsBackExactly) {
@@ -185,16 +186,17 @@ TEST(Writers, UnwritablePathFailsCleanly) {
 
 TEST(RunReport, RecordsOptionsSeedAndCounts) {
   ScratchDir dir;
-  DlaOptions o;
+  DlaRunOptions o;
   o.particles = 500;
-  o.rng_seed = 99;
-  o.stickiness = 0.5;
-  const Cluster c = grow(o);
-  write_run_report(c, o, LookOptions{}, PovOptions{}, RunRecord{1.0, 0.5, "", ""}, dir / "r.json");
+  o.growth.rng_seed = 99;
+  o.growth.stickiness = 0.5;
+  const auto run = prepare_run(o);
+  const Cluster c = run->grow({}, nullptr);
+  write_run_report(c, run->record(), LookOptions{}, PovOptions{}, RunRecord{1.0, 0.5, "", ""}, dir / "r.json");
   const std::string json = read_file(dir / "r.json");
-  for (const char* expected : {"\"rng_seed\": 99", "\"stickiness\": 0.5", "\"attached\": 500",
+  for (const char* expected : {"\"model\": \"dla\"", "\"rng_seed\": 99", "\"stickiness\": 0.5", "\"attached\": 500",
                                "\"complete\": true", "\"grow_seconds\": 1", "\"particles_per_second\": 500",
-                               "\"fractal_dimension_gyration\": "})
+                               "\"walkers\": 500", "\"fractal_dimension_gyration\": "})
     EXPECT_NE(json.find(expected), std::string::npos) << expected;
 }
 

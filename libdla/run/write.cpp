@@ -106,7 +106,7 @@ void write_run(const Run& run, const Cluster& cluster, const OutputOptions& file
   const auto start = std::chrono::steady_clock::now();
   write_files(cluster, files, {run.threads, run.constraint, run.scene_mesh, record.command});
   record.write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (files.formats.json) run.write_report(cluster, files, record, files.output + ".json");
+  if (files.formats.json) write_run_report(cluster, run.record(), files.look, files.pov, record, files.output + ".json");
 }
 
 }  // namespace dla

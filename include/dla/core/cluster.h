@@ -23,19 +23,6 @@ struct Particle {
   std::int32_t seed;    //!< which seed's tree it belongs to, 0-based in DlaOptions::seeds
 };
 
-//! Counters of the walk, for the JSON sidecar and for tuning.
-struct WalkStats {
-  std::uint64_t walkers = 0;      //!< walkers launched (one per attached particle)
-  std::uint64_t steps = 0;        //!< walk steps, all kinds
-  std::uint64_t near_steps = 0;   //!< short steps next to the structure, with a contact test
-  std::uint64_t contacts = 0;     //!< contacts, stuck or refused
-  std::uint64_t returns = 0;      //!< walkers put back on the return sphere from outside it
-  std::uint64_t relaunches = 0;   //!< walkers that escaped and started afresh
-  std::uint64_t lost = 0;         //!< walkers on the wrong side of a constraint mesh, started afresh
-  std::uint64_t rejected = 0;     //!< branches refused because they crossed the constraint mesh
-  std::uint64_t clipped = 0;      //!< branches cut short at the constraint mesh
-};
-
 //! A grown structure.
 struct Cluster {
   std::vector<Particle> particles;  //!< seeds first, then in attach order
@@ -44,12 +31,9 @@ struct Cluster {
   double spacing = 1.0;
   int dimensions = 3;
   bool complete = true;             //!< false when growth was stopped before the count
-  WalkStats stats;
-  std::uint64_t replays = 0;        //!< walkers run again because a particle attached by an
-                                    //!< earlier walker on another thread changed their path
-  double filled = 0.0;              //!< growing to fill a mesh (DlaOptions::fill): the
-                                    //!< fraction of its volume covered so far; else 0
 };
+// What growth counted (DLA's walks, the drops, the lines) each model returns beside the
+// structure: DlaStats (walk.h), DropStats, BallisticStats.
 
 //! Called as growth goes on (each model says how often) and at the end, with the structure so
 //! far; returning false stops growth early and the cluster comes back marked incomplete.

@@ -5,6 +5,7 @@
 
 #include "dla/core/cluster.h"
 #include "dla/core/hash.h"
+#include "dla/models/walk.h"
 
 #include <cstdint>
 #include <string>
@@ -16,6 +17,7 @@ struct Checkpoint {
   std::vector<std::string> command;  //!< what made the run (dla3d's arguments), to run it again
   std::uint64_t input_hash = 0;      //!< of the run's input files (the mesh), 0 if none
   Cluster cluster;                   //!< the structure so far
+  WalkStats walk;                    //!< the walks that grew it
 };
 
 //! Writes `checkpoint` under a temporary name and renames it into place, so an interrupted

@@ -1,19 +1,20 @@
 #pragma once
 //! \file run_report.h
-//! The JSON sidecar of a run: version, effective options and RNG seed (enough to grow the same
-//! structure again), counts, walk statistics, measures and timings.
+//! The JSON sidecar of a run: version, the model and its effective options and RNG seed
+//! (enough to grow the same structure again), the look, counts, the model's statistics,
+//! measures and timings. What is the model's own, each model's run writes (run/run.h);
+//! write_run_report() writes the rest around it, the same for every model.
 
 #include "dla/core/cluster.h"
-#include "dla/models/ballistic.h"
-#include "dla/models/colonization.h"
-#include "dla/models/drop.h"
-#include "dla/models/eden.h"
-#include "dla/mesh/constraint.h"
+#include "dla/io/json.h"
 #include "dla/look/look.h"
-#include "dla/core/options.h"
 #include "dla/io/pov_writer.h"
 
+#include <cstdint>
+#include <functional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace dla {
 
@@ -25,44 +26,84 @@ struct RunRecord {
   std::string stopped_by;  //!< why growth ended before the count (a signal, an error), if it did
 };
 
-//! Throws IOError if the file cannot be written. Everything but the timings is the same for the
-//! same options and seed. With a `constraint`, records it and the file it came from.
-void write_run_report(const Cluster& cluster, const DlaOptions& options, const LookOptions& look,
-                      const PovOptions& pov, const RunRecord& record, const std::string& path,
-                      const MeshConstraint* constraint = nullptr, const std::string& mesh_file = "");
+//! A JSON object written a field a line, objects within it indented, commas where they go:
+//! how a model writes its part of the sidecar.
+class RecordWriter {
+ public:
+  RecordWriter() : text_("{") {}
 
-//! The files a space colonization run read, for its record.
-struct ColonizationInputs {
-  std::string attractors_file;  //!< the attractors' file; empty: they were scattered
-  std::size_t attractor_count = 0;  //!< how many grew the tree
-  std::string vessel_file;      //!< the vessel's mesh; empty: none
-  std::string collide_file;     //!< the collision mesh; empty: none
-  CollisionMode collision = CollisionMode::push;
+  RecordWriter& number(std::string_view name, double value, int digits = 0) {
+    return field(name, json::number(value, digits));
+  }
+  RecordWriter& integer(std::string_view name, long long value) { return field(name, std::to_string(value)); }
+  RecordWriter& count(std::string_view name, std::uint64_t value) { return field(name, std::to_string(value)); }
+  RecordWriter& text(std::string_view name, std::string_view value) { return field(name, json::string(value)); }
+  RecordWriter& flag(std::string_view name, bool value) { return field(name, value ? "true" : "false"); }
+  RecordWriter& point(std::string_view name, const Vec3& p) { return field(name, point_json(p)); }
+  RecordWriter& points(std::string_view name, const std::vector<Vec3>& points) {
+    std::string list = "[";
+    for (std::size_t i = 0; i < points.size(); ++i) list += (i ? ", " : "") + point_json(points[i]);
+    return field(name, list + "]");
+  }
+  //! A value already in JSON: null, an array of arrays.
+  RecordWriter& raw(std::string_view name, std::string_view json) { return field(name, json); }
+  //! "name": { ... }: the fields that follow go in it, up to close().
+  RecordWriter& open(std::string_view name) {
+    field(name, "{");
+    ++depth_;
+    first_ = true;
+    return *this;
+  }
+  RecordWriter& close() {
+    --depth_;
+    text_ += '\n' + std::string(2 * depth_, ' ') + '}';
+    first_ = false;
+    return *this;
+  }
+  //! The whole object, closed, with a newline.
+  std::string finish() const { return text_ + "\n}\n"; }
+
+  static std::string point_json(const Vec3& p) {
+    return '[' + json::number(p.x()) + ", " + json::number(p.y()) + ", " + json::number(p.z()) + ']';
+  }
+
+ private:
+  RecordWriter& field(std::string_view name, std::string_view value) {
+    text_ += first_ ? "\n" : ",\n";
+    text_.append(2 * depth_, ' ');
+    text_ += json::string(name);
+    text_ += ": ";
+    text_ += value;
+    first_ = false;
+    return *this;
+  }
+
+  std::string text_;
+  int depth_ = 1;
+  bool first_ = true;
 };
 
-//! The sidecar of a space colonization run (colonization.h): "model": "colonization", its
-//! options and attractors, the roots, and the vessel's and collision mesh's files if any; no
-//! walk statistics. Throws IOError.
-void write_colonization_report(const Cluster& cluster, const ColonizationOptions& options,
-                               const AttractorOptions& attractors, const LookOptions& look, const PovOptions& pov,
-                               const RunRecord& record, const std::string& path, const ColonizationInputs& inputs);
+//! A model's part of the sidecar of its run.
+struct ModelRecord {
+  ModelRecord(std::string_view model, std::uint64_t rng_seed) : model(model), rng_seed(rng_seed) {}
 
-//! The sidecar of an Eden run (eden.h): "model": "eden", its options (the mask as its sites,
-//! and the file it came from if any); no walk statistics. Throws IOError.
-void write_eden_report(const Cluster& cluster, const EdenOptions& options, const std::string& mask_file,
-                       const LookOptions& look, const PovOptions& pov, const RunRecord& record,
-                       const std::string& path);
+  std::string_view model;  //!< "model": dla, colonization, eden, drop or ballistic
+  std::uint64_t rng_seed;
+  //! Writes the fields of "options": what grows the same structure again.
+  std::function<void(RecordWriter&)> options;
+  //! Writes the model's own objects after "counts" ("walk", "drops", "lines"), if any.
+  std::function<void(RecordWriter&)> statistics;
+  //! Writes the model's own fields at the end of "measures" (DLA's "filled"), if any.
+  std::function<void(RecordWriter&)> measures;
+  //! Writes the model's own fields at the end of "timings", if any.
+  std::function<void(RecordWriter&)> timings;
+};
 
-//! The sidecar of a random-drop run (drop.h): "model": "drop", its options, the constraint
-//! mesh's file and settings if any, and what became of the drops. Throws IOError.
-void write_drop_report(const Cluster& cluster, const DropOptions& options, const DropStats& stats,
-                       const MeshConstraint* constraint, const std::string& mesh_file, const LookOptions& look,
-                       const PovOptions& pov, const RunRecord& record, const std::string& path);
-
-//! The sidecar of a ballistic run (ballistic.h): "model": "ballistic", its options and the
-//! lines' counts. Throws IOError.
-void write_ballistic_report(const Cluster& cluster, const BallisticOptions& options, const BallisticStats& stats,
-                            const LookOptions& look, const PovOptions& pov, const RunRecord& record,
-                            const std::string& path);
+//! Writes the sidecar of a run that grew `cluster` to `path`: "generator", "version",
+//! "command", "complete", "stopped_by", then `model`'s part, "look", "counts", the model's
+//! statistics, "measures" and "timings". Throws IOError if the file cannot be written.
+//! Everything but the timings is the same for the same options and seed.
+void write_run_report(const Cluster& cluster, const ModelRecord& model, const LookOptions& look,
+                      const PovOptions& pov, const RunRecord& record, const std::string& path);
 
 }  // namespace dla

@@ -36,23 +36,26 @@ namespace dla {
 
 //! Grows a structure with the index chosen in options.index. Validates the options first.
 //! Defined in libdla (it instantiates grow_with for every index). Throws PartialGrowth if
-//! growth fails part way.
-Cluster grow(const DlaOptions& options, const ProgressFn& progress = {}, const StopFlag* stop = nullptr);
+//! growth fails part way. With `stats`, counts there what the walks did, as they go: a
+//! progress callback reads how full a mesh is there.
+Cluster grow(const DlaOptions& options, const ProgressFn& progress = {}, const StopFlag* stop = nullptr,
+             DlaStats* stats = nullptr);
 
 //! Grows a structure constrained by a mesh (see constraint.h). Validates the options and
 //! checks them against the constraint: the same spacing, 3 dimensions, seeds on the growing
 //! side, a spawn mode that can start walkers there.
 Cluster grow(const DlaOptions& options, const MeshConstraint& constraint, const ProgressFn& progress = {},
-             const StopFlag* stop = nullptr);
+             const StopFlag* stop = nullptr, DlaStats* stats = nullptr);
 
 //! Grows on a structure that growth with the same options (and constraint) stopped early, up
 //! to options.particles. The result is the one growth without the stop gives, byte for byte:
 //! walker k draws from its own random stream, whenever it runs. Throws InvalidInput if
-//! `partial` cannot have come from these options.
+//! `partial` cannot have come from these options. `stats`, if given, holds the walks that grew
+//! `partial` (a checkpoint keeps them): the walks' count goes on from them.
 Cluster resume(const DlaOptions& options, const Cluster& partial, const ProgressFn& progress = {},
-               const StopFlag* stop = nullptr);
+               const StopFlag* stop = nullptr, DlaStats* stats = nullptr);
 Cluster resume(const DlaOptions& options, const MeshConstraint& constraint, const Cluster& partial,
-               const ProgressFn& progress = {}, const StopFlag* stop = nullptr);
+               const ProgressFn& progress = {}, const StopFlag* stop = nullptr, DlaStats* stats = nullptr);
 
 //! Throws InvalidInput where the options and the constraint cannot work together.
 void validate(const DlaOptions& options, const MeshConstraint& constraint);
@@ -62,7 +65,7 @@ void validate(const DlaOptions& options, const MeshConstraint& constraint);
 template <class Index>
 Cluster grow_with(const DlaOptions& options, const ProgressFn& progress = {},
                   const MeshConstraint* constraint = nullptr, const Cluster* partial = nullptr,
-                  const StopFlag* stop = nullptr);
+                  const StopFlag* stop = nullptr, DlaStats* stats = nullptr);
 
 // ---------------------------------------------------------------------------------------------
 
@@ -124,8 +127,9 @@ template <class Index>
 class Aggregation {
  public:
   Aggregation(const DlaOptions& options, const MeshConstraint* constraint, const Cluster* partial,
-              const StopFlag* stop)
+              const StopFlag* stop, DlaStats& stats)
       : opt_(options),
+        stats_(stats),
         constraint_(constraint),
         stop_(stop),
         contact_(options.spacing),
@@ -147,7 +151,6 @@ class Aggregation {
     if (partial) {
       // The same particles added in the same order rebuild the same index and radii.
       for (const Particle& p : partial->particles) add(p);
-      cluster_.stats = partial->stats;
       return;
     }
     for (std::size_t i = 0; i < options.seeds.size(); ++i)
@@ -160,7 +163,7 @@ class Aggregation {
         if (!filled()) run_in_parallel(progress);
       } else {
         for (std::size_t k = attached(cluster_); k < opt_.particles && !filled(); ++k) {
-          add(walk(k, *sight_, cluster_.stats, nullptr));
+          add(walk(k, *sight_, stats_.walk, nullptr));
           if (!report(k, progress)) break;
         }
         if (filled() && progress) progress(cluster_);
@@ -238,12 +241,12 @@ class Aggregation {
           Slot& slot = slots[k % window];
           if (!slot.done.load(std::memory_order_acquire)) break;
           if (slot.failed || slot.sight != sight_ || !unchanged(slot.reads, slot.seen, k)) {
-            ++cluster_.replays;
+            ++stats_.replays;
             slot.stats = {};
             slot.result = walk(k, *sight_, slot.stats, nullptr);
           }
           add_stopping(slot.result);
-          accumulate(cluster_.stats, slot.stats);
+          accumulate(stats_.walk, slot.stats);
           slot.done.store(false, std::memory_order_relaxed);
           committed.store(k + 1, std::memory_order_release);
           if (!report(k, progress)) stop.store(true);
@@ -358,13 +361,13 @@ class Aggregation {
   double return_radius_for(double cluster_radius) const { return cluster_radius + 2.0 * contact_; }
 
   //! Whether growth asked to fill the mesh has: it stops there, complete.
-  bool filled() const { return fill_ && cluster_.filled >= opt_.fill; }
+  bool filled() const { return fill_ && stats_.filled >= opt_.fill; }
 
   void add(const Particle& p) {
     cluster_.particles.push_back(p);
     if (fill_) {
       fill_->add(p.position);
-      cluster_.filled = fill_->fraction();
+      stats_.filled = fill_->fraction();
     }
     const bool opened = index_.insert(static_cast<std::int32_t>(cluster_.particles.size() - 1));
     if (opt_.threads > 1) opened_.push_back(opened);
@@ -582,6 +585,7 @@ class Aggregation {
   }
 
   const DlaOptions& opt_;
+  DlaStats& stats_;                   // the caller's, counted as walkers attach
   const MeshConstraint* constraint_;  // null: unconstrained
   const StopFlag* stop_;              // null: no stop but by `progress`
   const double contact_;      // centre distance at which a walker touches a particle
@@ -602,8 +606,9 @@ class Aggregation {
 
 template <class Index>
 Cluster grow_with(const DlaOptions& options, const ProgressFn& progress, const MeshConstraint* constraint,
-                  const Cluster* partial, const StopFlag* stop) {
-  return detail::Aggregation<Index>(options, constraint, partial, stop).run(progress);
+                  const Cluster* partial, const StopFlag* stop, DlaStats* stats) {
+  DlaStats own;
+  return detail::Aggregation<Index>(options, constraint, partial, stop, stats ? *stats : own).run(progress);
 }
 
 }  // namespace dla

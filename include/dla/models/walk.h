@@ -10,8 +10,33 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace dla {
+
+//! Counters of DLA's walks, for the JSON sidecar and for tuning.
+struct WalkStats {
+  std::uint64_t walkers = 0;      //!< walkers launched (one per attached particle)
+  std::uint64_t steps = 0;        //!< walk steps, all kinds
+  std::uint64_t near_steps = 0;   //!< short steps next to the structure, with a contact test
+  std::uint64_t contacts = 0;     //!< contacts, stuck or refused
+  std::uint64_t returns = 0;      //!< walkers put back on the return sphere from outside it
+  std::uint64_t relaunches = 0;   //!< walkers that escaped and started afresh
+  std::uint64_t lost = 0;         //!< walkers on the wrong side of a constraint mesh, started afresh
+  std::uint64_t rejected = 0;     //!< branches refused because they crossed the constraint mesh
+  std::uint64_t clipped = 0;      //!< branches cut short at the constraint mesh
+};
+
+//! What a DLA run did beside the structure it grew (dla.h).
+struct DlaStats {
+  WalkStats walk;
+  //! Walkers run again because a particle attached by an earlier walker on another thread
+  //! changed their path.
+  std::uint64_t replays = 0;
+  //! Growing to fill a mesh (DlaOptions::fill): the fraction of its volume covered so far;
+  //! else 0.
+  double filled = 0.0;
+};
 
 //! A unit vector orthogonal to unit vector n (Duff et al., "Building an orthonormal basis,
 //! revisited", 2017).

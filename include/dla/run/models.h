@@ -143,9 +143,7 @@ std::vector<Vec3> seeds_on(const MeshConstraint& mesh, const MeshSeeds& seeds, s
 //! A run of any model.
 using RunOptions = std::variant<DlaRunOptions, ColonizeRunOptions, EdenRunOptions, DropRunOptions, BallisticRunOptions>;
 
-//! The model's name, as the CLI's subcommand and Python's function: grow (DLA), colonize,
-//! eden, drop, ballistic.
-std::string_view model_name(const RunOptions& options);
+//! The files a run of any model writes.
 const OutputOptions& output_of(const RunOptions& options);
 
 //! Throws InvalidInput, with one line naming the option, for options that cannot work

@@ -38,15 +38,20 @@ class Run {
   virtual ~Run() = default;
 
   //! Grows the structure (once: a run's seeds and statistics are its own). Throws
-  //! PartialGrowth, with what grew, when growth fails part way.
+  //! PartialGrowth, with what grew, when growth fails part way; the statistics then count
+  //! what grew.
   virtual Cluster grow(const ProgressFn& progress, const StopFlag* stop) = 0;
   //! The first line of a summary of the structure grown: counts, time, size.
   virtual std::string summary(const Cluster& cluster, const RunRecord& record) const = 0;
   //! How much of `total` a structure growing has: its particles (DLA: without the seeds).
   virtual std::size_t done(const Cluster& so_far) const { return so_far.particles.size(); }
-  //! Writes the JSON record of the run to `path`: the model's options and statistics.
-  virtual void write_report(const Cluster& cluster, const OutputOptions& files, const RunRecord& record,
-                            const std::string& path) const = 0;
+  //! How full the mesh is, for a DLA run growing to fill one, as it grows; else 0.
+  virtual double filled() const { return 0.0; }
+  //! The walks that grew the structure so far, which a checkpoint keeps (DLA); else null.
+  virtual const WalkStats* walks() const { return nullptr; }
+  //! The model's part of the JSON record of the run: its options and statistics (the
+  //! statistics as growth left them).
+  virtual ModelRecord record() const = 0;
 
   std::string_view model;          //!< grow (DLA), colonize, eden, drop or ballistic
   //! The files, with the defaults the mesh gives resolved (the up axis, the radii).
@@ -66,13 +71,39 @@ class Run {
   std::uint64_t input_hash = 0;
 };
 
+//! A checkpointed structure a DLA run goes on from, with the hash of the mesh it grew in.
+struct Resumed {
+  const Cluster* cluster = nullptr;
+  const WalkStats* stats = nullptr;  //!< the walks that grew it; null: none counted
+  std::uint64_t mesh_hash = 0;
+};
+
+//! A growth model, registered once in libdla/run/run.cpp's table: what the CLI, the Python
+//! module, the fuzzers and the property test loop over. Adding a model takes one file in
+//! libdla/run/ and one entry in the table (docs/dev/architecture.md).
+struct Model {
+  std::string_view name;     //!< the CLI's subcommand and Python's function: grow, colonize, ...
+  std::string_view summary;  //!< what it grows, in a line, as `dla3d --help` says
+  //! Its options as no one changed them: the RunOptions alternative it grows from.
+  RunOptions (*options)();
+  //! Sets up a run of `options` (its alternative): prepare_run() for this model.
+  std::unique_ptr<Run> (*prepare)(const RunOptions& options, const MeshReader& read, const Resumed& resumed);
+};
+
+//! Every model, in the order of RunOptions' alternatives: grow (DLA), colonize, eden, drop,
+//! ballistic.
+const std::vector<Model>& models();
+//! The model `options` are of.
+const Model& model_of(const RunOptions& options);
+//! The model called `name`, or null.
+const Model* find_model(std::string_view name);
+
 //! Sets up the run `options` ask for: validates them, reads the meshes with `read` (default
 //! read_mesh), takes their defaults and places seeds, roots or attractors. `resumed` is the
-//! checkpointed structure a DLA run goes on from, with the hash of the mesh it grew in. Throws
-//! InvalidInput, with one line, for options that cannot work with the meshes or this machine,
-//! and IOError for a file that cannot be read.
-std::unique_ptr<Run> prepare_run(const RunOptions& options, const MeshReader& read = {},
-                                 const Cluster* resumed = nullptr, std::uint64_t resumed_hash = 0);
+//! checkpointed structure a DLA run goes on from. Throws InvalidInput, with one line, for
+//! options that cannot work with the meshes or this machine, and IOError for a file that
+//! cannot be read.
+std::unique_ptr<Run> prepare_run(const RunOptions& options, const MeshReader& read = {}, const Resumed& resumed = {});
 
 //! Grows `run` under `progress` and `stop`, keeping what grew when growth fails part way, and
 //! records the time taken and, when growth failed part way, "error: " and why in

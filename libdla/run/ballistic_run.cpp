@@ -1,0 +1,72 @@
+// The ballistic model's run (run.h): its options checked; grown, summed up and recorded.
+
+#include "model_runs.h"
+
+#include <cstdio>
+
+namespace dla {
+
+void validate(const BallisticRunOptions& b) {
+  validate(b.ballistic);
+  validate(b.files, b.ballistic.dimensions, false);
+}
+
+namespace detail {
+
+namespace {
+
+//! Ballistic aggregation.
+class BallisticRun : public Run {
+ public:
+  explicit BallisticRun(const BallisticRunOptions& o) : options_(o.ballistic) {
+    files = resolve(o.files, nullptr, false);
+    total = options_.seeds.size() + options_.particles;
+  }
+
+  Cluster grow(const ProgressFn& progress, const StopFlag* stop) override {
+    return dla::ballistic(options_, progress, stop, &stats_);
+  }
+
+  std::string summary(const Cluster& cluster, const RunRecord& record) const override {
+    char line[256];
+    std::snprintf(line, sizeof line, "grew %s particles from %s lines (%s missed) in %.2f s; bounding radius %.1f",
+                  with_commas(static_cast<double>(attached(cluster))).c_str(),
+                  with_commas(static_cast<double>(stats_.launched)).c_str(),
+                  with_commas(static_cast<double>(stats_.missed)).c_str(), record.grow_seconds,
+                  bounding_radius(cluster));
+    return line;
+  }
+
+  ModelRecord record() const override {
+    ModelRecord out{"ballistic", options_.rng_seed};
+    out.options = [this](RecordWriter& w) {
+      const BallisticOptions& o = options_;
+      w.count("particles", o.particles).integer("dimensions", o.dimensions).number("spacing", o.spacing).points("seeds", o.seeds);
+      if (o.direction.squaredNorm() > 0.0) w.point("direction", o.direction);
+      else w.text("direction", "random");
+    };
+    out.statistics = [this](RecordWriter& w) {
+      w.open("lines")
+          .count("launched", stats_.launched)
+          .count("missed", stats_.missed)
+          .count("far_steps", stats_.far_steps)
+          .count("near_steps", stats_.near_steps)
+          .close();
+    };
+    return out;
+  }
+
+ private:
+  BallisticOptions options_;
+  BallisticStats stats_;
+};
+
+}  // namespace
+
+std::unique_ptr<Run> prepare_ballistic(const RunOptions& options, const MeshReader&, const Resumed&) {
+  return std::make_unique<BallisticRun>(std::get<BallisticRunOptions>(options));
+}
+
+}  // namespace detail
+
+}  // namespace dla

@@ -1,0 +1,243 @@
+// Space colonization's run (run.h): its options checked, the vessel and collision mesh read,
+// the attractors scattered or read and the roots placed; grown, summed up and recorded.
+
+#include "model_runs.h"
+
+#include "dla/core/random.h"
+#include "dla/mesh/mesh.h"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace dla {
+
+std::string_view to_string(RootRegion region) {
+  return region == RootRegion::sphere ? "sphere" : region == RootRegion::mesh ? "mesh" : "surface";
+}
+
+RootRegion parse_root_region(std::string_view word) {
+  constexpr RootRegion values[] = {RootRegion::sphere, RootRegion::mesh, RootRegion::surface};
+  return detail::parse_word(word, values, "root region");
+}
+
+namespace {
+
+std::string point_text(const Vec3& p) {
+  return detail::format_number(p.x()) + "," + detail::format_number(p.y()) + "," + detail::format_number(p.z());
+}
+
+//! K roots at random on the sphere around the attractors: the scattering sphere, or the one
+//! around the box they lie in (the Hyphae write-up's third test); in z = 0 for 2D.
+std::vector<Vec3> roots_around(const ColonizeRunOptions& c, const std::vector<Vec3>& attractors, Rng& rng) {
+  const AttractorOptions& a = c.attractors;
+  const bool scattered =
+      c.attractors_from.empty() && (a.region == AttractorRegion::sphere || a.region == AttractorRegion::box);
+  Vec3 lo = a.box_min, hi = a.box_max;
+  if (!scattered) {
+    lo = hi = attractors.front();
+    for (const Vec3& p : attractors) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  }
+  const bool sphere = scattered && a.region == AttractorRegion::sphere;
+  const Vec3 center = sphere ? a.center : Vec3(0.5 * (lo + hi));
+  double radius = sphere ? a.radius : 0.5 * (hi - lo).norm();
+  const int dimensions = c.colonization.dimensions;
+  if (dimensions == 2 && !sphere) radius = 0.5 * (hi - lo).head<2>().norm();
+  radius *= c.roots_scale;
+  std::vector<Vec3> roots;
+  for (std::size_t k = 0; k < c.root_count; ++k) {
+    Vec3 root = center + radius * random_direction(rng, dimensions);
+    if (dimensions == 2) root.z() = 0.0;
+    roots.push_back(root);
+  }
+  return roots;
+}
+
+//! Where one root starts by default: the lowest point (along y) of the scattering sphere or
+//! box, or else the lowest attractor.
+Vec3 lowest_point(const ColonizeRunOptions& c, const std::vector<Vec3>& attractors) {
+  const AttractorOptions& a = c.attractors;
+  if (c.attractors_from.empty() && a.region == AttractorRegion::sphere) return a.center - Vec3(0.0, a.radius, 0.0);
+  if (c.attractors_from.empty() && a.region == AttractorRegion::box)
+    return {0.5 * (a.box_min.x() + a.box_max.x()), a.box_min.y(), 0.5 * (a.box_min.z() + a.box_max.z())};
+  return *std::min_element(attractors.begin(), attractors.end(),
+                           [](const Vec3& p, const Vec3& q) { return p.y() < q.y(); });
+}
+
+}  // namespace
+
+std::vector<Vec3> colonize_roots(const ColonizeRunOptions& options, const std::vector<Vec3>& attractors,
+                                 const MeshConstraint* mesh) {
+  if (!options.root_at.empty()) return options.root_at;
+  if (options.root_count == 0) {
+    Vec3 root = lowest_point(options, attractors);
+    if (options.colonization.dimensions == 2) root.z() = 0.0;
+    return {root};
+  }
+  Rng rng(options.colonization.rng_seed, 0x726f6f7473ULL);  // a stream of its own: "roots"
+  if (options.roots_in == RootRegion::sphere) return roots_around(options, attractors, rng);
+  if (!mesh)
+    throw InvalidInput("`roots_in` " + std::string(to_string(options.roots_in)) + " needs a mesh: `stl` or `collide`");
+  std::vector<Vec3> roots;
+  for (std::size_t k = 0; k < options.root_count; ++k)
+    roots.push_back(options.roots_in == RootRegion::mesh ? mesh->draw_inside(rng) : mesh->draw_near_surface(rng));
+  return roots;
+}
+
+void validate(const ColonizeRunOptions& c) {
+  const ColonizationOptions& o = c.colonization;
+  validate(c.files, o.dimensions, !c.stl.empty());
+  if (c.roots_in != RootRegion::sphere && c.root_count == 0)
+    throw InvalidInput("`roots_in` says where `roots` K puts its roots: give `roots`");
+  detail::require_in("`roots_scale`", c.roots_scale, 0.01, 100.0);
+  if (c.roots_scale != 1.0 && (c.root_count == 0 || c.roots_in != RootRegion::sphere))
+    throw InvalidInput("`roots_scale` sizes the sphere of `roots` K (`roots_in` sphere): give `roots`");
+  if (!c.root_at.empty() && c.root_count)
+    throw InvalidInput("`root_at` and `roots` both place the roots: give one");
+  detail::validate_mesh_seeds(c.seeds, !c.stl.empty() || !c.collide.empty(), "root_at");
+  if ((c.seeds.count || c.seeds.on_surface()) && (!c.root_at.empty() || c.root_count))
+    throw InvalidInput("`seeds`, `seed_surface`, `seed_paint` and `seed_mesh` place the roots on the mesh; `root_at` "
+                       "and `roots` elsewhere: give one");
+  const bool on_mesh = c.attractors.region == AttractorRegion::mesh || c.attractors.region == AttractorRegion::surface;
+  if ((on_mesh || c.roots_in != RootRegion::sphere) && c.stl.empty() && c.collide.empty())
+    throw InvalidInput("attractors or roots in a mesh need one: give `stl` or `collide`");
+  if (!c.attractors_from.empty() && on_mesh)
+    throw InvalidInput("`attractors_from` reads the attractors; `attractors_in` scatters them: give one");
+  if (!c.stl.empty() && o.dimensions != 3) throw InvalidInput("`stl` needs 3 dimensions");
+  if (c.collision != CollisionMode::push && c.collide.empty())
+    throw InvalidInput("`collision` says what `collide`'s mesh does: give one");
+  if (!c.collide.empty() && o.dimensions != 3) throw InvalidInput("`collide` needs 3 dimensions");
+  validate(o);
+  validate(c.attractors);
+  if (o.dimensions == 2) {
+    if (c.attractors.center.z() != 0.0)
+      throw InvalidInput("`dimensions` 2 grows in z = 0: the attractors' centre is not");
+    for (const Vec3& r : c.root_at)
+      if (r.z() != 0.0) throw InvalidInput("`dimensions` 2 grows in z = 0: a `root_at` is not");
+  }
+  if (c.root_count > o.max_nodes || c.root_at.size() > o.max_nodes)
+    throw InvalidInput("more roots than `max_nodes`");
+  for (const Vec3& r : c.root_at) detail::require_representable("`root_at` " + point_text(r), r, o.spacing);
+}
+
+namespace detail {
+
+namespace {
+
+//! Space colonization among attractors scattered or read from a file.
+class ColonizeRun : public Run {
+ public:
+  ColonizeRun(const ColonizeRunOptions& o, const MeshReader& read)
+      : options_(o.colonization), attractor_options_(o.attractors) {
+    files = resolve(o.files, nullptr, false);
+    unit = "nodes";
+    total = options_.max_nodes;
+    grown_with_ = options_;
+    if (!o.stl.empty()) {
+      vessel_ = with_mesh(read, o.stl, [&](const TriangleMesh& mesh) {
+        const ConstraintOptions inside{Side::inside, ConstraintMode::reject};
+        return std::make_unique<MeshConstraint>(mesh, inside, options_.spacing);
+      });
+      grown_with_.vessel = vessel_.get();
+    }
+    if (!o.collide.empty()) {
+      collide_ = with_mesh(read, o.collide, [&](const TriangleMesh& mesh) {
+        return std::make_unique<CollisionObject>(mesh, options_.spacing, o.collision);
+      });
+      grown_with_.collide = collide_.get();
+    }
+    // Attractors and roots in or on "the mesh": the vessel's, else the collision object's.
+    const MeshConstraint* mesh = vessel_ ? vessel_.get() : collide_ ? &collide_->solid() : nullptr;
+    if (o.attractors_from.empty()) {
+      attractors_ = scatter_attractors(o.attractors, options_.rng_seed, options_.dimensions, mesh);
+    } else {
+      attractors_ = read_points(o.attractors_from);
+      if (o.sample_attractors) attractors_ = sample_attractors(attractors_, o.attractors.count, options_.rng_seed);
+      if (attractors_.size() > kMaxAttractors) throw InvalidInput(o.attractors_from + ": more than 1e8 attractors");
+      if (options_.dimensions == 2)
+        for (const Vec3& a : attractors_)
+          if (a.z() != 0.0)
+            throw InvalidInput(o.attractors_from + ": `dimensions` 2 grows in z = 0, and an attractor is not");
+    }
+    if (mesh && (o.seeds.count || o.seeds.on_surface())) {
+      const std::vector<TriangleMesh> entering = read_all(read, o.seeds.meshes);
+      roots_ = named(mesh == vessel_.get() ? o.stl : o.collide,
+                     [&] { return seeds_on(*mesh, o.seeds, options_.rng_seed, entering); });
+      if (roots_.size() > options_.max_nodes) throw InvalidInput("more roots than `max_nodes`");
+    } else {
+      roots_ = colonize_roots(o, attractors_, mesh);
+    }
+    attractors_from_ = o.attractors_from;
+    attractor_count_ = attractors_.size();
+    vessel_file_ = o.stl;
+    collide_file_ = o.collide;
+    collision_ = o.collision;
+    // The vessel, else the collision mesh, shows in the scene as glass, as a constraint mesh does.
+    constraint = vessel_.get();
+    scene_mesh = mesh ? &mesh->mesh() : nullptr;
+  }
+
+  Cluster grow(const ProgressFn& progress, const StopFlag* stop) override {
+    return dla::colonize(grown_with_, std::move(attractors_), roots_, progress, stop);
+  }
+
+  std::string summary(const Cluster& tree, const RunRecord& record) const override {
+    char line[256];
+    std::snprintf(line, sizeof line, "grew %s nodes from %s root%s in %.2f s; bounding radius %.1f",
+                  with_commas(static_cast<double>(tree.particles.size())).c_str(),
+                  with_commas(static_cast<double>(tree.seed_count)).c_str(), tree.seed_count == 1 ? "" : "s",
+                  record.grow_seconds, bounding_radius(tree));
+    return line;
+  }
+
+  ModelRecord record() const override {
+    ModelRecord out{"colonization", options_.rng_seed};
+    out.options = [this](RecordWriter& w) { record_options(w); };
+    return out;
+  }
+
+ private:
+  void record_options(RecordWriter& out) const {
+    const ColonizationOptions& o = options_;
+    const AttractorOptions& a = attractor_options_;
+    out.count("max_nodes", o.max_nodes)
+        .count("max_iterations", o.max_iterations)
+        .number("spacing", o.spacing)
+        .number("kill_distance", o.kill_distance)
+        .number("influence", o.influence)
+        .number("noise_amplitude", o.noise_amplitude)
+        .number("noise_scale", o.noise_scale)
+        .point("tropism", o.tropism)
+        .integer("dimensions", o.dimensions)
+        .count("attractors", attractor_count_);
+    if (!attractors_from_.empty()) {
+      out.text("attractors_from", attractors_from_);
+    } else {
+      out.text("attractors_in", to_string(a.region));
+      if (a.region == AttractorRegion::sphere) out.point("attractor_center", a.center).number("attractor_radius", a.radius);
+      else if (a.region == AttractorRegion::box) out.points("attractor_box", {a.box_min, a.box_max});
+    }
+    out.number("attractor_falloff", a.falloff).points("roots", roots_);
+    if (!vessel_file_.empty()) out.text("vessel", vessel_file_);
+    if (!collide_file_.empty()) out.text("collide", collide_file_).text("collision", to_string(collision_));
+  }
+
+  ColonizationOptions options_, grown_with_;
+  AttractorOptions attractor_options_;
+  std::unique_ptr<MeshConstraint> vessel_;
+  std::unique_ptr<CollisionObject> collide_;
+  std::vector<Vec3> attractors_, roots_;
+  // What the record says of the run's inputs.
+  std::string attractors_from_, vessel_file_, collide_file_;
+  std::size_t attractor_count_ = 0;
+  CollisionMode collision_ = CollisionMode::push;
+};
+
+}  // namespace
+
+std::unique_ptr<Run> prepare_colonize(const RunOptions& options, const MeshReader& read, const Resumed&) {
+  return std::make_unique<ColonizeRun>(std::get<ColonizeRunOptions>(options), read);
+}
+
+}  // namespace detail
+
+}  // namespace dla

@@ -1,0 +1,128 @@
+// The random-drop model's run (run.h): its options checked, the mesh read and the defaults
+// it gives taken, the seeds placed; grown, summed up and recorded.
+
+#include "model_runs.h"
+
+#include "dla/mesh/mesh.h"
+
+#include <cstdio>
+
+namespace dla {
+
+void validate(const DropRunOptions& d) {
+  const bool mesh = !d.stl.empty();
+  detail::validate_mesh_seeds(d.seeds, mesh, "seed_at");
+  if (d.seed_at && (d.seeds.count || d.seeds.on_surface()))
+    throw InvalidInput("`seed_at` and `seeds`, `seed_surface`, `seed_paint` or `seed_mesh` both place the seeds: give one");
+  if (d.drop.zone == DropZone::mesh && !mesh) throw InvalidInput("`zone` mesh drops inside a mesh: give one with `stl`");
+  if (!mesh || d.spacing) {  // else once the mesh gives the spacing
+    DropOptions drop = d.drop;
+    if (d.spacing) drop.spacing = *d.spacing;
+    if (d.seed_at) drop.seeds = *d.seed_at;
+    validate(drop);
+  }
+  validate(d.files, d.drop.dimensions, mesh);
+}
+
+namespace detail {
+
+namespace {
+
+//! Random-drop ballistic aggregation, in or around a mesh if one is given.
+class DropRun : public Run {
+ public:
+  DropRun(const DropRunOptions& o, const MeshReader& read) : options_(o.drop), mesh_file_(o.stl) {
+    if (o.spacing) options_.spacing = *o.spacing;
+    if (o.seed_at) options_.seeds = *o.seed_at;
+    if (mesh_file_.empty()) {
+      files = resolve(o.files, nullptr, false);
+    } else {
+      // As for DLA: the spacing and the up axis from the mesh's box, one seed on the growing side.
+      const TriangleMesh mesh = read(mesh_file_, nullptr);
+      const Box box = bounding_box(mesh);
+      if (!o.spacing) options_.spacing = default_spacing(box);
+      files = resolve(o.files, &box, false);
+      detail::require_in("spacing", options_.spacing, kMinSpacing, kMaxSpacing);
+      const std::vector<TriangleMesh> entering = read_all(read, o.seeds.meshes);
+      named(mesh_file_, [&] {
+        constraint_ = std::make_unique<MeshConstraint>(mesh, o.constraint, options_.spacing);
+        if (!o.seed_at) options_.seeds = seeds_on(*constraint_, o.seeds, options_.rng_seed, entering);
+        validate(options_, *constraint_);
+      });
+      if (!entering.empty() && o.scene_mesh) scene_mesh_ = with_entering(constraint_->mesh(), entering);
+      mesh_line = detail::mesh_line(mesh_file_, *constraint_, options_.spacing);
+    }
+    total = options_.seeds.size() + options_.particles;
+    constraint = constraint_.get();
+    scene_mesh = !scene_mesh_.triangles.empty() ? &scene_mesh_ : constraint_ && o.scene_mesh ? &constraint_->mesh() : nullptr;
+  }
+
+  Cluster grow(const ProgressFn& progress, const StopFlag* stop) override {
+    return dla::drop(options_, constraint_.get(), progress, stop, &stats_);
+  }
+
+  std::string summary(const Cluster& cluster, const RunRecord& record) const override {
+    char line[320];
+    std::snprintf(line, sizeof line,
+                  "grew %s particles from %s drops in %.2f s%s; %s fell on the structure; bounding radius %.1f",
+                  with_commas(static_cast<double>(attached(cluster))).c_str(),
+                  with_commas(static_cast<double>(stats_.drops)).c_str(), record.grow_seconds,
+                  stats_.zone_full ? " (then the drop zone was full)" : "",
+                  with_commas(static_cast<double>(stats_.on_structure)).c_str(), bounding_radius(cluster));
+    return line;
+  }
+
+  ModelRecord record() const override {
+    ModelRecord out{"drop", options_.rng_seed};
+    out.options = [this](RecordWriter& w) { record_options(w); };
+    out.statistics = [this](RecordWriter& w) {
+      w.open("drops")
+          .count("drops", stats_.drops)
+          .count("on_structure", stats_.on_structure)
+          .count("refused", stats_.refused)
+          .count("lost", stats_.lost)
+          .count("mesh_rejected", stats_.mesh_rejected)
+          .count("clipped", stats_.clipped)
+          .flag("zone_full", stats_.zone_full)
+          .close();
+    };
+    return out;
+  }
+
+ private:
+  void record_options(RecordWriter& out) const {
+    const DropOptions& o = options_;
+    out.count("particles", o.particles)
+        .integer("dimensions", o.dimensions)
+        .number("spacing", o.spacing)
+        .number("stickiness", o.stickiness)
+        .points("seeds", o.seeds)
+        .text("zone", to_string(o.zone));
+    if (o.zone != DropZone::mesh) {
+      if (o.zone_radius > 0.0) out.number("zone_radius", o.zone_radius);
+      else out.text("zone_radius", "growing").number("zone_margin", o.zone_margin);
+    }
+    if (o.zone_box) out.points("zone_box", {o.zone_box->min, o.zone_box->max});
+    out.text("drop", to_string(o.bias));
+    if (constraint_)
+      out.text("mesh", mesh_file_)
+          .text("side", to_string(constraint_->options().side))
+          .text("constraint", to_string(constraint_->options().mode));
+  }
+
+  DropOptions options_;
+  std::string mesh_file_;
+  std::unique_ptr<MeshConstraint> constraint_;
+  TriangleMesh scene_mesh_;  // the scene's mesh when it is more than the constraint's
+  DropStats stats_;
+};
+
+}  // namespace
+
+std::unique_ptr<Run> prepare_drop(const RunOptions& options, const MeshReader& read, const Resumed&) {
+  return std::make_unique<DropRun>(std::get<DropRunOptions>(options), read);
+}
+
+}  // namespace detail
+
+}  // namespace dla

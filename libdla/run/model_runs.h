@@ -1,0 +1,55 @@
+#pragma once
+// What the model runs share (one file each: dla_run.cpp, colonize_run.cpp, eden_run.cpp,
+// drop_run.cpp, ballistic_run.cpp) and the function each registers in run.cpp's table.
+
+#include "dla/run/run.h"
+
+#include "dla/core/errors.h"
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace dla::detail {
+
+std::unique_ptr<Run> prepare_dla(const RunOptions& options, const MeshReader& read, const Resumed& resumed);
+std::unique_ptr<Run> prepare_colonize(const RunOptions& options, const MeshReader& read, const Resumed& resumed);
+std::unique_ptr<Run> prepare_eden(const RunOptions& options, const MeshReader& read, const Resumed& resumed);
+std::unique_ptr<Run> prepare_drop(const RunOptions& options, const MeshReader& read, const Resumed& resumed);
+std::unique_ptr<Run> prepare_ballistic(const RunOptions& options, const MeshReader& read, const Resumed& resumed);
+
+//! "NAME: 1,234 triangles; REPAIRS; spacing S": what a run says of its constraint mesh.
+std::string mesh_line(const std::string& name, const MeshConstraint& constraint, double spacing);
+
+//! The files' defaults without a mesh, or with one whose box is `mesh_box`; with `mesh_look`,
+//! the look of a root system (DLA in a mesh); `mesh_up` an up axis the mesh gives otherwise.
+OutputOptions resolve(OutputOptions files, const Box* mesh_box, bool mesh_look, std::optional<Axis> mesh_up = {});
+
+std::vector<TriangleMesh> read_all(const MeshReader& read, const std::vector<std::string>& paths);
+
+//! A mesh with the meshes that enter it, for a scene that shows where growth starts.
+TriangleMesh with_entering(TriangleMesh mesh, const std::vector<TriangleMesh>& entering);
+
+//! Seeds or roots placed on a mesh need one, and one way of placing them; `placed_by` is the
+//! model's option that places them without a mesh.
+void validate_mesh_seeds(const MeshSeeds& seeds, bool mesh, const char* placed_by);
+
+//! What `make` makes, with `name` (the mesh's) before what it refuses.
+template <class Make>
+auto named(const std::string& name, Make&& make) {
+  try {
+    return make();
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(name + ": " + e.what());
+  }
+}
+
+//! Reads a mesh and makes what needs it, naming the file in what it refuses.
+template <class Make>
+auto with_mesh(const MeshReader& read, const std::string& path, Make&& make) {
+  return named(path, [&] { return make(read(path, nullptr)); });
+}
+
+}  // namespace dla::detail
