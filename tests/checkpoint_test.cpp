@@ -70,7 +70,9 @@ TEST(Checkpoint, ResumedConstrainedGrowthIsTheUninterruptedOne) {
   o.seeds = tube.place_seeds(2, o.rng_seed);
   DlaStats whole_stats, stats;
   const Cluster whole = grow(o, tube, {}, nullptr, &whole_stats);
-  const Cluster part = grow(o, tube, [](const Cluster& so_far) { return attached(so_far) < 512; }, nullptr, &stats);
+  DlaOptions shorter = o;
+  shorter.particles = 512;
+  const Cluster part = grow(shorter, tube, {}, nullptr, &stats);
   const Cluster resumed = resume(o, tube, part, {}, nullptr, &stats);
   ASSERT_EQ(resumed.particles.size(), whole.particles.size());
   for (std::size_t i = 0; i < whole.particles.size(); ++i)

@@ -8,12 +8,14 @@
 //   - exit 2 (bad input) prints one line and writes no file;
 //   - exit 1 (growth or I/O failed) ends with one error line, and any files are marked
 //     incomplete.
-// A quarter of the command lines are `dla3d colonize` ones, an eighth `dla3d eden` ones and a
-// sixteenth each `dla3d drop` and `dla3d ballistic` ones, each drawn from its own table and the
+// Every model the library registers (dla/run/run.h) has a share of the command lines: a
+// quarter are `dla3d colonize` ones, an eighth `dla3d eden` ones and a sixteenth each `dla3d
+// drop`, `dla3d ballistic` and `dla3d frames` ones, each drawn from its own table and the
 // Output and Look options.
-// DLA_PROPERTY_RUNS sets the number of command lines (default 150, about a minute; the `slow`
-// ctest entry runs 1,000) and DLA_PROPERTY_SEED the generator's seed. Every option added to
-// dla3d must join the table below: the test fails on an option of --help it does not know.
+// DLA_PROPERTY_RUNS sets the number of command lines (default 150, about a minute;
+// CliProperty.Long, in the full tier, runs 1,000) and DLA_PROPERTY_SEED the generator's seed.
+// Every option and model added to dla3d must join the tables below: the test fails on an
+// option of --help, or a model, it does not know.
 
 #include "cli_util.h"
 #include "clients.h"
@@ -25,11 +27,13 @@
 #include "dla/models/dla.h"
 #include "dla/mesh/mesh.h"
 #include "dla/mesh/shapes.h"
+#include "dla/run/run.h"
 
 #include "tree_check.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -484,20 +488,27 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
   // The table knows every option of --help: a new option must join it.
   for (const std::string& name : options_of_help(root))
     EXPECT_TRUE(option_table().count(name)) << name << " is in dla3d --help but not in the property test's table";
-  for (const std::string& name : options_of_help(root, "colonize"))
-    EXPECT_TRUE(colonize_table().count(name) || option_table().count(name))
-        << name << " is in dla3d colonize --help but not in the property test's tables";
-  std::vector<std::string> colonize_flags;
-  for (const auto& [flag, values] : colonize_table()) colonize_flags.push_back(flag);
-  for (const std::string& name : options_of_help(root, "eden"))
-    EXPECT_TRUE(eden_table().count(name) || option_table().count(name))
-        << name << " is in dla3d eden --help but not in the property test's tables";
-  for (const std::string& name : options_of_help(root, "drop"))
-    EXPECT_TRUE(drop_table().count(name) || option_table().count(name))
-        << name << " is in dla3d drop --help but not in the property test's tables";
-  for (const std::string& name : options_of_help(root, "ballistic"))
-    EXPECT_TRUE(ballistic_table().count(name) || option_table().count(name))
-        << name << " is in dla3d ballistic --help but not in the property test's tables";
+  // Every model the library registers runs here, with its own options' table; a new model
+  // must join. Each has a share of the runs (of 16, with one for frames); DLA's options are
+  // the top level's.
+  using Table = std::map<std::string, std::vector<std::string>>;
+  struct ModelRuns {
+    std::string_view name;
+    std::size_t share;
+    const Table* table;
+  };
+  const ModelRuns model_runs[] = {{"colonize", 4, &colonize_table()}, {"eden", 2, &eden_table()},
+                                  {"drop", 1, &drop_table()},         {"ballistic", 1, &ballistic_table()},
+                                  {"frames", 1, &frames_table()},     {"grow", 7, nullptr}};
+  for (const dla::Model& model : dla::models())
+    EXPECT_TRUE(std::any_of(std::begin(model_runs), std::end(model_runs), [&](const ModelRuns& m) { return m.name == model.name; }))
+        << "the property test runs no " << model.name;
+  for (const ModelRuns& m : model_runs)
+    if (m.table && m.name != "frames") {
+      for (const std::string& name : options_of_help(root, std::string(m.name)))
+        EXPECT_TRUE(m.table->count(name) || option_table().count(name))
+            << name << " is in dla3d " << m.name << " --help but not in the property test's tables";
+    }
   for (const std::string& name : options_of_help(root, "frames"))
     EXPECT_TRUE(frames_table().count(name) || option_table().count(name))
         << name << " is in dla3d frames --help but not in the property test's tables";
@@ -506,16 +517,13 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
                                            "--tip-radius", "--pipe-exponent", "--color-by", "--look", "--tube-sides",
                                            "--tube-tolerance", "--tube-min-branch", "--instances", "--tips-within",
                                            "--up", "--quiet", "--help"};
-  const auto flags_of = [&](const std::map<std::string, std::vector<std::string>>& table) {
+  const auto flags_of = [&](const Table& table) {
     std::vector<std::string> model_flags(shared.begin(), shared.end());
     for (const auto& [flag, values] : table) model_flags.push_back(flag);
     return model_flags;
   };
-  const std::vector<std::string> eden_flags = flags_of(eden_table()), drop_flags = flags_of(drop_table()),
-                                 ballistic_flags = flags_of(ballistic_table()), frames_flags = flags_of(frames_table());
-  colonize_flags.insert(colonize_flags.end(), shared.begin(), shared.end());
   // A model's own table, else the shared options' values in DLA's.
-  const auto values_of = [&](const std::string& flag, const std::map<std::string, std::vector<std::string>>* table)
+  const auto values_of = [&](const std::string& flag, const Table* table)
       -> const std::vector<std::string>& { return table && table->count(flag) ? table->at(flag) : option_table().at(flag); };
 
   const char* runs_env = std::getenv("DLA_PROPERTY_RUNS");
@@ -528,24 +536,13 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
 
   std::map<int, int> exits;
   for (int run = 0; run < runs; ++run) {
-    // A few options, mostly valid values: an invalid one ends most runs at once. One run in
-    // four is space colonization, one in eight Eden growth, one in sixteen random drops, one
-    // in sixteen ballistic aggregation and one in sixteen the frames of a grown CSV.
-    const std::size_t model = pick(16);
-    const bool colonizing = model < 4, eden = model == 4 || model == 5, dropping = model == 6, flying = model == 7,
-               framing = model == 8;
-    const std::map<std::string, std::vector<std::string>>* table = colonizing ? &colonize_table()
-                                                                  : eden      ? &eden_table()
-                                                                  : dropping  ? &drop_table()
-                                                                  : flying    ? &ballistic_table()
-                                                                  : framing   ? &frames_table()
-                                                                              : nullptr;
-    const std::vector<std::string>& model_flags = colonizing ? colonize_flags
-                                                  : eden     ? eden_flags
-                                                  : dropping ? drop_flags
-                                                  : flying   ? ballistic_flags
-                                                  : framing  ? frames_flags
-                                                             : flags;
+    // A few options, mostly valid values: an invalid one ends most runs at once.
+    std::size_t share = pick(16);
+    const ModelRuns* model = model_runs;
+    while (share >= model->share) share -= model->share, ++model;
+    const bool colonizing = model->name == "colonize", framing = model->name == "frames";
+    const Table* table = model->table;
+    const std::vector<std::string> model_flags = table ? flags_of(*table) : flags;
     std::string args;
     bool particles_given = false, output_given = false;
     const std::size_t count = pick(7);
@@ -564,13 +561,9 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
     if (!particles_given && !framing && args.find("--resume") == std::string::npos)
       args = " -n " + std::to_string(20 + pick(150)) + args;
     if (framing) args = " frames " + std::string(pick(8) == 0 ? "out.csv" : "grown.csv") + args;
-    if (colonizing) {
-      if (args.find("--attractors ") == std::string::npos) args = " --attractors " + std::to_string(50 + pick(1000)) + args;
-      args = " colonize" + args;
-    }
-    if (eden) args = " eden" + args;
-    if (dropping) args = " drop" + args;
-    if (flying) args = " ballistic" + args;
+    if (colonizing && args.find("--attractors ") == std::string::npos)
+      args = " --attractors " + std::to_string(50 + pick(1000)) + args;
+    if (table && !framing) args = " " + std::string(model->name) + args;
     const std::string command = args.substr(1);
 
     ScratchDir dir;

@@ -270,8 +270,8 @@ TEST(Cli, TheGridHoldsAMillionParticlesIn2D) {
 }
 
 // A stop request ends a run wherever it is, here inside walks that touch the structure ten
-// thousand times before they stick: the progress callback's beat is 256 particles, which take
-// seconds, and the run stops before the first.
+// thousand times before they stick: 256 particles take seconds, and the run stops long
+// before.
 TEST(Cli, SigtermStopsInsideAWalk) {
   ScratchDir dir;
   EXPECT_EQ(interrupted(dir, "-n 100000 --stickiness 1e-4 -q -o slow --formats json", SIGTERM, 0.3), 143)

@@ -16,7 +16,7 @@ namespace dla::testing {
 inline Cluster colonize_by_rescan(const ColonizationOptions& o, const std::vector<Vec3>& attractors,
                                   const std::vector<Vec3>& roots) {
   validate(o);
-  Cluster tree = detail::roots_only(o, roots);
+  Cluster tree = detail::seeded(roots, o.spacing, o.dimensions);
   const double kill2 = detail::kill_distance2(o), reach2 = detail::reach2(o);
   std::vector<bool> alive(attractors.size(), true);
   const auto kill_near = [&](std::size_t first_node) {

@@ -157,12 +157,21 @@ TEST(Colonization, GrowthEndsWhenItStallsOrMeetsALimit) {
   o.max_iterations = 1000000;
   o.max_nodes = 50;
   EXPECT_EQ(colonize(o, attractors, {Vec3::Zero()}).particles.size(), 50u);
-  // A progress callback that says stop: the tree so far, marked incomplete.
+  // A progress callback that says stop as growth begins: the roots, marked incomplete; one
+  // that lets it go on sees the whole tree last.
   o.max_nodes = 100000;
   int calls = 0;
-  const Cluster stopped = colonize(o, attractors, {Vec3::Zero()}, [&](const Cluster&) { return ++calls < 2; });
+  const Cluster stopped = colonize(o, attractors, {Vec3::Zero()}, [&](const Cluster&) { return ++calls < 1; });
   EXPECT_FALSE(stopped.complete);
-  EXPECT_EQ(calls, 2);
+  EXPECT_EQ(calls, 1);
+  EXPECT_EQ(stopped.particles.size(), 1u);
+  std::size_t seen = 0;
+  const Cluster whole = colonize(o, attractors, {Vec3::Zero()}, [&](const Cluster& so_far) {
+    seen = so_far.particles.size();
+    return true;
+  });
+  EXPECT_TRUE(whole.complete);
+  EXPECT_EQ(seen, whole.particles.size());
 }
 
 TEST(Colonization, PushKeepsEveryNodeOutOfTheCollisionObject) {

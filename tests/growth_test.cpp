@@ -123,17 +123,30 @@ TEST(Growth, SameSeedSameStructureOtherSeedOther) {
   EXPECT_NE(other.particles.back().position, a.particles.back().position);
 }
 
-TEST(Growth, ProgressCanStopGrowth) {
+// The callback is called as growth begins and at its end (and in between as time goes by);
+// when it says stop, growth stops there, and it is not called again.
+TEST(Growth, ProgressSeesTheEndAndCanStopGrowth) {
   DlaOptions o = small(5000);
-  std::size_t calls = 0;
-  const Cluster c = grow(o, [&](const Cluster& so_far) {
-    const std::size_t done = attached(so_far);
+  std::size_t calls = 0, seen = 0;
+  const Cluster whole = grow(o, [&](const Cluster& so_far) {
     ++calls;
-    return done < 1024;
+    seen = attached(so_far);
+    return true;
   });
-  EXPECT_FALSE(c.complete);
-  EXPECT_EQ(c.particles.size(), 1 + 1024u);
-  EXPECT_EQ(calls, 4u);
+  EXPECT_TRUE(whole.complete);
+  EXPECT_GE(calls, 2u);
+  EXPECT_EQ(seen, o.particles) << "the last call sees the whole structure";
+
+  calls = 0;
+  const Cluster stopped = grow(o, [&](const Cluster& so_far) {
+    ++calls;
+    seen = attached(so_far);
+    return false;
+  });
+  EXPECT_FALSE(stopped.complete);
+  EXPECT_EQ(calls, 1u);
+  EXPECT_EQ(attached(stopped), seen);
+  EXPECT_LT(attached(stopped), o.particles);
 }
 
 TEST(Growth, ResumedGrowthIsTheUninterruptedOne) {
@@ -141,7 +154,9 @@ TEST(Growth, ResumedGrowthIsTheUninterruptedOne) {
   o.seeds = {Vec3(-6, 0, 0), Vec3(6, 0, 0)};
   DlaStats whole_stats, stats;
   const Cluster whole = grow(o, {}, nullptr, &whole_stats);
-  const Cluster part = grow(o, [](const Cluster& so_far) { return attached(so_far) < 1280; }, nullptr, &stats);
+  DlaOptions shorter = o;
+  shorter.particles = 1280;
+  const Cluster part = grow(shorter, {}, nullptr, &stats);
   ASSERT_EQ(attached(part), 1280u);
   const Cluster resumed = resume(o, part, {}, nullptr, &stats);
   EXPECT_TRUE(resumed.complete);
@@ -152,6 +167,13 @@ TEST(Growth, ResumedGrowthIsTheUninterruptedOne) {
   }
   EXPECT_EQ(stats.walk.steps, whole_stats.walk.steps);
   EXPECT_EQ(stats.walk.walkers, whole_stats.walk.walkers);
+
+  // Stopped by the progress callback, as a program stops it: the same again.
+  const Cluster stopped = grow(o, [](const Cluster&) { return false; });
+  ASSERT_FALSE(stopped.complete);
+  const Cluster rest = resume(o, stopped);
+  ASSERT_EQ(rest.particles.size(), whole.particles.size());
+  for (std::size_t i = 0; i < whole.particles.size(); ++i) ASSERT_EQ(rest.particles[i].position, whole.particles[i].position) << i;
 
   Cluster foreign = part;
   foreign.particles[1].position.x() += 1.0;  // a seed that is not the options'
@@ -208,14 +230,21 @@ TEST(Threads, StoppedAndResumedGrowthIsTheOneThreadRun) {
   DlaStats whole_stats, stats;
   const Cluster whole = grow(o, {}, nullptr, &whole_stats);
   o.threads = 2;
-  const Cluster part = grow(o, [](const Cluster& so_far) { return attached(so_far) < 1536; }, nullptr, &stats);
+  DlaOptions shorter = o;
+  shorter.particles = 1536;
+  const Cluster part = grow(shorter, {}, nullptr, &stats);
   ASSERT_EQ(attached(part), 1536u);
-  EXPECT_FALSE(part.complete);
   const Cluster resumed = resume(o, part, {}, nullptr, &stats);
   ASSERT_EQ(resumed.particles.size(), whole.particles.size());
   for (std::size_t i = 0; i < whole.particles.size(); ++i)
     ASSERT_EQ(resumed.particles[i].position, whole.particles[i].position) << i;
   EXPECT_EQ(stats.walk.steps, whole_stats.walk.steps);
+  // Stopped by the callback while walkers ran ahead on the other thread: the same again.
+  const Cluster stopped = grow(o, [](const Cluster&) { return false; });
+  ASSERT_FALSE(stopped.complete);
+  const Cluster rest = resume(o, stopped);
+  ASSERT_EQ(rest.particles.size(), whole.particles.size());
+  for (std::size_t i = 0; i < whole.particles.size(); ++i) ASSERT_EQ(rest.particles[i].position, whole.particles[i].position) << i;
 }
 
 TEST(Threads, ErrorsAreTheOneThreadErrors) {
@@ -336,8 +365,8 @@ TEST(Slow, EnsembleDimension3D) { expect_ensemble_dimension(3, 2.50, 0.03); }
 TEST(Slow, EnsembleDimension2D) { expect_ensemble_dimension(2, 1.71, 0.02); }
 
 // A stop request reaches walkers inside their walk: walkers that touch the structure ten
-// thousand times before they stick take seconds for 256 particles (the progress beat), and
-// the flag stops them before the first beat, on one thread and on two.
+// thousand times before they stick take seconds for 256 particles, and the flag stops them
+// long before, on one thread and on two.
 TEST(Growth, AStopFlagEndsGrowthInsideAWalk) {
   for (const int threads : {1, 2}) {
     DlaOptions o;
@@ -352,7 +381,7 @@ TEST(Growth, AStopFlagEndsGrowthInsideAWalk) {
     const Cluster part = grow(o, {}, &stop);
     stopper.join();
     EXPECT_FALSE(part.complete);
-    EXPECT_LT(attached(part), 256u) << threads << " threads: the flag waited for the progress beat";
+    EXPECT_LT(attached(part), 256u) << threads << " threads: the flag waited for walks to end";
     EXPECT_LT(attached(part), o.particles);
     // What grew is a prefix of the whole run: it resumes to the same structure.
     o.particles = attached(part) + 20;

@@ -244,7 +244,7 @@ def main(argv=None):
         prog="python3 -m dla3d.ensemble",
         description="Grow an ensemble of clusters on Dask and measure it. Words it does not know "
                     "(-n 100000, --dimensions 2) go to the model, as on dla3d's command line.")
-    parser.add_argument("--model", default="grow", choices=["grow", "colonize", "drop", "ballistic", "eden"])
+    parser.add_argument("--model", default="grow", choices=[name for name, _ in _core.models()])
     parser.add_argument("--count", type=int, default=10, help="clusters (default 10)")
     parser.add_argument("--first-seed", type=int, default=1, help="cluster k has rng seed FIRST_SEED + k (default 1)")
     parser.add_argument("--scheduler", help="a Dask scheduler's address (tcp://HOST:8786); "

@@ -24,6 +24,7 @@
 #include <cstdlib>
 #include <limits>
 #include <mutex>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -60,9 +61,12 @@ bool make_small(dla::RunOptions& run) {
     o->drop.particles = std::min<std::size_t>(o->drop.particles, 64);
     return o->stl.empty() && !far_apart(o->seed_at.value_or(o->drop.seeds), o->spacing.value_or(o->drop.spacing));
   }
-  auto& o = std::get<dla::BallisticRunOptions>(run);
-  o.ballistic.particles = std::min<std::size_t>(o.ballistic.particles, 64);
-  return !far_apart(o.ballistic.seeds, o.ballistic.spacing);
+  if (auto* o = std::get_if<dla::BallisticRunOptions>(&run)) {
+    o->ballistic.particles = std::min<std::size_t>(o->ballistic.particles, 64);
+    return !far_apart(o->ballistic.seeds, o->ballistic.spacing);
+  }
+  // A model registered since: it must join, or the fuzzer would not grow it.
+  throw std::logic_error("the CLI fuzzer cannot make a " + std::string(dla::model_of(run).name) + " run small");
 }
 
 //! What a tree of this model may hold beyond the rules of every tree.

@@ -26,6 +26,16 @@ MODELS = [
 COLUMNS = "id,x,y,z,parent,seed,radius,age,depth,descendants,order,tip"
 
 
+def test_every_registered_model_is_a_function_and_grown_here():
+    """The library registers each model once (dla/run/run.h); Python and this file follow it."""
+    registered = dla3d._core.models()
+    assert [name for name, _ in registered][0] == "grow"
+    for name, summary in registered:
+        assert callable(getattr(dla3d, name)) and name in dla3d.__all__, name
+        assert summary.startswith("grow"), summary
+        assert name in {model for model, _ in MODELS}, f"{name} is not among this file's MODELS"
+
+
 def grown(model, options):
     return getattr(dla3d, model)(**options)
 

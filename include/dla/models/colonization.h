@@ -24,6 +24,7 @@
 #include "dla/core/options.h"
 #include "dla/core/random.h"
 #include "dla/index/attractor_tree.h"
+#include "dla/models/model_shell.h"
 #include "dla/mesh/surface_distance.h"
 
 #include <algorithm>
@@ -290,20 +291,6 @@ inline std::array<std::int64_t, 3> fixed_direction(const Vec3& from, const Vec3&
   const auto round = [](double x) { return static_cast<std::int64_t>((x * 0x1.0p40 + 0x1.8p52) - 0x1.8p52); };
   return {round(unit.x()), round(unit.y()), round(unit.z())};
 }
-
-//! The tree before growth: the roots, as seeds, and nothing else.
-inline Cluster roots_only(const ColonizationOptions& o, const std::vector<Vec3>& roots) {
-  Cluster tree;
-  tree.spacing = o.spacing;
-  tree.dimensions = o.dimensions;
-  tree.seed_count = roots.size();
-  for (std::size_t r = 0; r < roots.size(); ++r) {
-    tree.particles.push_back({roots[r], -1, static_cast<std::int32_t>(r)});
-    tree.center += roots[r] / static_cast<double>(roots.size());
-  }
-  return tree;
-}
-
 //! The squared kill distance and influence radius in scene units (infinity: unbounded).
 inline double kill_distance2(const ColonizationOptions& o) { return std::pow(o.kill_distance * o.spacing, 2); }
 inline double reach2(const ColonizationOptions& o) {
@@ -342,8 +329,8 @@ inline bool colonization_step(const ColonizationOptions& o, const detail::Lattic
 
 //! Grows a tree from `roots` among `attractors` (both in z = 0 for 2D). Validates the options
 //! first; throws InvalidInput for no root, or a root or attractor that is not finite.
-//! `progress` is called after every iteration; returning false, or `stop` set, ends growth
-//! with the tree marked incomplete.
+//! `progress` is called as model_shell.h says; returning false, or `stop` set, ends growth
+//! with the tree marked incomplete. Throws PartialGrowth when memory runs out.
 inline Cluster colonize(const ColonizationOptions& o, std::vector<Vec3> attractors, const std::vector<Vec3>& roots,
                         const ProgressFn& progress = {}, const StopFlag* stop = nullptr) {
   validate(o);
@@ -361,7 +348,7 @@ inline Cluster colonize(const ColonizationOptions& o, std::vector<Vec3> attracto
                        std::to_string(kMaxAttractors));
   for (const Vec3& a : attractors) detail::require_representable("an attractor", a, o.spacing);
 
-  Cluster tree = detail::roots_only(o, roots);
+  Cluster tree = detail::seeded(roots, o.spacing, o.dimensions);
   const double kill2 = detail::kill_distance2(o), reach2 = detail::reach2(o);
 
   AttractorTree index(std::move(attractors), reach2, kill2);
@@ -391,42 +378,44 @@ inline Cluster colonize(const ColonizationOptions& o, std::vector<Vec3> attracto
 
   const detail::LatticeNoise noise(o.rng_seed);
   std::vector<std::pair<std::int32_t, Vec3>> grown;  // this iteration's new nodes: parent, position
-  for (std::size_t iteration = 0; iteration < o.max_iterations && index.live() > 0 && tree.particles.size() < o.max_nodes;
-       ++iteration) {
-    if (stop && stop->load()) {
-      tree.complete = false;
-      return tree;
+  detail::ModelShell shell(progress, stop);
+  try {
+    for (std::size_t iteration = 0; iteration < o.max_iterations && index.live() > 0 && tree.particles.size() < o.max_nodes;
+         ++iteration) {
+      if (!shell.go_on(tree)) {
+        tree.complete = false;
+        break;
+      }
+      grown.clear();
+      for (std::size_t v = 0; v < tree.particles.size(); ++v) {
+        if (pulls[v] == 0 || !changed[v]) continue;
+        changed[v] = 0;
+        Vec3 next;
+        if (!colonization_step(o, noise, tree.particles[v].position, sums[v], &next)) continue;
+        // Its attractors changed but still pull it to where it last grew: the same child again.
+        if (last_child[v] >= 0 && tree.particles[static_cast<std::size_t>(last_child[v])].position == next) continue;
+        grown.emplace_back(static_cast<std::int32_t>(v), next);
+      }
+      if (grown.empty()) break;  // stalled: no node grows
+      const std::size_t first_new = tree.particles.size();
+      for (const auto& [parent, position] : grown) {
+        if (tree.particles.size() >= o.max_nodes) break;
+        const auto v = static_cast<std::int32_t>(tree.particles.size());
+        tree.particles.push_back({position, parent, tree.particles[static_cast<std::size_t>(parent)].seed});
+        sums.push_back({0, 0, 0});
+        pulls.push_back(0);
+        last_child.push_back(-1);
+        changed.push_back(0);
+        last_child[static_cast<std::size_t>(parent)] = v;
+      }
+      new_positions.clear();
+      for (std::size_t v = first_new; v < tree.particles.size(); ++v) new_positions.push_back(tree.particles[v].position);
+      index.add_nodes(static_cast<std::int32_t>(first_new), new_positions, moved);
     }
-    grown.clear();
-    for (std::size_t v = 0; v < tree.particles.size(); ++v) {
-      if (pulls[v] == 0 || !changed[v]) continue;
-      changed[v] = 0;
-      Vec3 next;
-      if (!colonization_step(o, noise, tree.particles[v].position, sums[v], &next)) continue;
-      // Its attractors changed but still pull it to where it last grew: the same child again.
-      if (last_child[v] >= 0 && tree.particles[static_cast<std::size_t>(last_child[v])].position == next) continue;
-      grown.emplace_back(static_cast<std::int32_t>(v), next);
-    }
-    if (grown.empty()) break;  // stalled: no node grows
-    const std::size_t first_new = tree.particles.size();
-    for (const auto& [parent, position] : grown) {
-      if (tree.particles.size() >= o.max_nodes) break;
-      const auto v = static_cast<std::int32_t>(tree.particles.size());
-      tree.particles.push_back({position, parent, tree.particles[static_cast<std::size_t>(parent)].seed});
-      sums.push_back({0, 0, 0});
-      pulls.push_back(0);
-      last_child.push_back(-1);
-      changed.push_back(0);
-      last_child[static_cast<std::size_t>(parent)] = v;
-    }
-    new_positions.clear();
-    for (std::size_t v = first_new; v < tree.particles.size(); ++v) new_positions.push_back(tree.particles[v].position);
-    index.add_nodes(static_cast<std::int32_t>(first_new), new_positions, moved);
-    if (progress && !progress(tree)) {
-      tree.complete = false;
-      return tree;
-    }
+  } catch (...) {
+    detail::ModelShell::keep_what_grew(tree);
   }
+  shell.finish(tree);
   return tree;
 }
 

@@ -8,6 +8,7 @@
 #include "dla/core/options.h"
 #include "dla/core/random.h"
 #include "dla/models/fill.h"
+#include "dla/models/model_shell.h"
 #include "dla/models/spawn.h"
 #include "dla/index/spatial_index.h"
 #include "dla/models/walk.h"
@@ -30,8 +31,8 @@
 
 namespace dla {
 
-// DLA calls its ProgressFn (cluster.h) every 256 particles and at the end; an incomplete
-// cluster can be saved and grown on with resume(). Walkers look at the StopFlag every few
+// DLA calls its ProgressFn (cluster.h) as model_shell.h says; an incomplete cluster can be
+// saved and grown on with resume(). Walkers look at the StopFlag every few
 // thousand steps, so growth stops within milliseconds, even in a walk that would never end.
 
 //! Grows a structure with the index chosen in options.index. Validates the options first.
@@ -158,26 +159,23 @@ class Aggregation {
   }
 
   Cluster run(const ProgressFn& progress) {
+    ModelShell shell(progress, stop_);
     try {
       if (opt_.threads > 1) {
-        if (!filled()) run_in_parallel(progress);
+        if (!filled()) run_in_parallel(shell);
       } else {
         for (std::size_t k = attached(cluster_); k < opt_.particles && !filled(); ++k) {
           add(walk(k, *sight_, stats_.walk, nullptr));
-          if (!report(k, progress)) break;
+          if (!go_on(k, shell)) break;
         }
-        if (filled() && progress) progress(cluster_);
       }
     } catch (const Stopped&) {
       cluster_.complete = false;
-    } catch (const GrowthError& e) {
-      cluster_.complete = false;
-      throw PartialGrowth(e.what(), std::move(cluster_));
-    } catch (const std::bad_alloc&) {
-      cluster_.complete = false;
-      throw PartialGrowth("out of memory after " + std::to_string(attached(cluster_)) + " particles",
-                          std::move(cluster_));
+      shell.stop();
+    } catch (...) {
+      ModelShell::keep_what_grew(cluster_);
     }
+    shell.finish(cluster_);
     return std::move(cluster_);
   }
 
@@ -190,15 +188,12 @@ class Aggregation {
   // Walkers in a shell start afresh after this many steps, this many times at most.
   static constexpr std::uint64_t kShellRestartSteps = 1'000'000, kMaxShellRestarts = 64;
 
-  //! Calls `progress` after walker k's particle, every 256 particles and at the end; false
-  //! when it asks to stop.
-  bool report(std::size_t k, const ProgressFn& progress) {
-    constexpr std::size_t report_every = 256;
-    if (progress && ((k + 1) % report_every == 0 || k + 1 == opt_.particles) && !progress(cluster_)) {
-      cluster_.complete = k + 1 == opt_.particles;
-      return false;
-    }
-    return true;
+  //! After walker k's particle: whether growth goes on (the shell's say, model_shell.h); when
+  //! it does not, the cluster is marked incomplete.
+  bool go_on(std::size_t k, ModelShell& shell) {
+    if (k + 1 == opt_.particles || filled() || shell.go_on(cluster_)) return true;
+    cluster_.complete = false;
+    return false;
   }
 
   //! The most reads a worker's vector keeps between walks: 6 MB.
@@ -222,7 +217,7 @@ class Aggregation {
   //! since could have changed any answer it got, or the sight changed, it runs again, now
   //! against exactly the structure of a one-thread run. Walker k draws from its own stream, so
   //! the run again draws the same numbers, and the result is the one-thread result.
-  void run_in_parallel(const ProgressFn& progress) {
+  void run_in_parallel(ModelShell& shell) {
     const std::size_t first = attached(cluster_), last = opt_.particles;
     const std::size_t window = 4 * static_cast<std::size_t>(opt_.threads);  // walkers ahead at most
     std::vector<Slot> slots(window);
@@ -249,11 +244,8 @@ class Aggregation {
           accumulate(stats_.walk, slot.stats);
           slot.done.store(false, std::memory_order_relaxed);
           committed.store(k + 1, std::memory_order_release);
-          if (!report(k, progress)) stop.store(true);
-          if (filled()) {  // where the one-thread run stops too
-            if (progress) progress(cluster_);
-            stop.store(true);
-          }
+          // Where the one-thread run stops too.
+          if (!go_on(k, shell) || filled()) stop.store(true);
         }
       } catch (...) {
         error = std::current_exception();

@@ -19,6 +19,7 @@
 #include "dla/core/errors.h"
 #include "dla/core/options.h"
 #include "dla/core/random.h"
+#include "dla/models/model_shell.h"
 
 #include <algorithm>
 #include <array>
@@ -305,8 +306,8 @@ inline Vec3 eden_position(Lattice lattice, const std::array<int, 3>& c, double s
 
 //! Grows an Eden cluster of up to `o.sites` sites from one seed at the origin (and the sites
 //! within o.seed_radius of it). Validates the options first. Growth ends early when no site
-//! can stick. `progress` is called every 65,536 sites and at the end; returning false, or
-//! `stop` set, ends growth with the cluster marked incomplete.
+//! can stick. `progress` is called as model_shell.h says; returning false, or `stop` set, ends
+//! growth with the cluster marked incomplete. Throws PartialGrowth when memory runs out.
 inline Cluster eden(const EdenOptions& o, const ProgressFn& progress = {}, const StopFlag* stop = nullptr) {
   validate(o);
   const int dimensions = dimensions_of(o.lattice);
@@ -322,10 +323,8 @@ inline Cluster eden(const EdenOptions& o, const ProgressFn& progress = {}, const
   for (const auto& offset : mask)
     for (const int c : offset) reach = std::max(reach, std::abs(c));
 
-  Cluster cluster;
-  cluster.spacing = o.spacing;
-  cluster.dimensions = dimensions;
-  cluster.seed_count = 1;
+  Cluster cluster = detail::seeded({}, o.spacing, dimensions);
+  cluster.seed_count = 1;  // the site at the origin, which occupy() places on the lattice
   cluster.particles.reserve(std::min<std::size_t>(o.sites, 1u << 24));
 
   // A compact cluster of n sites spans about n^(1/d) across: start there, grow if needed.
@@ -377,43 +376,47 @@ inline Cluster eden(const EdenOptions& o, const ProgressFn& progress = {}, const
     }
   };
 
-  occupy({0, 0, 0}, -1);
-  // The initial cluster: the sites within the seed radius, nearest first, each hanging from
-  // its nearest occupied neighbour.
-  if (o.seed_radius > 0.0) {
-    // Only the nearest o.sites sites of the disk are needed: they lie within the radius that
-    // holds that many (a site per unit of area or volume, or more), with a margin.
-    constexpr double kPi = 3.141592653589793;
-    const double enough = dimensions == 3 ? std::cbrt(static_cast<double>(o.sites) * 3.0 / (4.0 * kPi))
-                                          : std::sqrt(static_cast<double>(o.sites) / kPi);
-    const int r = static_cast<int>(std::ceil(std::min(o.seed_radius, enough + 3.0))) + 1;
-    std::vector<std::array<int, 3>> disk;
-    for (int z = dimensions == 3 ? -r : 0; z <= (dimensions == 3 ? r : 0); ++z)
-      for (int y = -r; y <= r; ++y)
-        for (int x = -r; x <= r; ++x)
-          if ((x || y || z) && length({x, y, z}) <= o.seed_radius * o.seed_radius) disk.push_back({x, y, z});
-    std::stable_sort(disk.begin(), disk.end(), [&](const auto& a, const auto& b) { return length(a) < length(b) - 1e-9; });
-    const std::vector<std::array<int, 3>> neighbours = nearest_first(lattice_neighbours(o.lattice));
-    for (const auto& site : disk) {
-      if (cluster.particles.size() >= o.sites) break;
-      occupy(site, parent_of(site, neighbours));  // a step towards the seed is a nearer site of the disk
-    }
-  }
-
-  while (cluster.particles.size() < o.sites && !candidates.empty()) {
-    if ((cluster.particles.size() & 0xffff) == 0) {
-      if ((stop && stop->load()) || (progress && !progress(cluster))) {
-        cluster.complete = false;
-        return cluster;
+  detail::ModelShell shell(progress, stop);
+  try {
+    occupy({0, 0, 0}, -1);
+    // The initial cluster: the sites within the seed radius, nearest first, each hanging from
+    // its nearest occupied neighbour.
+    if (o.seed_radius > 0.0) {
+      // Only the nearest o.sites sites of the disk are needed: they lie within the radius that
+      // holds that many (a site per unit of area or volume, or more), with a margin.
+      constexpr double kPi = 3.141592653589793;
+      const double enough = dimensions == 3 ? std::cbrt(static_cast<double>(o.sites) * 3.0 / (4.0 * kPi))
+                                            : std::sqrt(static_cast<double>(o.sites) / kPi);
+      const int r = static_cast<int>(std::ceil(std::min(o.seed_radius, enough + 3.0))) + 1;
+      std::vector<std::array<int, 3>> disk;
+      for (int z = dimensions == 3 ? -r : 0; z <= (dimensions == 3 ? r : 0); ++z)
+        for (int y = -r; y <= r; ++y)
+          for (int x = -r; x <= r; ++x)
+            if ((x || y || z) && length({x, y, z}) <= o.seed_radius * o.seed_radius) disk.push_back({x, y, z});
+      std::stable_sort(disk.begin(), disk.end(), [&](const auto& a, const auto& b) { return length(a) < length(b) - 1e-9; });
+      const std::vector<std::array<int, 3>> neighbours = nearest_first(lattice_neighbours(o.lattice));
+      for (const auto& site : disk) {
+        if (cluster.particles.size() >= o.sites) break;
+        occupy(site, parent_of(site, neighbours));  // a step towards the seed is a nearer site of the disk
       }
     }
-    // Uniform in [0, size) from 53 random bits: no bias worth the name below 2^32 sites.
-    const std::size_t pick =
-        std::min(candidates.size() - 1, static_cast<std::size_t>(rng.uniform() * static_cast<double>(candidates.size())));
-    const std::array<int, 3> site = candidates[pick];
-    occupy(site, parent_of(site, by_distance));
+
+    while (cluster.particles.size() < o.sites && !candidates.empty()) {
+      // A site takes a fraction of a microsecond: the shell is asked every 4,096.
+      if ((cluster.particles.size() & 0xfff) == 1 && !shell.go_on(cluster)) {
+        cluster.complete = false;
+        break;
+      }
+      // Uniform in [0, size) from 53 random bits: no bias worth the name below 2^32 sites.
+      const std::size_t pick =
+          std::min(candidates.size() - 1, static_cast<std::size_t>(rng.uniform() * static_cast<double>(candidates.size())));
+      const std::array<int, 3> site = candidates[pick];
+      occupy(site, parent_of(site, by_distance));
+    }
+  } catch (...) {
+    detail::ModelShell::keep_what_grew(cluster);
   }
-  if (progress) progress(cluster);
+  shell.finish(cluster);
   return cluster;
 }
 

@@ -1,12 +1,13 @@
 #pragma once
 //! \file one_by_one.h
 //! What random drops (drop.h) and ballistic lines (ballistic.h) share: a structure grown from
-//! seeds one particle at a time into an index, with the progress calls, the stop flag and the
-//! partial result on failure that DLA has (dla.h).
+//! seeds one particle at a time into an index, in the shell every model grows in
+//! (model_shell.h).
 
 #include "dla/core/cluster.h"
 #include "dla/core/errors.h"
 #include "dla/index/grid_index.h"
+#include "dla/models/model_shell.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -30,46 +31,32 @@ class OneByOne {
   //! Starts from the seeds, one tree each. Without `distance_maps`, a GridIndex keeps no gap
   //! or node map (grid_index.h): for models that only ask nearest().
   OneByOne(const std::vector<Vec3>& seeds, double spacing, int dimensions, std::size_t particles, bool distance_maps)
-      : index_(make_index(cluster_.particles, spacing, dimensions, distance_maps)) {
-    cluster_.spacing = spacing;
-    cluster_.dimensions = dimensions;
-    cluster_.seed_count = seeds.size();
+      : cluster_(seeded(seeds, spacing, dimensions)),
+        index_(make_index(cluster_.particles, spacing, dimensions, distance_maps)) {
     cluster_.particles.reserve(seeds.size() + std::min<std::size_t>(particles, 1u << 24));
     index_.reserve(seeds.size() + std::min<std::size_t>(particles, 1u << 24));
-    for (const Vec3& s : seeds) cluster_.center += s;
-    cluster_.center /= static_cast<double>(seeds.size());
-    for (std::size_t i = 0; i < seeds.size(); ++i) add({seeds[i], -1, static_cast<std::int32_t>(i)});
+    for (std::size_t i = 0; i < seeds.size(); ++i) index_add(static_cast<std::int32_t>(i));
   }
 
-  //! Calls `attempt()` until `particles` have attached, it says done, or `stop` is set (the
-  //! cluster then comes back incomplete); `progress` every 256 particles and at the end.
-  //! Throws PartialGrowth, with what grew, if the structure outgrows the index or memory.
+  //! Calls `attempt()` until `particles` have attached, it says done, or `stop` is set or
+  //! `progress` says stop (the cluster then comes back incomplete). Throws PartialGrowth, with
+  //! what grew, if the structure outgrows the index or memory.
   template <class Try>
   Cluster run(std::size_t particles, const ProgressFn& progress, const StopFlag* stop, Try&& attempt) {
+    ModelShell shell(progress, stop, 64);  // a particle can take a microsecond
     try {
       while (attached(cluster_) < particles) {
-        if (stop && stop->load(std::memory_order_relaxed)) {
+        const Attempt result = attempt();
+        if (result == Attempt::done) break;
+        if (attached(cluster_) < particles && !shell.go_on(cluster_)) {
           cluster_.complete = false;
           break;
         }
-        const Attempt result = attempt();
-        if (result == Attempt::done) {
-          if (progress) progress(cluster_);
-          break;
-        }
-        const std::size_t n = attached(cluster_);
-        if (result == Attempt::attached && progress && (n % 256 == 0 || n == particles) && !progress(cluster_)) {
-          cluster_.complete = n == particles;
-          break;
-        }
       }
-    } catch (const GrowthError& e) {
-      cluster_.complete = false;
-      throw PartialGrowth(e.what(), std::move(cluster_));
-    } catch (const std::bad_alloc&) {
-      cluster_.complete = false;
-      throw PartialGrowth("out of memory after " + std::to_string(attached(cluster_)) + " particles", std::move(cluster_));
+    } catch (...) {
+      ModelShell::keep_what_grew(cluster_);
     }
+    shell.finish(cluster_);
     return std::move(cluster_);
   }
 
@@ -92,8 +79,11 @@ class OneByOne {
 
   void add(const Particle& p) {
     cluster_.particles.push_back(p);
-    index_.insert(static_cast<std::int32_t>(cluster_.particles.size() - 1));
-    cluster_radius_ = std::max(cluster_radius_, (p.position - cluster_.center).norm());
+    index_add(static_cast<std::int32_t>(cluster_.particles.size() - 1));
+  }
+  void index_add(std::int32_t id) {
+    index_.insert(id);
+    cluster_radius_ = std::max(cluster_radius_, (position(id) - cluster_.center).norm());
   }
 
   Cluster cluster_;  // before the index, which reads its particles
