@@ -10,7 +10,7 @@ struct ColonizeWords {
   std::vector<std::string> root_at;
   std::string attractor_region, attractor_center, attractor_box, noise, tropism, roots_in, collision;
   long long max_nodes, attractor_count, max_iterations, root_count = 0;
-  CLI::Option *attractors, *roots, *roots_in_option, *roots_scale, *collision_option;
+  CLI::Option *attractors, *roots;
   std::unique_ptr<SeedWords> seeds;
   std::unique_ptr<OutputWords> files;
 };
@@ -29,21 +29,12 @@ void finish(ColonizeRunOptions& c, const ColonizeWords& w) {
   c.attractors.region = parse_attractor_region(w.attractor_region);
   c.sample_attractors = w.attractors->count() > 0 && !c.attractors_from.empty();
   c.roots_in = parse_root_region(w.roots_in);
-  if (w.roots_in_option->count() && w.root_count == 0)
-    throw InvalidInput("--roots-in says where --roots K puts its roots: give --roots");
-  detail::require_in("--roots-scale", c.roots_scale, 0.01, 100.0);
-  if (w.roots_scale->count() && (w.root_count == 0 || c.roots_in != RootRegion::sphere))
-    throw InvalidInput("--roots-scale sizes the sphere of --roots K (--roots-in sphere): give --roots");
   c.collision = parse_collision_mode(w.collision);
-  if (w.collision_option->count() && c.collide.empty())
-    throw InvalidInput("--collision says what --collide's mesh does: give one");
   if (!w.attractor_center.empty()) c.attractors.center = parse_vec3("--attractor-center", w.attractor_center);
   if (!w.attractor_box.empty()) {
     const Box box = parse_box("--attractor-box", w.attractor_box);
     c.attractors.box_min = box.min;
     c.attractors.box_max = box.max;
-    if (c.attractors.region != AttractorRegion::box)
-      throw InvalidInput("--attractor-box is for --attractors-in box, not " + w.attractor_region);
   }
   if (!w.noise.empty()) {
     const std::vector<double> n = parse_numbers("--noise", w.noise, 2);
@@ -117,12 +108,12 @@ Subcommand add_colonize_command(CLI::App& app, const Model& model) {
   w->roots = command->add_option("--roots", w->root_count, "K roots at random, where --roots-in says")
                  ->type_name("K")->group(attracting)->excludes(root_at_option);
   w->roots_in = std::string(to_string(c->roots_in));
-  w->roots_in_option = command->add_option("--roots-in", w->roots_in, "--roots K: on the sphere around the attractors, in the mesh "
-                                                                      "(the vessel, else the collision mesh) or on its surface")
-                           ->capture_default_str()->group(attracting);
-  w->roots_scale = command->add_option("--roots-scale", c->roots_scale, "--roots-in sphere: the roots' sphere is this times "
-                                                                        "the attractors', [0.01, 100]")
-                       ->capture_default_str()->group(attracting);
+  command->add_option("--roots-in", w->roots_in, "--roots K: on the sphere around the attractors, in the mesh "
+                                                "(the vessel, else the collision mesh) or on its surface")
+      ->capture_default_str()->group(attracting);
+  command->add_option("--roots-scale", c->roots_scale, "--roots-in sphere: the roots' sphere is this times the attractors', "
+                                                       "[0.01, 100]")
+      ->capture_default_str()->group(attracting);
   w->collision = std::string(to_string(c->collision));
   const char* colliding = "Vessel and collision";
   command->add_option("--stl", c->stl, "a vessel (STL, OFF, OBJ or PLY) that growth stays inside: a "
@@ -131,9 +122,8 @@ Subcommand add_colonize_command(CLI::App& app, const Model& model) {
   command->add_option("--collide", c->collide, "a collision mesh (STL, OFF, OBJ or PLY) that new nodes "
                                                "are pushed out of or stuck to")
       ->type_name("FILE")->group(colliding);
-  w->collision_option = command->add_option("--collision", w->collision, "push (growth flows around the mesh) or stick (it crawls "
-                                                                         "over its surface)")
-                            ->capture_default_str()->group(colliding);
+  command->add_option("--collision", w->collision, "push (growth flows around the mesh) or stick (it crawls over its surface)")
+      ->capture_default_str()->group(colliding);
   w->seeds = std::make_unique<SeedWords>(
       *command, c->seeds, colliding, root_at_option,
       "roots on the mesh (the vessel, else the collision mesh): K far apart, or all: the surface, the paint or the "

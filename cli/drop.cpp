@@ -10,7 +10,6 @@ namespace {
 struct DropWords {
   SeededWords seeded;
   std::string zone, zone_box, bias = "uniform", side, constraint;
-  CLI::Option *side_option, *constraint_option;
   std::unique_ptr<SeedWords> seeds;
   std::unique_ptr<OutputWords> files;
 };
@@ -24,8 +23,6 @@ void finish(DropRunOptions& d, const DropWords& w) {
   if (!w.zone_box.empty()) d.drop.zone_box = parse_box("--zone-box", w.zone_box);
   d.constraint.side = parse_side(w.side);
   d.constraint.mode = parse_constraint_mode(w.constraint);
-  if (d.stl.empty() && (w.side_option->count() || w.constraint_option->count()))
-    throw InvalidInput("--side and --constraint say how --stl's mesh constrains growth: give one");
   w.seeds->finish(d.seeds, !d.stl.empty());
   w.files->finish(d.files);
   validate(d);
@@ -64,10 +61,10 @@ Subcommand add_drop_command(CLI::App& app, const Model& model) {
   const char* meshes = "Mesh constraint";
   command->add_option("--stl,--mesh", d->stl, "grow constrained by this mesh: STL, OFF, OBJ or PLY")
       ->type_name("FILE")->group(meshes);
-  w->side_option = command->add_option("--side", w->side, "inside, outside or both (the mesh is only a wall)")
-                       ->capture_default_str()->group(meshes);
-  w->constraint_option = command->add_option("--constraint", w->constraint, "a branch crossing the mesh: reject (drop again) or clip "
-                                                                            "(end at it)")->capture_default_str()->group(meshes);
+  command->add_option("--side", w->side, "inside, outside or both (the mesh is only a wall)")
+      ->capture_default_str()->group(meshes);
+  command->add_option("--constraint", w->constraint, "a branch crossing the mesh: reject (drop again) or clip (end at it)")
+      ->capture_default_str()->group(meshes);
   w->seeds = std::make_unique<SeedWords>(
       *command, d->seeds, meshes, w->seeded.seed_at_option,
       "place K seeds on the growing side, far apart (default 1), or all: the surface, the paint or the --seed-mesh "

@@ -10,7 +10,7 @@ struct EdenWords {
   long long sites = 0;
   int dimensions = 2;
   std::string lattice, mode, mask;
-  CLI::Option *dimensions_option, *mask_threshold;
+  CLI::Option* dimensions_option;
   std::unique_ptr<OutputWords> files;
 };
 
@@ -23,9 +23,7 @@ void finish(EdenRunOptions& e, const EdenWords& w) {
   if (!w.lattice.empty() && w.dimensions_option->count() && dimensions_of(e.eden.lattice) != w.dimensions)
     throw InvalidInput("--lattice " + w.lattice + " is not a lattice in " + std::to_string(w.dimensions) + "D");
   e.eden.mode = parse_eden_mode(w.mode);
-  if (e.eden.mode == EdenMode::perimeter) {
-    if (!w.mask.empty() || w.mask_threshold->count()) throw InvalidInput("--mask and --mask-threshold are for --mode drop");
-  } else if (w.mask.size() == 1 && w.mask.find_first_of("ABCD") == 0) {
+  if (w.mask.size() == 1 && w.mask.find_first_of("ABCD") == 0) {
     e.eden.mask = parse_eden_mask(w.mask);
   } else {
     e.mask_file = w.mask;  // read, and checked, when the run is prepared
@@ -56,9 +54,8 @@ Subcommand add_eden_command(CLI::App& app, const Model& model) {
       ->capture_default_str()->group(group);
   command->add_option("--mask", w->mask, "drop: A, B, C or D (the paper's masks: 4, 8, 12 and 24 sites around), "
                                          "or a file drawing one; default A")->group(group);
-  w->mask_threshold = command->add_option("--mask-threshold", e->eden.mask_threshold, "drop: occupied mask sites a site needs, "
-                                                                                      "1 to the mask's size")
-                          ->capture_default_str()->group(group);
+  command->add_option("--mask-threshold", e->eden.mask_threshold, "drop: occupied mask sites a site needs, 1 to the mask's size")
+      ->capture_default_str()->group(group);
   command->add_option("--seed-radius", e->eden.seed_radius, "the cluster starts as every site within this "
                                                             "many spacings of the seed, [0, 100]")
       ->capture_default_str()->group(group);

@@ -19,7 +19,7 @@ struct GrowWords {
   std::string text, font = kDefaultFont;
   double spacing = 1.0;
   CLI::Option *particles_option, *spacing_option, *seed_at_option, *text_option, *font_option, *shell_option,
-      *fill_option, *fill_distance_option, *spawn_option, *threads_option;
+      *spawn_option, *threads_option;
   std::unique_ptr<SeedWords> seeds;
   std::unique_ptr<OutputWords> files;
 };
@@ -86,13 +86,11 @@ void add_options(CLI::App& app, DlaRunOptions& g, CommandLine& line, GrowWords& 
       "growing side");
   app.add_flag("--scene-mesh,!--no-scene-mesh", g.scene_mesh, "show the mesh, as glass, in the POV-Ray scene")
       ->capture_default_str()->group(meshes);
-  w.fill_option =
-      app.add_option("--fill", options.fill, "grow until this fraction of the mesh's volume lies within "
-                                             "--fill-distance of the structure, (0, 1]; -n then caps it (default 1e7)")
-          ->type_name("F")->group(meshes);
-  w.fill_distance_option =
-      app.add_option("--fill-distance", options.fill_distance, "--fill: how near counts as covered, in spacings, [0.5, 1000]")
-          ->capture_default_str()->group(meshes);
+  app.add_option("--fill", options.fill, "grow until this fraction of the mesh's volume lies within "
+                                         "--fill-distance of the structure, (0, 1]; -n then caps it (default 1e7)")
+      ->type_name("F")->group(meshes);
+  app.add_option("--fill-distance", options.fill_distance, "--fill: how near counts as covered, in spacings, [0.5, 1000]")
+      ->capture_default_str()->group(meshes);
 
   const char* spawning = "Spawn";
   w.spawn_option =
@@ -156,7 +154,6 @@ void finish(CommandLine& line, DlaRunOptions& g, const GrowWords& w) {
   g.constraint.side = parse_side(w.side);
   g.constraint.mode = parse_constraint_mode(w.constraint_mode);
   w.seeds->finish(g.seeds, g.has_mesh());
-  if (!w.fill_option->count() && w.fill_distance_option->count()) throw InvalidInput("--fill-distance is for --fill");
   if (w.shell_option->count()) {
     if (!g.has_mesh()) throw InvalidInput("--shell keeps growth near a mesh's surface: give one with --stl");
     detail::require_in("--shell", g.constraint.shell, 1.0, 1000.0);

@@ -688,7 +688,7 @@ TEST(Cli, DropAndBallisticBadInputIsOneLineAndNoFiles) {
   const char* cases[] = {
       "drop --dimensions 4", "drop --zone cone", "drop --zone mesh", "drop --zone-radius 0.5", "drop --zone-margin 0",
       "drop --zone-box 0,0,0,1,1", "drop --zone-box 1,1,1,0,0,0 --zone box", "drop --zone-box 0,0,0,1,1,1",
-      "drop --drop same:0", "drop --drop offset:3", "drop --drop rain", "drop --stickiness 0", "drop --side inside",
+      "drop --drop same:0", "drop --drop offset:3", "drop --drop rain", "drop --stickiness 0", "drop --side outside",
       "drop --seed-at 0,0,1 --dimensions 2", "drop --seed-at 0,0,0 --seed-at 0.5,0,0", "drop -n -1", "drop --spacing 0",
       "drop --formats png", "drop --radius boundary", "ballistic --direction 0,0,0", "ballistic --direction 1,2",
       "ballistic --dimensions 2 --direction 0,0,1", "ballistic --zone ball", "ballistic --formats svg",

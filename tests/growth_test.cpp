@@ -149,33 +149,44 @@ TEST(Growth, ProgressSeesTheEndAndCanStopGrowth) {
   EXPECT_LT(attached(stopped), o.particles);
 }
 
+//! Stopped short, by a smaller count and by the progress callback at once, a run grown on
+//! with `o` is the run grown whole on one thread, particle for particle and walk for walk.
+void expect_resumed_runs_are_whole(const DlaOptions& o, std::size_t stop_at) {
+  DlaOptions one_thread = o;
+  one_thread.threads = 1;
+  DlaStats whole_stats;
+  const Cluster whole = grow(one_thread, {}, nullptr, &whole_stats);
+  const auto expect_whole = [&](const Cluster& part, DlaStats stats) {
+    const Cluster resumed = resume(o, part, {}, nullptr, &stats);
+    EXPECT_TRUE(resumed.complete);
+    ASSERT_EQ(resumed.particles.size(), whole.particles.size());
+    for (std::size_t i = 0; i < whole.particles.size(); ++i) {
+      ASSERT_EQ(resumed.particles[i].position, whole.particles[i].position) << i;
+      ASSERT_EQ(resumed.particles[i].parent, whole.particles[i].parent) << i;
+    }
+    EXPECT_EQ(stats.walk.steps, whole_stats.walk.steps);
+    EXPECT_EQ(stats.walk.walkers, whole_stats.walk.walkers);
+  };
+  DlaOptions shorter = o;
+  shorter.particles = stop_at;
+  DlaStats stats;
+  const Cluster part = grow(shorter, {}, nullptr, &stats);
+  ASSERT_EQ(attached(part), stop_at);
+  expect_whole(part, stats);
+  // As a program stops it, with walkers running ahead on other threads.
+  const Cluster stopped = grow(o, [](const Cluster&) { return false; }, nullptr, &stats);
+  ASSERT_FALSE(stopped.complete);
+  expect_whole(stopped, stats);
+}
+
 TEST(Growth, ResumedGrowthIsTheUninterruptedOne) {
   DlaOptions o = small(3000);
   o.seeds = {Vec3(-6, 0, 0), Vec3(6, 0, 0)};
-  DlaStats whole_stats, stats;
-  const Cluster whole = grow(o, {}, nullptr, &whole_stats);
+  expect_resumed_runs_are_whole(o, 1280);
+
   DlaOptions shorter = o;
   shorter.particles = 1280;
-  const Cluster part = grow(shorter, {}, nullptr, &stats);
-  ASSERT_EQ(attached(part), 1280u);
-  const Cluster resumed = resume(o, part, {}, nullptr, &stats);
-  EXPECT_TRUE(resumed.complete);
-  ASSERT_EQ(resumed.particles.size(), whole.particles.size());
-  for (std::size_t i = 0; i < whole.particles.size(); ++i) {
-    ASSERT_EQ(resumed.particles[i].position, whole.particles[i].position) << i;
-    ASSERT_EQ(resumed.particles[i].parent, whole.particles[i].parent) << i;
-  }
-  EXPECT_EQ(stats.walk.steps, whole_stats.walk.steps);
-  EXPECT_EQ(stats.walk.walkers, whole_stats.walk.walkers);
-
-  // Stopped by the progress callback, as a program stops it: the same again.
-  const Cluster stopped = grow(o, [](const Cluster&) { return false; });
-  ASSERT_FALSE(stopped.complete);
-  const Cluster rest = resume(o, stopped);
-  ASSERT_EQ(rest.particles.size(), whole.particles.size());
-  for (std::size_t i = 0; i < whole.particles.size(); ++i) ASSERT_EQ(rest.particles[i].position, whole.particles[i].position) << i;
-
-  Cluster foreign = part;
+  Cluster foreign = grow(shorter);
   foreign.particles[1].position.x() += 1.0;  // a seed that is not the options'
   EXPECT_THROW(resume(o, foreign), InvalidInput);
 }
@@ -227,24 +238,8 @@ TEST(Threads, SameResultWithDriftStickinessAndSeveralSeeds) {
 
 TEST(Threads, StoppedAndResumedGrowthIsTheOneThreadRun) {
   DlaOptions o = small(4000);
-  DlaStats whole_stats, stats;
-  const Cluster whole = grow(o, {}, nullptr, &whole_stats);
   o.threads = 2;
-  DlaOptions shorter = o;
-  shorter.particles = 1536;
-  const Cluster part = grow(shorter, {}, nullptr, &stats);
-  ASSERT_EQ(attached(part), 1536u);
-  const Cluster resumed = resume(o, part, {}, nullptr, &stats);
-  ASSERT_EQ(resumed.particles.size(), whole.particles.size());
-  for (std::size_t i = 0; i < whole.particles.size(); ++i)
-    ASSERT_EQ(resumed.particles[i].position, whole.particles[i].position) << i;
-  EXPECT_EQ(stats.walk.steps, whole_stats.walk.steps);
-  // Stopped by the callback while walkers ran ahead on the other thread: the same again.
-  const Cluster stopped = grow(o, [](const Cluster&) { return false; });
-  ASSERT_FALSE(stopped.complete);
-  const Cluster rest = resume(o, stopped);
-  ASSERT_EQ(rest.particles.size(), whole.particles.size());
-  for (std::size_t i = 0; i < whole.particles.size(); ++i) ASSERT_EQ(rest.particles[i].position, whole.particles[i].position) << i;
+  expect_resumed_runs_are_whole(o, 1536);
 }
 
 TEST(Threads, ErrorsAreTheOneThreadErrors) {

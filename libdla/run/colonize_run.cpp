@@ -100,6 +100,9 @@ void validate(const ColonizeRunOptions& c) {
   const bool on_mesh = c.attractors.region == AttractorRegion::mesh || c.attractors.region == AttractorRegion::surface;
   if ((on_mesh || c.roots_in != RootRegion::sphere) && c.stl.empty() && c.collide.empty())
     throw InvalidInput("attractors or roots in a mesh need one: give `stl` or `collide`");
+  const AttractorOptions unset;
+  if (c.attractors.region != AttractorRegion::box && (c.attractors.box_min != unset.box_min || c.attractors.box_max != unset.box_max))
+    throw InvalidInput("`attractor_box` is for `attractors_in` box, not " + std::string(to_string(c.attractors.region)));
   if (!c.attractors_from.empty() && on_mesh)
     throw InvalidInput("`attractors_from` reads the attractors; `attractors_in` scatters them: give one");
   if (!c.stl.empty() && o.dimensions != 3) throw InvalidInput("`stl` needs 3 dimensions");

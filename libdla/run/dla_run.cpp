@@ -25,6 +25,8 @@ DlaOptions walk_options(const DlaRunOptions& o) {
 void validate(const DlaRunOptions& o) {
   const bool mesh = o.has_mesh();
   validate(o.files, o.growth.dimensions, mesh);
+  if (o.growth.fill == 0.0 && o.growth.fill_distance != DlaOptions{}.fill_distance)
+    throw InvalidInput("`fill_distance` is for `fill`");
   if (o.growth.spawn_box && o.spawn.value_or(o.growth.spawn) != SpawnMode::box)
     throw InvalidInput("`box` is for `spawn` box, not `spawn` " + std::string(to_string(o.spawn.value_or(o.growth.spawn))));
   detail::validate_mesh_seeds(o.seeds, mesh, "seed_at");

@@ -15,6 +15,9 @@ void validate(const DropRunOptions& d) {
   if (d.seed_at && (d.seeds.count || d.seeds.on_surface()))
     throw InvalidInput("`seed_at` and `seeds`, `seed_surface`, `seed_paint` or `seed_mesh` both place the seeds: give one");
   if (d.drop.zone == DropZone::mesh && !mesh) throw InvalidInput("`zone` mesh drops inside a mesh: give one with `stl`");
+  const ConstraintOptions unset;
+  if (!mesh && (d.constraint.side != unset.side || d.constraint.mode != unset.mode))
+    throw InvalidInput("`side` and `constraint` say how `stl`'s mesh constrains growth: give one");
   if (!mesh || d.spacing) {  // else once the mesh gives the spacing
     DropOptions drop = d.drop;
     if (d.spacing) drop.spacing = *d.spacing;

@@ -11,6 +11,10 @@ namespace dla {
 
 void validate(const EdenRunOptions& e) {
   validate(e.files, dimensions_of(e.eden.lattice), false);
+  const EdenOptions unset;
+  const bool masked = !e.mask_file.empty() || !e.eden.mask_offsets.empty() || e.eden.mask != unset.mask ||
+                      e.eden.mask_threshold != unset.mask_threshold;
+  if (e.eden.mode == EdenMode::perimeter && masked) throw InvalidInput("`mask` and `mask_threshold` are for `mode` drop");
   if (e.mask_file.empty()) validate(e.eden);
 }
 

@@ -137,6 +137,26 @@ def test_bad_options_are_the_librarys_line_spelled_for_python(options, python, c
     assert done.stderr.startswith("dla3d: error: " + (cli_line or python)), done.stderr
 
 
+# An option that only means something with another, given without it: the library refuses it
+# for Python and dla3d alike.
+@pytest.mark.parametrize("model,options,python,cli_line", [
+    ("grow", {"fill_distance": 5}, "fill_distance is for fill", "--fill-distance is for --fill"),
+    ("drop", {"side": "outside"}, "side and constraint say how stl's mesh constrains growth: give one",
+     "--side and --constraint say how --stl's mesh constrains growth: give one"),
+    ("eden", {"mask": "B"}, "mask and mask_threshold are for mode drop",
+     "--mask and --mask-threshold are for --mode drop"),
+    ("colonize", {"attractor_box": (0, 0, 0, 1, 1, 1)}, "attractor_box is for attractors_in box, not sphere",
+     "--attractor-box is for --attractors-in box, not sphere"),
+])
+def test_an_option_without_the_one_it_serves_is_refused_alike(model, options, python, cli_line, cli):
+    with pytest.raises(ValueError) as raised:
+        getattr(dla3d, model)(**options)
+    assert str(raised.value) == python
+    done = cli(*dla3d.command_args(model, options), "-q", "-o", "/tmp/dla3d_python_refused", check=False)
+    assert done.returncode == 2
+    assert done.stderr == f"dla3d: error: {cli_line}\n", done.stderr
+
+
 def test_a_missing_file_is_an_os_error():
     with pytest.raises(OSError, match="cannot read '/no/such/mesh.stl'"):
         dla3d.grow(stl="/no/such/mesh.stl")
