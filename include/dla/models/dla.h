@@ -137,25 +137,19 @@ class Aggregation {
         near_step_(options.min_step * options.spacing),
         drift_scale_(1.0 / (1.0 + options.drift.norm())),
         radians_per_walker_(options.rotate_degrees * (3.141592653589793238462643383279502884 / 180.0) / 1000.0),
+        cluster_(seeded(options.seeds, options.spacing, options.dimensions)),
         index_(cluster_.particles, options.spacing, options.dimensions) {
-    cluster_.spacing = options.spacing;
-    cluster_.dimensions = options.dimensions;
-    cluster_.seed_count = options.seeds.size();
+    // The seeds, or the stopped run's particles: added one by one, in the same order, they
+    // build the same index and radii.
+    const std::vector<Particle> first = partial ? partial->particles : std::move(cluster_.particles);
+    cluster_.particles.clear();
     // Walkers on other threads read particles while one is appended: the store never moves.
     cluster_.particles.reserve(options.seeds.size() + options.particles);
     if (options.threads > 1) opened_.reserve(options.seeds.size() + options.particles);
     index_.reserve(options.seeds.size() + options.particles);
-    for (const Vec3& s : options.seeds) cluster_.center += s;
-    cluster_.center /= static_cast<double>(options.seeds.size());
     if (constraint && options.fill > 0.0)
       fill_ = std::make_unique<FillGauge>(*constraint, options.fill_distance * options.spacing);
-    if (partial) {
-      // The same particles added in the same order rebuild the same index and radii.
-      for (const Particle& p : partial->particles) add(p);
-      return;
-    }
-    for (std::size_t i = 0; i < options.seeds.size(); ++i)
-      add({options.seeds[i], -1, static_cast<std::int32_t>(i)});
+    for (const Particle& p : first) add(p);
   }
 
   Cluster run(const ProgressFn& progress) {
