@@ -206,6 +206,16 @@ inline void validate_seeds(const std::vector<Vec3>& seeds, double spacing, int d
                            std::to_string(std::max(order[i], order[j]) + 1) + " are closer than the spacing " +
                            format_number(spacing));
 }
+
+//! What DLA, drop and ballistic ask of their scale and start: a count their 32-bit parents can
+//! hold, a spacing in range, 2 or 3 dimensions, and seeds as validate_seeds() asks.
+inline void validate_seeded(std::size_t particles, const std::vector<Vec3>& seeds, double spacing, int dimensions) {
+  if (particles + seeds.size() > 2'000'000'000u)
+    throw InvalidInput("particles " + std::to_string(particles) + " is more than 2e9");
+  require_in("spacing", spacing, kMinSpacing, kMaxSpacing);
+  if (dimensions != 2 && dimensions != 3) throw InvalidInput("dimensions " + std::to_string(dimensions) + " is not 2 or 3");
+  validate_seeds(seeds, spacing, dimensions);
+}
 }  // namespace detail
 
 inline SpawnMode parse_spawn_mode(std::string_view word) {
@@ -226,14 +236,8 @@ inline IndexKind parse_index_kind(std::string_view word) {
 
 inline void validate(const DlaOptions& o) {
   using detail::format_number;
-  // Parents are stored as 32-bit indices.
-  if (o.particles + o.seeds.size() > 2'000'000'000u)
-    throw InvalidInput("particles " + std::to_string(o.particles) + " is more than 2e9");
-  detail::require_in("spacing", o.spacing, kMinSpacing, kMaxSpacing);
+  detail::validate_seeded(o.particles, o.seeds, o.spacing, o.dimensions);
   detail::require_in("stickiness", o.stickiness, kMinStickiness, 1.0);
-  if (o.dimensions != 2 && o.dimensions != 3)
-    throw InvalidInput("dimensions " + std::to_string(o.dimensions) + " is not 2 or 3");
-  detail::validate_seeds(o.seeds, o.spacing, o.dimensions);
   if (o.dimensions == 2 && o.spawn == SpawnMode::disk && o.spawn_axis == Axis::z)
     throw InvalidInput("the disk spawn axis must be x or y in 2 dimensions");
   if (!(o.disk_radius > 0.0 && o.disk_radius <= kMaxDiskRadius))

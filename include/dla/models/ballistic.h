@@ -45,12 +45,7 @@ struct BallisticStats {
 };
 
 inline void validate(const BallisticOptions& o) {
-  if (o.particles + o.seeds.size() > 2'000'000'000u)
-    throw InvalidInput("particles " + std::to_string(o.particles) + " is more than 2e9");
-  detail::require_in("spacing", o.spacing, kMinSpacing, kMaxSpacing);
-  if (o.dimensions != 2 && o.dimensions != 3)
-    throw InvalidInput("dimensions " + std::to_string(o.dimensions) + " is not 2 or 3");
-  detail::validate_seeds(o.seeds, o.spacing, o.dimensions);
+  detail::validate_seeded(o.particles, o.seeds, o.spacing, o.dimensions);
   if (!o.direction.allFinite()) throw InvalidInput("the direction is not finite");
   if (o.dimensions == 2 && o.direction.z() != 0.0)
     throw InvalidInput("the direction has a z component but growth in 2 dimensions is in the plane z = 0");

@@ -154,13 +154,8 @@ struct DropStats {
 inline constexpr std::uint64_t kMaxFailedDrops = 1'000'000;
 
 inline void validate(const DropOptions& o) {
-  if (o.particles + o.seeds.size() > 2'000'000'000u)
-    throw InvalidInput("particles " + std::to_string(o.particles) + " is more than 2e9");
-  detail::require_in("spacing", o.spacing, kMinSpacing, kMaxSpacing);
+  detail::validate_seeded(o.particles, o.seeds, o.spacing, o.dimensions);
   detail::require_in("stickiness", o.stickiness, kMinStickiness, 1.0);
-  if (o.dimensions != 2 && o.dimensions != 3)
-    throw InvalidInput("dimensions " + std::to_string(o.dimensions) + " is not 2 or 3");
-  detail::validate_seeds(o.seeds, o.spacing, o.dimensions);
   if (o.zone_radius != 0.0) detail::require_in("zone radius", o.zone_radius / o.spacing, 1.0, 1e6);
   detail::require_in("zone margin", o.zone_margin, 0.5, 1e6);
   if (o.zone_box) {
