@@ -39,7 +39,7 @@ inline Cluster seeded(const std::vector<Vec3>& seeds, double spacing, int dimens
 class ModelShell {
  public:
   //! `steps_per_look` is how many steps go by between looks at the clock: for models whose
-  //! steps take less than a microsecond (Eden's sites), a look each would show.
+  //! steps take a microsecond or so (a drop), a look each would show.
   ModelShell(const ProgressFn& progress, const StopFlag* stop, std::uint32_t steps_per_look = 1)
       : progress_(progress), stop_(stop), steps_per_look_(steps_per_look), steps_(steps_per_look - 1) {}
 
