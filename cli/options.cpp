@@ -52,6 +52,7 @@ OutputWords::OutputWords(CLI::App& app, OutputOptions& f, bool& quiet, std::stri
       pov_style_(to_string(f.pov.style)),
       ply_format_(to_string(f.ply_encoding)),
       formats_(std::move(formats)),
+      solid_shape_(to_string(f.solid.shape)),
       base_radius_(f.look.radius.base_radius),
       tip_radius_(f.look.radius.tip_radius) {
   const char* outputs = "Output";
@@ -62,7 +63,8 @@ OutputWords::OutputWords(CLI::App& app, OutputOptions& f, bool& quiet, std::stri
   // the checkpoints that name it. Not in --help.
   app.add_flag_callback("--binary", [this] { ply_format_ = "binary"; })->group("");
   app.add_option("--formats", formats_, "files to write, a comma list of pov, csv, ply, json, glb, obj, tips "
-                                        "(PREFIX_tips.ply, and with pov PREFIX_tips.inc), svg and png (2D), html (the web viewer)")->capture_default_str()->group(outputs);
+                                        "(PREFIX_tips.ply, and with pov PREFIX_tips.inc), svg and png (2D), html (the web viewer), "
+                                        "and the watertight solid: stl, 3mf, vdb, solid-glb, solid-obj")->capture_default_str()->group(outputs);
   app.add_option("--png-scale", f.png.pixels_per_spacing, "png: pixels a spacing, [1e-6, 64]")
       ->capture_default_str()->group(outputs);
   app.add_option("--png-bands", f.png.bands, "png: times the white, grey, black bands cycle over the attach "
@@ -99,6 +101,26 @@ OutputWords::OutputWords(CLI::App& app, OutputOptions& f, bool& quiet, std::stri
       ->capture_default_str()->group(looks);
   app.add_option("--tips-within", f.instances.within, "tips: only points within this of the mesh's "
                                                       "surface, in spacings, >= 0")->group(looks);
+  const char* solids = "Solid (stl, 3mf, vdb, solid-glb, solid-obj)";
+  app.add_option("--solid-shape", solid_shape_, "what each particle adds: branches (tapered capsules to its parent), "
+                                                "spheres (with --solid-smooth: metaballs) or cubes (lattice sites)")
+      ->capture_default_str()->group(solids);
+  app.add_option("--solid-voxel", f.solid.voxel, "the voxel's edge, in spacings, [0.001, 100]; 0: a third of the "
+                                                 "thinnest branch's diameter")->capture_default_str()->group(solids);
+  app.add_option("--solid-smooth", f.solid.smooth, "round inner corners to this radius and web branches closer than "
+                                                   "twice it, in spacings, [0, 100]: the organic look")
+      ->capture_default_str()->group(solids);
+  app.add_option("--solid-adaptivity", f.solid.adaptivity, "merge flat parts into larger triangles, [0, 1]")
+      ->capture_default_str()->group(solids);
+  app.add_option("--print-size", f.solid.print_size, "scale the solid so its longest side is this, in mm, "
+                                                     "(0, 10000]; 0 keeps the scene's units")
+      ->capture_default_str()->group(solids);
+  app.add_option("--min-wall", f.solid.min_wall, "with --print-size: thicken every branch thinner than this, in mm, "
+                                                 "[0, 100]")->capture_default_str()->group(solids);
+  app.add_flag("--solid-join", f.solid.join_seeds, "join the seeds' trees by bars, so several seeds print as one piece")
+      ->group(solids);
+  app.add_option("--solid-memory", f.solid.memory, "megabytes the solid may take, [1, 1e9]; 0: half the free memory")
+      ->capture_default_str()->group(solids);
   up_option_ = app.add_option("--up", up_, "POV-Ray: the axis that is up in the picture, x, y or z; with a mesh, "
                                            "default: its longest side's")->capture_default_str()->group(outputs);
   app.add_flag("-q,--quiet", quiet, "no progress bar and no summary")->group(outputs);
@@ -114,6 +136,7 @@ void OutputWords::finish(OutputOptions& f) const {
   f.look.color_by = parse_color_by(color_by_);
   f.instances.set = parse_instance_set(instance_set_);
   f.formats = parse_formats(formats_);
+  f.solid.shape = parse_solid_shape(solid_shape_);
 }
 
 SeedWords::SeedWords(CLI::App& app, MeshSeeds& seeds, const char* group, CLI::Option* placed_by,

@@ -41,7 +41,7 @@ class OutputWords {
   void finish(OutputOptions& files) const;
 
  private:
-  std::string up_, radius_model_, color_by_, instance_set_, pov_style_, ply_format_, formats_;
+  std::string up_, radius_model_, color_by_, instance_set_, pov_style_, ply_format_, formats_, solid_shape_;
   double base_radius_ = 0.0, tip_radius_ = 0.0;
   CLI::Option* radius_ = nullptr;
   CLI::Option* base_radius_option_ = nullptr;

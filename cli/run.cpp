@@ -55,7 +55,15 @@ int run(const CommandLine& line, const std::vector<std::string>& args, const Res
   const bool failed = !record.stopped_by.empty();  // part way, by an error
   record.stopped_by = failed ? spell_options(record.stopped_by, OptionSpelling::cli)
                       : cluster.complete ? "" : signal_name(signal);
-  write_run(run, cluster, record);
+  try {
+    // A first Ctrl-C while the solid builds stops it; after one that stopped growth, a second
+    // ends dla3d (the signal's default), and the files already renamed into place stay.
+    write_run(run, cluster, record, cluster.complete ? &stop : nullptr);
+  } catch (const Interrupted&) {
+    std::fprintf(stderr, "dla3d: stopped by %s while the solid was built; the other files are written, no solid file\n",
+                 signal_name(stop_signal));
+    return 128 + stop_signal;
+  }
   if (!cluster.complete) save(cluster);  // after the files: they matter more
 
   const std::string grown = with_commas(static_cast<double>(run.done(cluster)));
@@ -69,8 +77,11 @@ int run(const CommandLine& line, const std::vector<std::string>& args, const Res
     std::string written;
     for (const std::string& name : file_names(run.files)) written += (written.empty() ? "" : " ") + name;
     const std::string render = run.files.formats.pov ? "; render: povray +W1280 +H960 +A " + output + ".pov" : "";
-    std::fprintf(stderr, "dla3d: %s\ndla3d: wrote %s%s\n", run.summary(cluster, record).c_str(), written.c_str(),
-                 render.c_str());
+    std::fprintf(stderr, "dla3d: %s\n", run.summary(cluster, record).c_str());
+    if (record.solid)
+      std::fprintf(stderr, "dla3d: %s\n",
+                   spell_options(describe(*record.solid, record.printed), OptionSpelling::cli).c_str());
+    std::fprintf(stderr, "dla3d: wrote %s%s\n", written.c_str(), render.c_str());
   }
   if (!cluster.complete) {
     const std::string of = run.model == "grow" ? " of " + with_commas(static_cast<double>(run.total)) : "";

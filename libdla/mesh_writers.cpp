@@ -1,4 +1,5 @@
 #include "dla/io/mesh_writers.h"
+#include "dla/io/solid_writers.h"
 
 #include "dla/io/json.h"
 #include "dla/version.h"
@@ -38,7 +39,8 @@ struct TubeTotals {
   Eigen::Vector3f max = -min;
 };
 
-TubeTotals tube_totals(const LookTubes& each_tube) {
+template <class Pieces>
+TubeTotals tube_totals(const Pieces& each_tube) {
   TubeTotals totals;
   each_tube([&](const TubePiece& piece) {
     totals.vertices += piece.positions.size();
@@ -60,7 +62,8 @@ std::array<std::uint8_t, 4> vertex_color(const ColorScale& scale, std::size_t pa
 //! The per-vertex attributes, in the order of the glTF's `_` accessors.
 constexpr const char* kAttributeNames[] = {"_AGE", "_DEPTH", "_DESCENDANTS", "_ORDER", "_SEED", "_RADIUS"};
 
-std::array<float, 6> vertex_attributes(const Cluster& cluster, const Look& look, const LookTubes& tubes,
+template <class Pieces>
+std::array<float, 6> vertex_attributes(const Cluster& cluster, const Look& look, const Pieces& tubes,
                                       std::size_t i) {
   const Attributes& a = look.attributes;
   return {a.age(i), static_cast<float>(a.depth[i]), static_cast<float>(a.descendants[i]),
@@ -72,10 +75,10 @@ std::string vec3(const Eigen::Vector3f& v) {
   return "[" + json::number(v.x()) + "," + json::number(v.y()) + "," + json::number(v.z()) + "]";
 }
 
-}  // namespace
-
-void write_glb(const Cluster& cluster, const Look& look, const std::string& path) {
-  const LookTubes each_tube(cluster, look);
+//! The glTF of the meshes `each_tube` walks: any source with the visitor call and radius(i)
+//! of LookTubes, whose pieces' vertices name their particles.
+template <class Pieces>
+void glb_of(const Cluster& cluster, const Look& look, const Pieces& each_tube, const std::string& path) {
   const TubeTotals totals = tube_totals(each_tube);
   const bool colored = look.options.color_by != ColorBy::none;
   // One interleaved vertex: position, normal, [colour], the attributes.
@@ -169,16 +172,17 @@ void write_glb(const Cluster& cluster, const Look& look, const std::string& path
   out.commit();
 }
 
-void write_obj(const Cluster& cluster, const Look& look, const std::string& path) {
+template <class Pieces>
+void obj_of(const Cluster& cluster, const Look& look, const Pieces& each_tube, std::string_view what,
+            const std::string& path) {
   const bool colored = look.options.color_by != ColorBy::none;
   const ColorScale scale(cluster, look.attributes, look.options.color_by);
   detail::OutputFile out(path);
-  out << "# dla3d " << version << " tube mesh: ";
+  out << "# dla3d " << version << " " << what << ": ";
   out.integer(static_cast<long long>(cluster.particles.size()))
       << " particles, radius model " << to_string(look.options.radius.model) << (colored ? ", colour by " : "")
       << (colored ? to_string(look.options.color_by) : "") << "\no dla\n";
   std::size_t base = 1;  // OBJ counts from 1
-  const LookTubes each_tube(cluster, look);
   each_tube([&](const TubePiece& piece) {
     for (std::size_t v = 0; v < piece.positions.size(); ++v) {
       out << "v ";
@@ -202,6 +206,57 @@ void write_obj(const Cluster& cluster, const Look& look, const std::string& path
     base += piece.positions.size();
   });
   out.commit();
+}
+
+//! The solid as one piece of the mesh writers: its vertices with area-weighted normals, each
+//! tied to its nearest particle.
+class SolidPieces {
+ public:
+  SolidPieces(const Solid& solid, const Cluster& cluster, const Look& look) : radii_(look.radii(cluster)) {
+    const SolidMesh& mesh = solid.mesh;
+    piece_.positions = mesh.vertices;
+    piece_.triangles = mesh.triangles;
+    piece_.particles = nearest_particles(cluster, solid, mesh.vertices);
+    std::vector<Eigen::Vector3d> normals(mesh.vertices.size(), Eigen::Vector3d::Zero());
+    for (const auto& t : mesh.triangles) {
+      const Eigen::Vector3d a = mesh.vertices[t[0]].cast<double>(), b = mesh.vertices[t[1]].cast<double>(),
+                            c = mesh.vertices[t[2]].cast<double>();
+      const Eigen::Vector3d n = (b - a).cross(c - a);  // its length is twice the area
+      for (const std::uint32_t v : t) normals[v] += n;
+    }
+    piece_.normals.reserve(normals.size());
+    for (const Eigen::Vector3d& n : normals) {
+      const double length = n.norm();
+      piece_.normals.push_back(length > 0 ? (n / length).cast<float>().eval() : Eigen::Vector3f::UnitZ().eval());
+    }
+  }
+  template <class Visit>
+  void operator()(Visit&& visit) const {
+    if (!piece_.triangles.empty()) visit(piece_);
+  }
+  float radius(std::size_t i) const { return radii_[i]; }
+
+ private:
+  TubePiece piece_;
+  std::vector<float> radii_;
+};
+
+}  // namespace
+
+void write_glb(const Cluster& cluster, const Look& look, const std::string& path) {
+  glb_of(cluster, look, LookTubes(cluster, look), path);
+}
+
+void write_obj(const Cluster& cluster, const Look& look, const std::string& path) {
+  obj_of(cluster, look, LookTubes(cluster, look), "tube mesh", path);
+}
+
+void write_solid_glb(const Solid& solid, const Cluster& cluster, const Look& look, const std::string& path) {
+  glb_of(cluster, look, SolidPieces(solid, cluster, look), path);
+}
+
+void write_solid_obj(const Solid& solid, const Cluster& cluster, const Look& look, const std::string& path) {
+  obj_of(cluster, look, SolidPieces(solid, cluster, look), "solid", path);
 }
 
 }  // namespace dla

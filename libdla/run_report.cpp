@@ -51,6 +51,23 @@ void write_run_report(const Cluster& cluster, const ModelRecord& model, const Lo
   if (model.measures) model.measures(out);
   out.close();
 
+  if (record.solid) {
+    const SolidMeasures& m = *record.solid;
+    out.open("solid")
+        .text("units", record.printed ? "mm" : "scene")
+        .number("volume", m.volume, 9)
+        .number("volume_cm3", record.printed ? m.volume / 1000.0 : NAN, 6)
+        .number("area", m.area, 9)
+        .count("shells", m.shells)
+        .number("thinnest_wall", m.thinnest_wall, 6)
+        .count("thickened", m.thickened)
+        .number("voxel", m.voxel, 9)
+        .number("scale", m.scale, 9)
+        .count("active_voxels", m.active_voxels)
+        .point("size", m.size)
+        .close();
+  }
+
   const double rate = record.grow_seconds > 0 ? static_cast<double>(attached(cluster)) / record.grow_seconds : 0.0;
   out.open("timings")
       .number("grow_seconds", record.grow_seconds, 6)
@@ -62,6 +79,18 @@ void write_run_report(const Cluster& cluster, const ModelRecord& model, const Lo
   detail::OutputFile file(path);
   file << out.finish();
   file.commit();
+}
+
+std::string describe(const SolidMeasures& m, bool printed) {
+  const auto number = [](double value, int digits) { return json::number(value, digits); };
+  std::string line = "solid: " + (printed ? number(m.volume / 1000.0, 4) + " cm3" : number(m.volume, 4) + " volume") +
+                     ", area " + number(m.area, 4) + (printed ? " mm2" : "") + ", " + std::to_string(m.shells) +
+                     (m.shells == 1 ? " shell" : " shells") + ", thinnest wall " + number(m.thinnest_wall, 3) +
+                     (printed ? " mm" : "");
+  if (m.thickened) line += ", " + detail::format_count(m.thickened) + " branches thickened";
+  line += ", voxel " + number(m.voxel, 3);
+  if (m.shells > 1) line += "; several seeds grow apart: `solid_join` joins their trees";
+  return line;
 }
 
 }  // namespace dla

@@ -20,6 +20,7 @@
 #include "cli_util.h"
 #include "clients.h"
 #include "mesh_util.h"
+#include "solid_check.h"
 #include "test_util.h"
 
 #include "dla/io/checkpoint.h"
@@ -93,7 +94,15 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--ply-format", {"binary", "ascii", "text"}},
       {"--binary", {}},
       {"--formats", {"pov,csv,ply,json", "glb,obj,tips,json", "csv,svg,json", "png,csv,json", "html,json", "json", "''",
-                     "pov,jpg", "glb,,obj"}},
+                     "pov,jpg", "glb,,obj", "stl,json", "3mf,vdb,json", "solid-glb,solid-obj,csv,json", "stl,3mf"}},
+      {"--solid-shape", {"branches", "spheres", "cubes", "blobs"}},
+      {"--solid-voxel", {"0", "0.2", "0.05", "0.001", "100", "-1", "nan"}},
+      {"--solid-smooth", {"0", "0.4", "1", "100", "-1", "nan"}},
+      {"--solid-adaptivity", {"0", "0.5", "1", "2", "-0.1", "nan"}},
+      {"--print-size", {"0", "60", "0.001", "10000", "10001", "-1", "nan"}},
+      {"--min-wall", {"0.8", "0", "2", "100", "101", "-1", "nan"}},
+      {"--solid-join", {}},
+      {"--solid-memory", {"0", "200", "1", "0.5", "1e10", "nan"}},
       {"--png-scale", {"2", "0.5", "64", "1e-6", "0", "65", "nan", "-1"}},
       {"--png-bands", {"8", "1", "1000000", "0", "-1", "x"}},
       {"--radius", {"taper", "pipe", "boundary", "seed-distance", "uniform", "wavy"}},
@@ -414,6 +423,35 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
     if (obj.rfind("# dla3d ", 0) != 0 || obj.back() != '\n') return prefix + ".obj is not whole";
   }
 
+  // The solid: closed and oriented, its shells counted in the JSON.
+  if (wants("stl") || wants("3mf") || wants("vdb") || wants("solid-glb") || wants("solid-obj")) {
+    if (json.find("\"solid\": {") == std::string::npos) return prefix + ".json records no solid";
+    if (!(json_value(json, "shells", "\"solid\"") >= 1)) return prefix + ".json's solid has no shell";
+  }
+  if (wants("stl")) {
+    const SolidMesh stl = read_stl(dir / (prefix + ".stl"));
+    if (stl.triangles.empty()) return prefix + ".stl is not a whole binary STL";
+    const std::string faults = edge_faults(stl);
+    if (!faults.empty()) return prefix + ".stl is not closed: " + faults;
+  }
+  if (wants("3mf") && read_file(dir / (prefix + ".3mf")).rfind("PK\x03\x04", 0) != 0) return prefix + ".3mf is not a zip";
+  if (wants("vdb") && read_file(dir / (prefix + ".vdb")).rfind(std::string(" BDV\0\0\0\0", 8), 0) != 0)
+    return prefix + ".vdb is not OpenVDB's";
+  if (wants("solid-glb")) {
+    const std::string glb = read_file(dir / (prefix + "_solid.glb"));
+    std::uint32_t head[3] = {0, 0, 0};
+    if (glb.size() >= 12) std::memcpy(head, glb.data(), 12);
+    if (head[0] != 0x46546C67 || head[1] != 2 || head[2] != glb.size()) return prefix + "_solid.glb's header is not glTF 2's";
+    if (!testing::gltf_validator().empty()) {
+      const std::string report = testing::validate_glb(dir / (prefix + "_solid.glb"));
+      if (!report.empty()) return prefix + "_solid.glb fails the glTF-Validator: " + report;
+    }
+  }
+  if (wants("solid-obj")) {
+    const std::string obj = read_file(dir / (prefix + "_solid.obj"));
+    if (obj.rfind("# dla3d ", 0) != 0 || obj.back() != '\n') return prefix + "_solid.obj is not whole";
+  }
+
   if (wants("png")) {
     const std::string png = read_file(dir / (prefix + ".png"));
     std::uint32_t size[2] = {0, 0};
@@ -470,7 +508,9 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
 std::string check_frames(const ScratchDir& dir, const std::string& prefix, std::size_t count, const std::string& formats) {
   const std::map<std::string, std::vector<std::string>> endings = {
       {"pov", {".pov", ".inc", "_growth.inc"}}, {"csv", {".csv"}}, {"ply", {".ply"}}, {"glb", {".glb"}},
-      {"obj", {".obj"}}, {"tips", {"_tips.ply"}}, {"svg", {".svg"}}, {"png", {".png"}}, {"html", {".html"}}};
+      {"obj", {".obj"}}, {"tips", {"_tips.ply"}}, {"svg", {".svg"}}, {"png", {".png"}}, {"html", {".html"}},
+      {"stl", {".stl"}}, {"3mf", {".3mf"}}, {"vdb", {".vdb"}}, {"solid-glb", {"_solid.glb"}},
+      {"solid-obj", {"_solid.obj"}}};
   std::istringstream words(formats);
   std::string format;
   while (std::getline(words, format, ','))

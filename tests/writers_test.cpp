@@ -192,7 +192,10 @@ TEST(RunReport, RecordsOptionsSeedAndCounts) {
   o.growth.stickiness = 0.5;
   const auto run = prepare_run(o);
   const Cluster c = run->grow({}, nullptr);
-  write_run_report(c, run->record(), LookOptions{}, PovOptions{}, RunRecord{1.0, 0.5, "", ""}, dir / "r.json");
+  RunRecord record;
+  record.grow_seconds = 1.0;
+  record.write_seconds = 0.5;
+  write_run_report(c, run->record(), LookOptions{}, PovOptions{}, record, dir / "r.json");
   const std::string json = read_file(dir / "r.json");
   for (const char* expected : {"\"model\": \"dla\"", "\"rng_seed\": 99", "\"stickiness\": 0.5", "\"attached\": 500",
                                "\"complete\": true", "\"grow_seconds\": 1", "\"particles_per_second\": 500",

@@ -31,6 +31,11 @@ const std::vector<FormatEntry>& format_table() {
       {"svg", &Formats::svg, {".svg"}},
       {"png", &Formats::png, {".png"}},
       {"html", &Formats::html, {".html"}},
+      {"stl", &Formats::stl, {".stl"}},
+      {"3mf", &Formats::threemf, {".3mf"}},
+      {"vdb", &Formats::vdb, {".vdb"}},
+      {"solid-glb", &Formats::solid_glb, {"_solid.glb"}},
+      {"solid-obj", &Formats::solid_obj, {"_solid.obj"}},
       {"json", &Formats::json, {".json"}},
   };
   return table;
@@ -83,6 +88,7 @@ void validate(const OutputOptions& f, int dimensions, bool with_mesh) {
   if (f.formats.png && dimensions != 2)
     throw InvalidInput("`formats` png draws 2D growth: add `dimensions` 2, or leave png out");
   validate(f.png);
+  validate(f.solid);
   if (!with_mesh) {
     if (look.radius.model == RadiusModel::boundary)
       throw InvalidInput("`radius` boundary measures to a constraint mesh: give one with `stl`");

@@ -8,6 +8,7 @@
 #include "dla/io/mesh_writers.h"
 #include "dla/io/ply_writer.h"
 #include "dla/io/png_writer.h"
+#include "dla/io/solid_writers.h"
 #include "dla/io/pov_writer.h"
 #include "dla/io/svg_writer.h"
 #include "dla/mesh/surface_distance.h"
@@ -67,9 +68,42 @@ const WriterEntry kWriters[] = {
      [](const WriteJob& j, const std::string& prefix) { write_pov(j.cluster, prefix, j.pov, j.scene_mesh, &j.look); }},
 };
 
+//! One writer of the solid's files, by the flag that asks for it and the suffix of its file.
+struct SolidWriterEntry {
+  bool Formats::*wanted;
+  const char* suffix;
+  void (*write)(const Solid& solid, const WriteJob& job, const std::string& path);
+};
+
+const SolidWriterEntry kSolidWriters[] = {
+    {&Formats::stl, ".stl", [](const Solid& s, const WriteJob&, const std::string& path) { write_stl(s, path); }},
+    {&Formats::threemf, ".3mf", [](const Solid& s, const WriteJob&, const std::string& path) { write_3mf(s, path); }},
+    {&Formats::vdb, ".vdb",
+     [](const Solid& s, const WriteJob& j, const std::string& path) { write_vdb(s, j.cluster, j.look, path); }},
+    {&Formats::solid_glb, "_solid.glb",
+     [](const Solid& s, const WriteJob& j, const std::string& path) { write_solid_glb(s, j.cluster, j.look, path); }},
+    {&Formats::solid_obj, "_solid.obj",
+     [](const Solid& s, const WriteJob& j, const std::string& path) { write_solid_obj(s, j.cluster, j.look, path); }},
+};
+
+//! Builds the planned solid once, on every core, and writes each of its files on a thread of
+//! its own.
+SolidMeasures write_solid(const SolidPlan& plan, const WriteJob& job, const StopFlag* stop) {
+  const Solid solid = build_solid(plan, stop);
+  std::vector<std::future<void>> writers;
+  for (const SolidWriterEntry& writer : kSolidWriters) {
+    if (!(job.files.formats.*(writer.wanted))) continue;
+    const std::string path = job.files.output + writer.suffix;
+    writers.push_back(
+        std::async(std::launch::async, [&solid, &job, &writer, path] { writer.write(solid, job, path); }));
+  }
+  for (std::future<void>& writer : writers) writer.get();
+  return solid.measures;
+}
+
 }  // namespace
 
-void write_files(const Cluster& cluster, const OutputOptions& files, const WriteContext& context) {
+FilesWritten write_files(const Cluster& cluster, const OutputOptions& files, const WriteContext& context) {
   PovOptions pov = files.pov;
   pov.comment = context.comment;
   pov.tips = files.formats.tips;    // the scene reads its tips from PREFIX_tips.inc
@@ -86,6 +120,8 @@ void write_files(const Cluster& cluster, const OutputOptions& files, const Write
     // The tips' gaps only for the files with instancing points: PREFIX_tips.ply and .inc.
     return make_look(cluster, files.look, {surface.get(), nullptr, context.threads, files.formats.tips});
   }();
+  // The solid's plan first: a solid that would not fit is refused before any file is written.
+  const SolidPlan plan = files.formats.solid() ? plan_solid(cluster, look.radii(cluster), files.solid) : SolidPlan{};
   const WriteJob job{cluster, look, files, pov, context.scene_mesh};
   std::vector<std::future<void>> writers;
   const WriterEntry* scene = nullptr;
@@ -98,15 +134,52 @@ void write_files(const Cluster& cluster, const OutputOptions& files, const Write
     const std::string path = files.output + writer.suffix;
     writers.push_back(std::async(std::launch::async, [&job, &writer, path] { writer.write(job, path); }));
   }
-  if (scene) scene->write(job, files.output);
-  for (std::future<void>& writer : writers) writer.get();
+  FilesWritten written;
+  std::future<SolidMeasures> solid;
+  if (files.formats.solid())
+    solid = std::async(std::launch::async, [&] { return write_solid(plan, job, context.stop); });
+  // Every writer finishes before the first failure is thrown: one failing loses no other file.
+  std::exception_ptr failure;
+  try {
+    if (scene) scene->write(job, files.output);
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  for (std::future<void>& writer : writers) {
+    try {
+      writer.get();
+    } catch (...) {
+      if (!failure) failure = std::current_exception();
+    }
+  }
+  if (solid.valid()) {
+    try {
+      written.solid = solid.get();
+    } catch (...) {
+      if (!failure) failure = std::current_exception();
+    }
+  }
+  if (failure) std::rethrow_exception(failure);
+  return written;
 }
 
-void write_run(const Run& run, const Cluster& cluster, const OutputOptions& files, RunRecord& record) {
+void write_run(const Run& run, const Cluster& cluster, const OutputOptions& files, RunRecord& record,
+               const StopFlag* stop) {
   const auto start = std::chrono::steady_clock::now();
-  write_files(cluster, files, {run.threads, run.constraint, run.scene_mesh, record.command});
+  record.printed = files.solid.print_size > 0.0;
+  // The record is written even when a file fails (Ctrl-C while the solid builds), but not for
+  // a solid refused before any file was written.
+  std::exception_ptr failure;
+  try {
+    record.solid = write_files(cluster, files, {run.threads, run.constraint, run.scene_mesh, record.command, stop}).solid;
+  } catch (const InvalidInput&) {
+    throw;
+  } catch (...) {
+    failure = std::current_exception();
+  }
   record.write_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (files.formats.json) write_run_report(cluster, run.record(), files.look, files.pov, record, files.output + ".json");
+  if (failure) std::rethrow_exception(failure);
 }
 
 }  // namespace dla

@@ -32,6 +32,12 @@ class GrowthError : public std::runtime_error {
   explicit GrowthError(const std::string& what) : std::runtime_error(what) {}
 };
 
+//! Work stopped on request (Ctrl-C, a StopFlag) before it was done: nothing of it was kept.
+class Interrupted : public std::runtime_error {
+ public:
+  explicit Interrupted(const std::string& what) : std::runtime_error(what) {}
+};
+
 struct Cluster;
 
 //! Growth that failed part way, in any model (a walker that cannot stick, a structure beyond

@@ -8,10 +8,12 @@
 #include "dla/core/cluster.h"
 #include "dla/io/json.h"
 #include "dla/look/look.h"
+#include "dla/look/solid.h"
 #include "dla/io/pov_writer.h"
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -24,7 +26,12 @@ struct RunRecord {
   double write_seconds = 0.0;
   std::string command;     //!< the command line that made the run, if any
   std::string stopped_by;  //!< why growth ended before the count (a signal, an error), if it did
+  std::optional<SolidMeasures> solid;  //!< what the solid measures, when one was written
+  bool printed = false;                //!< the solid was sized for print: its units are mm
 };
+
+//! The solid's measures in a line, for a summary: volume, area, shells, thinnest wall.
+std::string describe(const SolidMeasures& solid, bool printed);
 
 //! A JSON object written a field a line, objects within it indented, commas where they go:
 //! how a model writes its part of the sidecar.

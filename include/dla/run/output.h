@@ -8,6 +8,7 @@
 #include "dla/io/pov_writer.h"
 #include "dla/look/instances.h"
 #include "dla/look/look.h"
+#include "dla/look/solid.h"
 #include "dla/mesh/constraint.h"
 
 #include <optional>
@@ -22,10 +23,15 @@ namespace dla {
 struct Formats {
   bool pov = true, csv = true, ply = true, json = true;
   bool glb = false, obj = false, tips = false, svg = false, png = false, html = false;
+  //! The solid (solid.h): PREFIX.stl, PREFIX.3mf, PREFIX.vdb, PREFIX_solid.glb, PREFIX_solid.obj.
+  bool stl = false, threemf = false, vdb = false, solid_glb = false, solid_obj = false;
+
+  bool solid() const { return stl || threemf || vdb || solid_glb || solid_obj; }
 };
 
 //! The formats' words, in the order file_names() lists them.
-inline constexpr const char* kFormatWords = "pov, csv, ply, json, glb, obj, tips, svg, png, html";
+inline constexpr const char* kFormatWords =
+    "pov, csv, ply, json, glb, obj, tips, svg, png, html, stl, 3mf, vdb, solid-glb, solid-obj";
 
 //! "pov,csv,glb" as formats. Throws InvalidInput, naming `formats`, for an unknown or no word,
 //! and for html when this build has no web viewer.
@@ -39,6 +45,7 @@ struct OutputOptions {
   LookOptions look;                                //!< radius model, colour, tubes
   InstanceOptions instances;                       //!< tips: which particles, how near the mesh
   PovOptions pov;                                  //!< the scene: style, up axis
+  SolidOptions solid;                              //!< the solid's files: voxel, smoothing, print size
   //! Defaults a mesh changes when they are not given: the up axis (the mesh's longest side's),
   //! and for DLA in a mesh the radius model (pipe) and range (3 to 0.05 spacings). Unset, the
   //! values in `pov` and `look` hold.
@@ -60,12 +67,21 @@ struct WriteContext {
   const MeshConstraint* constraint = nullptr;  //!< the boundary radius model measures to its mesh
   const TriangleMesh* scene_mesh = nullptr;    //!< the POV-Ray scene and the web viewer show it
   std::string comment;                         //!< the POV-Ray scene's first line (the command)
+  const StopFlag* stop = nullptr;              //!< set, it stops the solid: no solid file is written
+};
+
+//! What writing measured: the solid's measures, when a solid format was asked for.
+struct FilesWritten {
+  std::optional<SolidMeasures> solid;
 };
 
 //! Makes the look and writes every file `files.formats` asks for but the JSON record (which
 //! needs a run: run.h's write_run), each by its writer behind one signature and on a thread of
-//! its own: the same bytes as one by one. Throws IOError if a file cannot be written.
-void write_files(const Cluster& cluster, const OutputOptions& files, const WriteContext& context = {});
+//! its own: the same bytes as one by one. The solid is built once for all its files. Throws
+//! InvalidInput, before any file is written, for a solid that would take more memory than it
+//! may; IOError if a file cannot be written; and Interrupted, once the other files are written,
+//! when `context.stop` stops the solid.
+FilesWritten write_files(const Cluster& cluster, const OutputOptions& files, const WriteContext& context = {});
 
 //! Fails early, before a long run, if `path` cannot be created (its temporary name is tried):
 //! throws InvalidInput.

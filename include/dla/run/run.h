@@ -113,10 +113,14 @@ Cluster grow_recorded(Run& run, const ProgressFn& progress, const StopFlag* stop
 
 //! Writes the files `files` asks for, the JSON record among them, of what `run` grew, each
 //! writer on a thread of its own (the same bytes as one by one), and records the time taken in
-//! `record`. The POV-Ray scene's first line is `record.command`.
-void write_run(const Run& run, const Cluster& cluster, const OutputOptions& files, RunRecord& record);
-inline void write_run(const Run& run, const Cluster& cluster, RunRecord& record) {
-  write_run(run, cluster, run.files, record);
+//! `record`, with the solid's measures when a solid format is asked for. The POV-Ray scene's
+//! first line is `record.command`. The record is written even when another file fails, and
+//! then the failure is thrown: InvalidInput for a solid beyond the memory it may take,
+//! Interrupted when `stop` stops the solid.
+void write_run(const Run& run, const Cluster& cluster, const OutputOptions& files, RunRecord& record,
+               const StopFlag* stop = nullptr);
+inline void write_run(const Run& run, const Cluster& cluster, RunRecord& record, const StopFlag* stop = nullptr) {
+  write_run(run, cluster, run.files, record, stop);
 }
 
 //! With a mesh: a spacing of about a hundredth of its box's longest side, rounded to two digits.

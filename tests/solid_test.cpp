@@ -1,0 +1,347 @@
+// The solid (solid.h) against brute force: every voxel's value is the analytic distance to the
+// union of tapered capsules, the mesh's volume is a Monte Carlo estimate's, every particle lies
+// inside it, every vertex on the analytic surface; the mesh is closed, oriented and free of
+// self-intersections, with one shell a tree; print sizing, refusals and determinism.
+#include "solid_check.h"
+#include "test_util.h"
+#include "tree_check.h"
+
+#include "dla/core/random.h"
+#include "dla/io/solid_writers.h"
+#include "dla/look/look.h"
+#include "dla/look/solid.h"
+#include "dla/models/colonization.h"
+#include "dla/models/dla.h"
+#include "dla/models/eden.h"
+#include "solid_grid.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+
+namespace dla {
+namespace {
+
+using testing::ScratchDir;
+using testing::read_file;
+
+//! The distance from p to the union of balls along a..b, radii ra..rb: the round cone, by a
+//! ternary search over the ball's place (|p - c(t)| - r(t) is convex in t), not by solid.cpp's
+//! closed form.
+double cone_distance(const Vec3& p, const Vec3& a, const Vec3& b, double ra, double rb) {
+  const auto f = [&](double t) { return (p - (a + t * (b - a))).norm() - (ra + t * (rb - ra)); };
+  double lo = 0.0, hi = 1.0;
+  for (int i = 0; i < 64; ++i) {  // (2/3)^64 of the axis: below 1e-11
+    const double m1 = lo + (hi - lo) / 3.0, m2 = hi - (hi - lo) / 3.0;
+    (f(m1) <= f(m2) ? hi : lo) = f(m1) <= f(m2) ? m2 : m1;
+  }
+  return std::min({f(lo), f(0.0), f(1.0)});
+}
+
+//! The signed distance to the union of a structure's capsules, in scene units, each radius
+//! widened by chord_depth() for the voxel (0: not widened): the minimum over every branch, by
+//! brute force.
+struct Union {
+  struct Capsule {
+    Vec3 a, b;
+    double ra, rb;
+  };
+  std::vector<Capsule> capsules;
+
+  Union(const Cluster& c, const std::vector<float>& radii, double voxel = 0.0) {
+    for (std::size_t i = 0; i < c.particles.size(); ++i) {
+      const Particle& q = c.particles[i];
+      const auto parent = q.parent >= 0 ? static_cast<std::size_t>(q.parent) : i;
+      const bool sphere = parent == i;
+      const auto widened = [&](std::size_t k) {
+        const double radius = static_cast<double>(radii[k]) * c.spacing;
+        return voxel > 0 ? radius + chord_depth(voxel, radius, sphere) : radius;
+      };
+      capsules.push_back({q.position, c.particles[parent].position, widened(i), widened(parent)});
+    }
+  }
+  double distance(const Capsule& k, const Vec3& p) const { return cone_distance(p, k.a, k.b, k.ra, k.rb); }
+  double operator()(const Vec3& p) const {
+    double d = std::numeric_limits<double>::infinity();
+    for (const Capsule& k : capsules) d = std::min(d, distance(k, p));
+    return d;
+  }
+  Eigen::AlignedBox3d box(const Capsule& k) const {
+    const double r = std::max(k.ra, k.rb);
+    Eigen::AlignedBox3d b(Vec3(k.a.cwiseMin(k.b).array() - r), Vec3(k.a.cwiseMax(k.b).array() + r));
+    return b;
+  }
+  //! The union's volume by Monte Carlo, a capsule at a time (Karp and Luby): the points of
+  //! capsule i's box inside it and inside no earlier capsule, `samples` a capsule. Returns the
+  //! estimate and its standard error.
+  std::pair<double, double> volume(int samples, std::uint64_t seed) const {
+    Rng rng(seed);
+    double total = 0.0, variance = 0.0;
+    for (std::size_t i = 0; i < capsules.size(); ++i) {
+      const Eigen::AlignedBox3d bi = box(capsules[i]);
+      int hits = 0;
+      for (int s = 0; s < samples; ++s) {
+        const Vec3 p = bi.min() + Vec3(rng.uniform(), rng.uniform(), rng.uniform()).cwiseProduct(bi.sizes());
+        if (distance(capsules[i], p) >= 0.0) continue;
+        bool earlier = false;
+        for (std::size_t j = 0; j < i && !earlier; ++j)
+          earlier = box(capsules[j]).contains(p) && distance(capsules[j], p) < 0.0;
+        hits += !earlier;
+      }
+      const double f = static_cast<double>(hits) / samples;
+      total += bi.volume() * f;
+      variance += bi.volume() * bi.volume() * f * (1.0 - f) / samples;
+    }
+    return {total, std::sqrt(variance)};
+  }
+};
+
+Cluster small_tree(std::size_t particles, std::uint64_t seed, std::vector<Vec3> seeds = {Vec3::Zero()}) {
+  DlaOptions o;
+  o.particles = particles;
+  o.rng_seed = seed;
+  o.seeds = std::move(seeds);
+  return grow(o);
+}
+
+std::vector<float> pipe_radii(const Cluster& c) {
+  LookOptions options;
+  options.radius.model = RadiusModel::pipe;
+  return make_look(c, options).radii(c);
+}
+
+TEST(Solid, EveryVoxelHoldsTheDistanceToTheUnionOfCapsules) {
+  const Cluster c = small_tree(60, 5);
+  const std::vector<float> radii = pipe_radii(c);
+  const Solid solid = build_solid(c, radii, {});
+  const Union reference(c, radii, solid.measures.voxel);
+  const openvdb::FloatGrid& grid = *solid.grid->surface;
+  const double band = grid.background();
+  EXPECT_NEAR(band, 3.0 * solid.measures.voxel, 1e-6);
+  std::size_t checked = 0;
+  for (auto it = grid.cbeginValueOn(); it; ++it) {
+    const openvdb::Vec3d w = grid.indexToWorld(it.getCoord());
+    const double expected = reference(Vec3(w.x(), w.y(), w.z()));
+    ASSERT_NEAR(*it, std::clamp(expected, -band, band), 1e-5) << "at " << it.getCoord();
+    ++checked;
+  }
+  EXPECT_GT(checked, 1000u);
+  // Voxels outside the band are off and hold +band outside, -band inside.
+  std::size_t off = 0;
+  for (auto it = grid.cbeginValueOff(); it && off < 20000; ++it) {
+    if (!it.isVoxelValue()) continue;
+    const openvdb::Vec3d w = grid.indexToWorld(it.getCoord());
+    const double expected = reference(Vec3(w.x(), w.y(), w.z()));
+    ASSERT_TRUE(*it > 0 ? expected >= band - 1e-5 : expected <= -band + 1e-5) << *it << " " << expected;
+    ++off;
+  }
+}
+
+TEST(Solid, VolumeMatchesMonteCarloAndEveryParticleIsInside) {
+  for (const auto model : {RadiusModel::pipe, RadiusModel::taper, RadiusModel::uniform}) {
+    SCOPED_TRACE(to_string(model));
+    const Cluster c = small_tree(80, 9);
+    LookOptions options;
+    options.radius.model = model;
+    const std::vector<float> radii = make_look(c, options).radii(c);
+    const Solid solid = build_solid(c, radii, {});
+    const auto [estimate, error] = Union(c, radii).volume(4000, 17);
+    EXPECT_LT(error, 0.005 * estimate);
+    EXPECT_NEAR(solid.measures.volume, estimate, 0.015 * estimate);
+    std::printf("%s: the mesh holds %.4f of the union's volume\n", to_string(model).data(), solid.measures.volume / estimate);
+    EXPECT_NEAR(mesh_volume(solid.mesh), solid.measures.volume, 1e-6 * solid.measures.volume);
+    for (const Particle& p : c.particles) EXPECT_GT(winding_number(solid.mesh, p.position), 0.5);
+  }
+}
+
+TEST(Solid, EverySurfaceVertexLiesWithinAVoxelOfTheAnalyticSurface) {
+  const Cluster c = small_tree(60, 11);
+  const std::vector<float> radii = pipe_radii(c);
+  const Solid solid = build_solid(c, radii, {});
+  const Union distance(c, radii);  // the union as grown, not widened for meshing
+  double worst = 0.0;
+  for (std::size_t v = 0; v < solid.mesh.vertices.size(); v += 3)
+    worst = std::max(worst, std::abs(distance(solid.mesh.vertices[v].cast<double>())));
+  EXPECT_LT(worst, solid.measures.voxel);
+}
+
+TEST(Solid, IsClosedOrientedFreeOfSelfIntersectionsAndOneShellATree) {
+  // Three seeds, three trees; joined by their bars, one piece.
+  const Cluster c = small_tree(300, 3, {Vec3(-8, 0, 0), Vec3(8, 0, 0), Vec3(0, 9, 0)});
+  const std::vector<float> radii = pipe_radii(c);
+  for (const bool join : {false, true}) {
+    SCOPED_TRACE(join ? "joined" : "apart");
+    SolidOptions o;
+    o.join_seeds = join;
+    const Solid solid = build_solid(c, radii, o);
+    EXPECT_EQ(edge_faults(solid.mesh), "");
+    EXPECT_FALSE(self_intersects(solid.mesh));
+    EXPECT_EQ(solid.measures.shells, join ? 1u : 3u);
+    EXPECT_GT(solid.measures.volume, 0.0);
+  }
+}
+
+TEST(Solid, EveryModelAndShapeGivesAClosedSolid) {
+  AttractorOptions attractors;
+  attractors.count = 400;
+  attractors.radius = 15.0;
+  const Cluster tree = colonize(ColonizationOptions{}, scatter_attractors(attractors, 4, 3), {Vec3::Zero()});
+  EdenOptions options;
+  options.sites = 400;
+  options.rng_seed = 2;
+  const Cluster lattice = eden(options);
+  struct Case {
+    const char* name;
+    const Cluster& cluster;
+    SolidShape shape;
+    double smooth;
+  };
+  const Cluster dla = small_tree(200, 8);
+  for (const Case& k : {Case{"colonize", tree, SolidShape::branches, 0.0}, Case{"eden cubes", lattice, SolidShape::cubes, 0.0},
+                        Case{"eden spheres", lattice, SolidShape::spheres, 0.0},
+                        Case{"dla blob", dla, SolidShape::spheres, 0.6}, Case{"dla smooth", dla, SolidShape::branches, 0.5}}) {
+    SCOPED_TRACE(k.name);
+    SolidOptions o;
+    o.shape = k.shape;
+    o.smooth = k.smooth;
+    LookOptions look;
+    look.radius.model = RadiusModel::uniform;
+    look.radius.base_radius = 0.6;  // spheres a spacing apart overlap
+    const std::vector<float> radii = make_look(k.cluster, look).radii(k.cluster);
+    const Solid solid = build_solid(k.cluster, radii, o);
+    EXPECT_EQ(edge_faults(solid.mesh), "");
+    EXPECT_FALSE(self_intersects(solid.mesh));
+    EXPECT_EQ(solid.measures.shells, 1u);
+    for (const Particle& p : k.cluster.particles) ASSERT_GT(winding_number(solid.mesh, p.position), 0.5);
+  }
+}
+
+TEST(Solid, SmoothingOnlyAddsToTheSolid) {
+  const Cluster c = small_tree(150, 21);
+  const std::vector<float> radii = pipe_radii(c);
+  const Solid sharp = build_solid(c, radii, {});
+  SolidOptions o;
+  o.smooth = 0.5;
+  const Solid smooth = build_solid(c, radii, o);
+  // A closing holds the set it closes: more volume, every sharp vertex inside or on it.
+  EXPECT_GT(smooth.measures.volume, sharp.measures.volume);
+  EXPECT_LT(smooth.measures.volume, 1.6 * sharp.measures.volume);
+  const double voxel = sharp.measures.voxel;
+  const openvdb::FloatGrid& grid = *smooth.grid->surface;
+  auto access = grid.getConstAccessor();
+  for (std::size_t v = 0; v < sharp.mesh.vertices.size(); v += 7) {
+    const Eigen::Vector3f& p = sharp.mesh.vertices[v];
+    const openvdb::Coord ijk = grid.transform().worldToIndexNodeCentered(openvdb::Vec3d(p.x(), p.y(), p.z()));
+    ASSERT_LT(access.getValue(ijk), 2.0 * voxel);
+  }
+}
+
+TEST(Solid, PrintSizeGivesTheLongestSideAndTheThinnestWall) {
+  const Cluster c = small_tree(400, 13);
+  const std::vector<float> radii = pipe_radii(c);
+  for (const double size : {40.0, 120.0}) {
+    SCOPED_TRACE(size);
+    SolidOptions o;
+    o.print_size = size;
+    o.min_wall = 1.2;
+    const Solid solid = build_solid(c, radii, o);
+    EXPECT_NEAR(solid.measures.size.maxCoeff(), size, 1e-4 * size);
+    EXPECT_GE(solid.measures.thinnest_wall, o.min_wall);
+    EXPECT_EQ(edge_faults(solid.mesh), "");
+    Eigen::AlignedBox3f box;
+    for (const Eigen::Vector3f& v : solid.mesh.vertices) box.extend(v);
+    EXPECT_NEAR(box.sizes().maxCoeff(), size, 1e-4 * size);
+    // At 40 mm the tips (0.25 spacings, a 0.5-spacing wall) are thinner than 1.2 mm.
+    if (size == 40.0) {
+      EXPECT_GT(solid.measures.thickened, 0u);
+    }
+  }
+}
+
+TEST(Solid, RefusesWhatWouldNotFitAndNamesAVoxelThatDoes) {
+  const Cluster c = small_tree(2000, 6);
+  const std::vector<float> radii = pipe_radii(c);
+  SolidOptions o;
+  o.voxel = 0.01;
+  o.memory = 50;  // MB
+  std::string message;
+  try {
+    build_solid(c, radii, o);
+  } catch (const InvalidInput& e) {
+    message = e.what();
+  }
+  ASSERT_NE(message.find("`solid_voxel` 0.01 spacings would take about"), std::string::npos) << message;
+  ASSERT_EQ(message.find('\n'), std::string::npos);
+  const std::size_t at = message.rfind("`solid_voxel` ");
+  ASSERT_NE(message.find(" fits", at), std::string::npos) << message;
+  o.voxel = std::stod(message.substr(at + 14));
+  EXPECT_GT(o.voxel, 0.01);
+  const Solid solid = build_solid(c, radii, o);  // the named voxel fits under the same limit
+  EXPECT_EQ(solid.measures.shells, 1u);
+}
+
+TEST(Solid, BadOptionsAreRefusedByName) {
+  const std::map<std::string, SolidOptions> cases = [] {
+    std::map<std::string, SolidOptions> m;
+    m["`solid_voxel`"].voxel = -1;
+    m["`solid_smooth`"].smooth = 1e9;
+    m["`solid_adaptivity`"].adaptivity = 2;
+    m["`print_size`"].print_size = -5;
+    m["`min_wall`"].min_wall = std::nan("");
+    m["`solid_memory`"].memory = 0.5;
+    return m;
+  }();
+  for (const auto& [name, options] : cases) {
+    SCOPED_TRACE(name);
+    try {
+      validate(options);
+      ADD_FAILURE() << "accepted";
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(Solid, TheSameFilesOnAnyThreadCount) {
+  const Cluster c = small_tree(500, 31);
+  LookOptions options;
+  options.radius.model = RadiusModel::pipe;
+  options.color_by = ColorBy::age;
+  const Look look = make_look(c, options);
+  ScratchDir dir;
+  std::map<std::string, std::string> first;
+  for (const int threads : {1, 2, 3}) {
+    SolidOptions o;
+    o.threads = threads;
+    const Solid solid = build_solid(c, look.radii(c), o);
+    write_stl(solid, dir / "s.stl");
+    write_3mf(solid, dir / "s.3mf");
+    write_vdb(solid, c, look, dir / "s.vdb");
+    write_solid_glb(solid, c, look, dir / "s.glb");
+    write_solid_obj(solid, c, look, dir / "s.obj");
+    for (const char* file : {"s.stl", "s.3mf", "s.vdb", "s.glb", "s.obj"}) {
+      const std::string bytes = read_file(dir / file);
+      ASSERT_GT(bytes.size(), 1000u) << file;
+      if (threads == 1) first[file] = bytes;
+      else EXPECT_TRUE(bytes == first[file]) << file << " differs on " << threads << " threads";
+    }
+  }
+  // The closing goes through OpenVDB's own threaded rebuilds.
+  for (const int threads : {1, 2}) {
+    SolidOptions o;
+    o.threads = threads;
+    o.smooth = 0.4;
+    const Solid solid = build_solid(c, look.radii(c), o);
+    write_stl(solid, dir / "smooth.stl");
+    const std::string bytes = read_file(dir / "smooth.stl");
+    if (threads == 1) first["smooth"] = bytes;
+    else EXPECT_TRUE(bytes == first["smooth"]) << "the smoothed solid differs on 2 threads";
+  }
+}
+
+}  // namespace
+}  // namespace dla
