@@ -88,7 +88,7 @@ std::string describe(const SolidMeasures& m, bool printed) {
                      (m.shells == 1 ? " shell" : " shells") + ", thinnest wall " + number(m.thinnest_wall, 3) +
                      (printed ? " mm" : "");
   if (m.thickened) line += ", " + detail::format_count(m.thickened) + " branches thickened";
-  line += ", voxel " + number(m.voxel, 3);
+  line += ", voxel " + number(m.voxel, 3) + (printed ? " mm" : "");
   if (m.shells > 1) line += "; several seeds grow apart: `solid_join` joins their trees";
   return line;
 }

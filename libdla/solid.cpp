@@ -17,6 +17,7 @@
 #include <openvdb/tools/Prune.h>
 #include <openvdb/tools/ValueTransformer.h>
 #include <openvdb/tools/VolumeToMesh.h>
+#include <tbb/info.h>
 #include <tbb/task_arena.h>
 
 #include <malloc.h>
@@ -756,7 +757,9 @@ Solid build_solid(const SolidPlan& plan, const StopFlag* stop) {
   const double smooth = w.smooth;
   double voxel = w.voxel, scale = w.scale, thinnest = w.thinnest;
   const int threads = o.threads > 0 ? o.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  tbb::task_arena arena(threads);
+  // OpenVDB's own work (meshing, smoothing) on as many of them as TBB may use here: more would
+  // only print TBB's warning.
+  tbb::task_arena arena(std::min(threads, tbb::info::default_concurrency()));
   openvdb::FloatGrid::Ptr grid = rasterize(pieces, pairs, voxel, threads, stop);
   if (smooth > 0.0) {
     arena.execute([&] {

@@ -49,8 +49,14 @@ class DLA3DSettings(bpy.types.PropertyGroup):
     output: bpy.props.EnumProperty(
         name="Result", default="CURVES",
         items=[("CURVES", "Curves", "A curves object: one poly curve per strand, radius and age per point"),
-               ("MESH", "Tube mesh", "Tubes along the strands, with the age per vertex")])
+               ("MESH", "Tube mesh", "Tubes along the strands, with the age per vertex"),
+               ("SOLID", "Solid", "One watertight surface for 3D printing, with the age per vertex")])
     sides: bpy.props.IntProperty(name="Tube sides", default=8, min=3, max=64)
+    voxel: bpy.props.FloatProperty(name="Voxel", default=0.0, min=0.0, max=100.0,
+                                   description="Solid: the voxel's edge, in spacings; 0: a third of the "
+                                               "thinnest branch (fine, and slow for fine tips)")
+    smooth: bpy.props.FloatProperty(name="Smooth", default=0.0, min=0.0, max=100.0,
+                                    description="Solid: round inner corners to this radius, in spacings")
 
 
 def mesh_arrays(obj, depsgraph):
@@ -131,7 +137,18 @@ def make_curves(result, name):
 def make_tube_mesh(result, name, sides):
     """A mesh of the look's tubes, with the age of each vertex's particle."""
     tubes = result.tubes(sides=sides)
-    vertices, faces = tubes.vertices, tubes.faces
+    return make_mesh(result, name, tubes.vertices, tubes.faces, tubes.particle)
+
+
+def make_solid(result, name, voxel, smooth):
+    """The structure's watertight solid (docs/solid.md), with the age of each vertex's nearest
+    particle."""
+    solid = result.solid(solid_voxel=voxel, solid_smooth=smooth)
+    return make_mesh(result, name, solid.vertices, solid.faces, solid.particle)
+
+
+def make_mesh(result, name, vertices, faces, particle):
+    """A triangle mesh object with the age of each vertex's particle."""
     mesh = bpy.data.meshes.new(name)
     mesh.vertices.add(len(vertices))
     mesh.vertices.foreach_set("co", vertices.ravel())
@@ -143,7 +160,7 @@ def make_tube_mesh(result, name, sides):
     mesh.update()
     mesh.validate()
     age = mesh.attributes.new("age", 'FLOAT', 'POINT')
-    age.data.foreach_set("value", result.age[tubes.particle])
+    age.data.foreach_set("value", result.age[particle])
     obj = bpy.data.objects.new(name, mesh)
     bpy.context.scene.collection.objects.link(obj)
     return obj
@@ -177,8 +194,13 @@ class DLA3D_OT_grow(bpy.types.Operator):
         finally:
             wm.progress_end()
         name = f"dla3d {settings.model}"
-        made = (make_curves(result, name) if settings.output == 'CURVES'
-                else make_tube_mesh(result, name, settings.sides))
+        try:
+            made = (make_curves(result, name) if settings.output == 'CURVES'
+                    else make_tube_mesh(result, name, settings.sides) if settings.output == 'MESH'
+                    else make_solid(result, name, settings.voxel, settings.smooth))
+        except ValueError as error:  # a solid too large for the memory it may take
+            self.report({'ERROR'}, str(error))
+            return {'CANCELLED'}
         if settings.model not in MESH_MODELS and obj is not None:
             made.location = obj.matrix_world.translation
         self.report({'INFO'}, f"grew {len(result)} particles" + ("" if result.complete else " (stopped)"))
@@ -205,6 +227,9 @@ class DLA3D_PT_panel(bpy.types.Panel):
         layout.prop(settings, "output")
         if settings.output == 'MESH':
             layout.prop(settings, "sides")
+        if settings.output == 'SOLID':
+            layout.prop(settings, "voxel")
+            layout.prop(settings, "smooth")
         layout.operator(DLA3D_OT_grow.bl_idname)
 
 

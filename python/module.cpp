@@ -7,6 +7,7 @@
 #include "dla/core/analysis.h"
 #include "dla/core/hash.h"
 #include "dla/look/look.h"
+#include "dla/look/solid.h"
 #include "dla/look/tubes.h"
 #include "dla/mesh/surface_distance.h"
 #include "dla/run/run.h"
@@ -231,6 +232,14 @@ void add_look(Table<Options>& t) {
   t["instances"] = [=](Options& o, py::handle v, Given&) { files(o).instances.set = word("instances", v, parse_instance_set); };
   t["tips_within"] = [=](Options& o, py::handle v, Given&) { files(o).instances.within = number("tips_within", v); };
   t["up"] = [=](Options& o, py::handle v, Given&) { files(o).up = word("up", v, parse_axis); };
+  t["solid_shape"] = [=](Options& o, py::handle v, Given&) { files(o).solid.shape = word("solid_shape", v, parse_solid_shape); };
+  t["solid_voxel"] = [=](Options& o, py::handle v, Given&) { files(o).solid.voxel = number("solid_voxel", v); };
+  t["solid_smooth"] = [=](Options& o, py::handle v, Given&) { files(o).solid.smooth = number("solid_smooth", v); };
+  t["solid_adaptivity"] = [=](Options& o, py::handle v, Given&) { files(o).solid.adaptivity = number("solid_adaptivity", v); };
+  t["print_size"] = [=](Options& o, py::handle v, Given&) { files(o).solid.print_size = number("print_size", v); };
+  t["min_wall"] = [=](Options& o, py::handle v, Given&) { files(o).solid.min_wall = number("min_wall", v); };
+  t["solid_join"] = [=](Options& o, py::handle v, Given&) { files(o).solid.join_seeds = flag("solid_join", v); };
+  t["solid_memory"] = [=](Options& o, py::handle v, Given&) { files(o).solid.memory = number("solid_memory", v); };
 }
 
 //! Where seeds (colonize: roots) go on the mesh, the same for DLA, drop and colonize.
@@ -612,6 +621,50 @@ py::tuple strands(Result& result) {
 
 //! Writes the files `formats` names (the formats' words) as PREFIX.EXT, with the look the run's
 //! options ask for; the JSON records how the run was made.
+//! The structure's solid (solid.h) with the run's solid options but those given: float32
+//! vertices, uint32 triangles, each vertex's nearest particle, and the measures.
+py::tuple solid(Result& result, const py::dict& given) {
+  SolidOptions options = result.run->files.solid;
+  for (const auto& [key, value] : given) {
+    const std::string name = key.cast<std::string>();
+    if (name == "solid_shape") options.shape = word("solid_shape", value, parse_solid_shape);
+    else if (name == "solid_voxel") options.voxel = number("solid_voxel", value);
+    else if (name == "solid_smooth") options.smooth = number("solid_smooth", value);
+    else if (name == "solid_adaptivity") options.adaptivity = number("solid_adaptivity", value);
+    else if (name == "print_size") options.print_size = number("print_size", value);
+    else if (name == "min_wall") options.min_wall = number("min_wall", value);
+    else if (name == "solid_join") options.join_seeds = flag("solid_join", value);
+    else if (name == "solid_memory") options.memory = number("solid_memory", value);
+    else throw InvalidInput(name + " is not an option of solid()");
+  }
+  const Look& look = result.look();
+  Solid built;
+  std::vector<std::int32_t> nearest;
+  {
+    py::gil_scoped_release released;
+    built = build_solid(result.cluster, look.radii(result.cluster), options);
+    nearest = nearest_particles(result.cluster, built, built.mesh.vertices);
+  }
+  py::array_t<float> vertices({static_cast<py::ssize_t>(built.mesh.vertices.size()), py::ssize_t{3}});
+  py::array_t<std::uint32_t> faces({static_cast<py::ssize_t>(built.mesh.triangles.size()), py::ssize_t{3}});
+  py::array_t<std::int32_t> particle(static_cast<py::ssize_t>(nearest.size()));
+  if (!built.mesh.vertices.empty()) std::memcpy(vertices.mutable_data(), built.mesh.vertices.data(), built.mesh.vertices.size() * 12);
+  if (!built.mesh.triangles.empty()) std::memcpy(faces.mutable_data(), built.mesh.triangles.data(), built.mesh.triangles.size() * 12);
+  if (!nearest.empty()) std::memcpy(particle.mutable_data(), nearest.data(), nearest.size() * 4);
+  const SolidMeasures& m = built.measures;
+  py::dict measures;
+  measures["units"] = options.print_size > 0 ? "mm" : "scene";
+  measures["volume"] = m.volume;
+  measures["area"] = m.area;
+  measures["shells"] = m.shells;
+  measures["thinnest_wall"] = m.thinnest_wall;
+  measures["thickened"] = m.thickened;
+  measures["voxel"] = m.voxel;
+  measures["scale"] = m.scale;
+  measures["origin"] = py::make_tuple(built.origin.x(), built.origin.y(), built.origin.z());
+  return py::make_tuple(vertices, faces, particle, measures);
+}
+
 void write(Result& result, const std::string& prefix, const std::vector<std::string>& formats) {
   std::string words;
   for (const std::string& format : formats) words += (words.empty() ? "" : ",") + format;
@@ -701,6 +754,8 @@ PYBIND11_MODULE(_core, m) {
       })
       .def("_tubes", &tubes, py::arg("sides"), py::arg("tolerance"), py::arg("min_branch"),
            "(vertices, normals, faces, particle): the tube mesh of the look (dla3d.Result.tubes)")
+      .def("_solid", &solid, py::arg("options"),
+           "(vertices, faces, particle, measures): the watertight solid (dla3d.Result.solid)")
       .def("strands", &strands, "(ids, starts): particle ids of every strand, strand k at ids[starts[k]:starts[k+1]]")
       .def("fractal_dimension", [](const Result& r) {
         const FractalFit gyration = fractal_dimension_by_gyration(r.cluster);

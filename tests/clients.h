@@ -1,6 +1,7 @@
 #pragma once
 // The real clients the tests hand dla3d's files to: Blender (headless), the Khronos
-// glTF-Validator and Chromium driven by Playwright (node, from tests/clients/package.json).
+// glTF-Validator, Chromium driven by Playwright (node, from tests/clients/package.json), and
+// for the solids PrusaSlicer and admesh.
 // All are optional: a test that needs one skips, by name, when it is missing (the README's
 // client step installs them; CI does).
 
@@ -63,5 +64,13 @@ inline std::string page_viewer() {
 #define DLA_NEED_BLENDER()                                                                        \
   if (::dla::testing::find_program("blender").empty())                                           \
   GTEST_SKIP() << "Blender is missing: install Debian's blender and python3-numpy (the README's client step)"
+
+#define DLA_NEED_PRUSA_SLICER()                                                                   \
+  if (::dla::testing::find_program("prusa-slicer").empty())                                      \
+  GTEST_SKIP() << "PrusaSlicer is missing: install Debian's prusa-slicer (the README's client step)"
+
+#define DLA_NEED_ADMESH()                                                                         \
+  if (::dla::testing::find_program("admesh").empty())                                            \
+  GTEST_SKIP() << "admesh is missing: install Debian's admesh (the README's client step)"
 
 }  // namespace dla::testing

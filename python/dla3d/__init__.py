@@ -53,6 +53,35 @@ def _tubes(result, sides=8, tolerance=0.0, min_branch=1):
 Result.tubes = _tubes
 
 
+class Solid(tuple):
+    """The watertight solid of a structure: (vertices, faces) unpack as float32 (V, 3) and uint32
+    (F, 3) arrays of a closed, outward-facing triangle mesh, in millimetres with print_size,
+    else in scene units. `particle` is each vertex's nearest particle (for colours and
+    attributes) and `measures` a dict: volume, area, shells, thinnest_wall, thickened, voxel,
+    scale (mesh units per scene unit) and origin (a point p of the structure lies at
+    (p - origin) * scale in the mesh)."""
+
+    def __new__(cls, vertices, faces, particle, measures):
+        solid = super().__new__(cls, (vertices, faces))
+        solid.particle = particle
+        solid.measures = measures
+        return solid
+
+    vertices = property(lambda self: self[0])
+    faces = property(lambda self: self[1])
+
+
+def _solid(result, **options):
+    """The structure's watertight solid: see Solid and docs/solid.md. The keywords are the run's
+    (and dla3d's) solid options, which they default to: solid_shape ("branches", "spheres",
+    "cubes"), solid_voxel and solid_smooth (spacings), solid_adaptivity, print_size and
+    min_wall (mm), solid_join (bool) and solid_memory (MB)."""
+    return Solid(*result._solid(options))
+
+
+Result.solid = _solid
+
+
 def _word(value):
     """A value as the command line writes it: numbers exact, vectors comma-separated."""
     if isinstance(value, numbers.Integral) and not isinstance(value, (bool, np.bool_)):

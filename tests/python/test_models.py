@@ -365,3 +365,37 @@ def test_random_keyword_sets_grow_or_refuse_in_one_line():
         expect_tree(result)
         grown_count += 1
     assert grown_count > 20 and refused > 20, (grown_count, refused)
+
+
+def test_solid_is_the_clis_closed_mesh(cli, tmp_path):
+    result = dla3d.grow(particles=500, rng_seed=4, radius="pipe")
+    solid = result.solid()
+    vertices, faces = solid
+    assert solid.vertices is vertices and solid.faces is faces
+    assert vertices.dtype == np.float32 and faces.dtype == np.uint32 and faces.max() < len(vertices)
+    assert solid.particle.shape == (len(vertices),)
+    # Closed and oriented: every directed edge once, with its opposite.
+    edges = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]).astype(np.int64)
+    keys = edges[:, 0] * len(vertices) + edges[:, 1]
+    assert len(np.unique(keys)) == len(keys)
+    assert np.isin(edges[:, 1] * len(vertices) + edges[:, 0], keys).all()
+    a, b, c = (vertices[faces[:, k]].astype(np.float64) for k in range(3))
+    volume = np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6.0
+    m = solid.measures
+    assert m["shells"] == 1 and m["units"] == "scene"
+    assert volume == pytest.approx(m["volume"], rel=1e-6)
+    # The CLI's STL holds the same triangles.
+    cli(*result.command.split()[1:], "-q", "--formats", "stl,json", "-o", str(tmp_path / "s"))
+    with open(tmp_path / "s.stl", "rb") as stl:
+        stl.seek(80)
+        assert int(np.frombuffer(stl.read(4), np.uint32)[0]) == len(faces)
+    # Printed: the longest side, in millimetres.
+    printed = result.solid(print_size=50, min_wall=1.0)
+    size = printed.vertices.max(axis=0) - printed.vertices.min(axis=0)
+    assert size.max() == pytest.approx(50, rel=1e-5) and printed.measures["thinnest_wall"] >= 1.0
+    with pytest.raises(ValueError, match="voxel"):
+        result.solid(solid_voxel=-1)
+    with pytest.raises(ValueError, match="bogus is not an option of solid"):
+        result.solid(bogus=1)
+    with pytest.raises(ValueError, match=r"solid_voxel=0.01 spacings would take about .* \(solid_memory\); solid_voxel=.* fits"):
+        result.solid(solid_voxel=0.01, solid_memory=5)

@@ -1,0 +1,109 @@
+# Hands dla3d's solid to Blender as an artist or a maker would: imports the STL and the glb as
+# meshes and runs the 3D-Print Toolbox's solid and intersection checks on them, imports the
+# .vdb as a volume and lists its grids, and renders the solid and the volume with Cycles.
+# Prints one JSON line after "DLA3D ".
+#   blender -b --factory-startup --python-exit-code 1 --python blender_solid.py -- \
+#       SOLID.stl SOLID.glb SOLID.vdb OUT
+# writes OUT_solid.png and OUT_volume.png.
+import json
+import sys
+
+import bpy
+import mathutils
+
+stl, glb, vdb, out = sys.argv[sys.argv.index("--") + 1:]
+bpy.ops.wm.read_factory_settings(use_empty=True)
+bpy.ops.preferences.addon_enable(module="object_print3d_utils")
+from object_print3d_utils import operators  # noqa: E402  (enabled just above)
+
+result = {}
+
+
+def meshes():
+    return [o for o in bpy.context.scene.objects if o.type == "MESH"]
+
+
+def checked(obj, name):
+    """The toolbox's counts for one mesh: non-manifold edges, bad contiguous edges, faces that
+    intersect."""
+    info = []
+    operators.MESH_OT_print3d_check_solid.main_check(obj, info)
+    operators.MESH_OT_print3d_check_intersections.main_check(obj, info)
+    counts = [len(found[1]) for _, found in info]
+    result[name + "_non_manifold"], result[name + "_bad_contiguous"], result[name + "_intersecting"] = counts
+    result[name + "_faces"] = len(obj.data.polygons)
+
+
+bpy.ops.import_mesh.stl(filepath=stl)
+result["stl_objects"] = len(meshes())
+checked(meshes()[0], "stl")
+solid = meshes()[0]
+
+import numpy  # noqa: E402
+if not hasattr(numpy, "bool"):  # Blender 3.4's glTF importer with Debian's numpy 1.24
+    numpy.bool = bool
+bpy.ops.preferences.addon_enable(module="io_scene_gltf2")
+before = set(meshes())
+bpy.ops.import_scene.gltf(filepath=glb)
+imported = [o for o in meshes() if o not in before]
+result["glb_objects"] = len(imported)
+checked(imported[0], "glb")
+for o in imported:
+    bpy.data.objects.remove(o)
+
+bpy.ops.object.volume_import(filepath=vdb)
+volume = [o for o in bpy.context.scene.objects if o.type == "VOLUME"][0]
+volume.data.grids.load()
+result["grids"] = sorted(g.name for g in volume.data.grids)
+
+
+def render(visible, path):
+    """A Cycles render of `visible` alone, framed by a camera looking at its bounding box."""
+    scene = bpy.context.scene
+    for o in scene.objects:
+        o.hide_render = o is not visible and o.type in {"MESH", "VOLUME"}
+    corners = [visible.matrix_world @ mathutils.Vector(c) for c in visible.bound_box]
+    centre = sum(corners, mathutils.Vector()) / 8
+    size = max((c - centre).length for c in corners)
+    camera = bpy.data.objects.get("camera") or bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
+    if camera.name not in scene.objects:
+        scene.collection.objects.link(camera)
+    camera.location = centre + mathutils.Vector((1.0, -1.4, 0.9)).normalized() * size * 2.8
+    camera.rotation_euler = (centre - camera.location).to_track_quat("-Z", "Y").to_euler()
+    scene.camera = camera
+    if not bpy.data.objects.get("sun"):
+        sun = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))
+        sun.data.energy = 4.0
+        sun.rotation_euler = (0.7, 0.2, 0.5)
+        scene.collection.objects.link(sun)
+    world = bpy.data.worlds.new("sky")
+    world.color = (0.05, 0.05, 0.06)
+    scene.world = world
+    scene.render.engine = "CYCLES"
+    scene.cycles.device = "CPU"
+    scene.cycles.samples = 16
+    scene.cycles.use_denoising = False  # Debian's Blender has no OpenImageDenoise
+    scene.render.resolution_x, scene.render.resolution_y = 200, 150
+    scene.render.resolution_percentage = 100
+    scene.render.filepath = path
+    bpy.ops.render.render(write_still=True)
+
+
+material = bpy.data.materials.new("bark")
+material.diffuse_color = (0.8, 0.55, 0.3, 1.0)
+solid.data.materials.append(material)
+render(solid, out + "_solid.png")
+
+smoke = bpy.data.materials.new("smoke")
+smoke.use_nodes = True
+nodes = smoke.node_tree.nodes
+nodes.clear()
+principled = nodes.new("ShaderNodeVolumePrincipled")
+principled.inputs["Density"].default_value = 20.0
+principled.inputs["Color"].default_value = (0.9, 0.9, 1.0, 1.0)
+output = nodes.new("ShaderNodeOutputMaterial")
+smoke.node_tree.links.new(principled.outputs["Volume"], output.inputs["Volume"])
+volume.data.materials.append(smoke)
+render(volume, out + "_volume.png")
+
+print("DLA3D " + json.dumps(result))
