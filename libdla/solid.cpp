@@ -232,8 +232,8 @@ FloatLeaf* fill_leaf(const openvdb::Coord& origin, const LeafPiece* begin, const
                      const std::vector<Piece>& pieces, double voxel, float band, bool& deep) {
   std::array<float, FloatLeaf::SIZE> values;
   values.fill(band);
-  // Blocks of 4^3 voxels, then of 2^3: the distance changes by at most a block's half
-  // diagonal within it, so a block wholly beyond the band (most of a thin capsule's box) is
+  // The leaf, then blocks of 4^3 voxels, then of 2^3: the distance changes by at most a block's
+  // half diagonal within it, so a block wholly beyond the band (most of a thin capsule's box) is
   // skipped, and one wholly deep inside is set at once.
   const double half_diagonal = std::sqrt(3.0) / 2.0 * voxel;  // of a block of 2^3 voxel centres
   const Point corner(origin[0], origin[1], origin[2]);
@@ -248,8 +248,10 @@ FloatLeaf* fill_leaf(const openvdb::Coord& origin, const LeafPiece* begin, const
         for (int z = at[2]; z < at[2] + side; ++z) values[static_cast<std::size_t>((x << 6) | (y << 3) | z)] = -band;
     return true;
   };
+  const int whole[3] = {0, 0, 0};
   for (const LeafPiece* it = begin; it != end; ++it) {
     const Piece& piece = pieces[it->piece];
+    if (settle(piece, whole, kLeafSide)) continue;  // the leaf at once: a corner of the piece's box
     const IndexBox box = voxels_near(piece, voxel, band);
     int low[3], high[3];
     for (int a = 0; a < 3; ++a) {

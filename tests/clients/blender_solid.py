@@ -3,15 +3,18 @@
 # .vdb as a volume and lists its grids, and renders the solid and the volume with Cycles.
 # Prints one JSON line after "DLA3D ".
 #   blender -b --factory-startup --python-exit-code 1 --python blender_solid.py -- \
-#       SOLID.stl SOLID.glb SOLID.vdb OUT
-# writes OUT_solid.png and OUT_volume.png.
+#       SOLID.stl SOLID.glb SOLID.vdb OUT [WIDTH HEIGHT SAMPLES]
+# writes OUT_solid.png (the glb, in its vertex colours if it has them) and OUT_volume.png, 200 x
+# 150 with 16 samples unless given (docs/solid.md's pictures are made by it too).
 import json
 import sys
 
 import bpy
 import mathutils
 
-stl, glb, vdb, out = sys.argv[sys.argv.index("--") + 1:]
+args = sys.argv[sys.argv.index("--") + 1:]
+stl, glb, vdb, out = args[:4]
+width, height, samples = (int(a) for a in (args[4:] or [200, 150, 16]))
 bpy.ops.wm.read_factory_settings(use_empty=True)
 bpy.ops.preferences.addon_enable(module="object_print3d_utils")
 from object_print3d_utils import operators  # noqa: E402  (enabled just above)
@@ -48,8 +51,8 @@ bpy.ops.import_scene.gltf(filepath=glb)
 imported = [o for o in meshes() if o not in before]
 result["glb_objects"] = len(imported)
 checked(imported[0], "glb")
-for o in imported:
-    bpy.data.objects.remove(o)
+solid.hide_render = True
+solid = imported[0]
 
 bpy.ops.object.volume_import(filepath=vdb)
 volume = [o for o in bpy.context.scene.objects if o.type == "VOLUME"][0]
@@ -61,7 +64,8 @@ def render(visible, path):
     """A Cycles render of `visible` alone, framed by a camera looking at its bounding box."""
     scene = bpy.context.scene
     for o in scene.objects:
-        o.hide_render = o is not visible and o.type in {"MESH", "VOLUME"}
+        if o.type in {"MESH", "VOLUME"}:
+            o.hide_render = o is not visible
     corners = [visible.matrix_world @ mathutils.Vector(c) for c in visible.bound_box]
     centre = sum(corners, mathutils.Vector()) / 8
     size = max((c - centre).length for c in corners)
@@ -81,16 +85,30 @@ def render(visible, path):
     scene.world = world
     scene.render.engine = "CYCLES"
     scene.cycles.device = "CPU"
-    scene.cycles.samples = 16
+    scene.cycles.samples = samples
     scene.cycles.use_denoising = False  # Debian's Blender has no OpenImageDenoise
-    scene.render.resolution_x, scene.render.resolution_y = 200, 150
+    scene.render.resolution_x, scene.render.resolution_y = width, height
     scene.render.resolution_percentage = 100
     scene.render.filepath = path
     bpy.ops.render.render(write_still=True)
 
 
+# Bark, or the vertex colours (--color-by) where the glb has them.
 material = bpy.data.materials.new("bark")
-material.diffuse_color = (0.8, 0.55, 0.3, 1.0)
+material.use_nodes = True
+bsdf = next((n for n in material.node_tree.nodes if n.type == "BSDF_PRINCIPLED"), None)
+if bsdf is None:
+    bsdf = material.node_tree.nodes.new("ShaderNodeBsdfPrincipled")
+    surface = next(n for n in material.node_tree.nodes if n.type == "OUTPUT_MATERIAL")
+    material.node_tree.links.new(bsdf.outputs["BSDF"], surface.inputs["Surface"])
+bsdf.inputs["Base Color"].default_value = (0.8, 0.55, 0.3, 1.0)
+bsdf.inputs["Roughness"].default_value = 0.5
+colours = [c.name for c in getattr(solid.data, "color_attributes", [])]
+if colours:
+    attribute = material.node_tree.nodes.new("ShaderNodeAttribute")
+    attribute.attribute_name = colours[0]
+    material.node_tree.links.new(attribute.outputs["Color"], bsdf.inputs["Base Color"])
+solid.data.materials.clear()
 solid.data.materials.append(material)
 render(solid, out + "_solid.png")
 

@@ -4,9 +4,10 @@
 // test's) is prepared by the library's run layer, as dla3d prepares it, grown small (DLA to 16
 // particles on at most two threads, colonize to 64 nodes among 300 attractors, Eden to 200
 // sites, drop and ballistic to 64 particles) for at most a second (a stop flag, as Ctrl-C
-// would), and given the look it asks for. Any words must either be refused with InvalidInput,
-// or grow a valid tree (tree_check.h) with positive radii, tubes and instancing points: never
-// crash, hang, overflow or read out of bounds.
+// would), and given the look it asks for, and its solid (in 200 MB at most). Any words must
+// either be refused with InvalidInput, or grow a valid tree (tree_check.h) with positive radii,
+// tubes, instancing points and a solid of positive volume: never crash, hang, overflow or read
+// out of bounds.
 // Build with -DDLA_FUZZ=ON (clang); see docs/testing.md.
 
 #include "../../cli/command_line.h"
@@ -14,6 +15,7 @@
 
 #include "dla/look/instances.h"
 #include "dla/look/look.h"
+#include "dla/look/solid.h"
 #include "dla/run/run.h"
 
 #include <algorithm>
@@ -140,6 +142,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (files.instances.within == std::numeric_limits<double>::infinity())
       for (const dla::Instance& instance : dla::instancing_points(cluster, look.attributes, files.instances))
         if (!(instance.scale > 0.0)) std::abort();
+    // The solid it asks for, in at most the fuzzer's share of memory: closed, of positive volume.
+    if (files.formats.solid()) {
+      dla::SolidOptions solid = files.solid;
+      solid.memory = solid.memory > 0.0 ? std::min(solid.memory, 200.0) : 200.0;
+      solid.threads = 2;
+      const dla::Solid built = dla::build_solid(cluster, radii, solid);
+      if (built.measures.shells < 1 || !(built.measures.volume > 0.0)) std::abort();
+    }
   } catch (const dla::InvalidInput&) {
   } catch (const dla::GrowthError&) {  // a run that cannot go on, said so
   }
