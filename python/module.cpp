@@ -545,7 +545,9 @@ std::shared_ptr<Result> grow_run(const std::string& model, const py::dict& keywo
         return false;
       }
     } catch (py::error_already_set& error) {
-      raised = std::make_unique<py::error_already_set>(std::move(error));
+      // Ctrl-C while the callback's own Python ran is Ctrl-C all the same: what grew comes back.
+      if (error.matches(PyExc_KeyboardInterrupt)) stopped_by = "SIGINT";
+      else raised = std::make_unique<py::error_already_set>(std::move(error));
       return false;
     }
     return true;
