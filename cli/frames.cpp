@@ -95,7 +95,8 @@ int frames(const FramesCommand& command, bool quiet, const StopFlag& stop, const
     frame.dimensions = whole.dimensions;
     files.output = frame_prefix(command.files.output, k, command.count);
     write_files(frame, files, {1, nullptr, nullptr,
-                               "frame " + std::to_string(k) + " of " + std::to_string(command.count) + " of " + command.csv_path});
+                               "frame " + std::to_string(k) + " of " + std::to_string(command.count) + " of " + command.csv_path,
+                               nullptr, {}});
     bar.update(k);
   }
   bar.clear();

@@ -55,14 +55,32 @@ int run(const CommandLine& line, const std::vector<std::string>& args, const Res
   const bool failed = !record.stopped_by.empty();  // part way, by an error
   record.stopped_by = failed ? spell_options(record.stopped_by, OptionSpelling::cli)
                       : cluster.complete ? "" : signal_name(signal);
+  // The solid's stage and share done, on a terminal, once it has taken a second.
+  const bool show_solid = !line.quiet && isatty(STDERR_FILENO) && run.files.formats.solid();
+  const Clock::time_point writing = Clock::now();
+  Clock::time_point drawn{};
+  bool solid_drawn = false;
+  const SolidProgress solid_bar = [&](double fraction, std::string_view stage) {
+    const Clock::time_point now = Clock::now();
+    if (!show_solid || now - writing < std::chrono::seconds(1) || now - drawn < std::chrono::milliseconds(100)) return;
+    drawn = now;
+    solid_drawn = true;
+    std::fprintf(stderr, "\r\033[Kdla3d: the solid: %3d%% %.*s", static_cast<int>(fraction * 100.0),
+                 static_cast<int>(stage.size()), stage.data());
+  };
   try {
     // A first Ctrl-C while the solid builds stops it; after one that stopped growth, a second
     // ends dla3d (the signal's default), and the files already renamed into place stay.
-    write_run(run, cluster, record, cluster.complete ? &stop : nullptr);
+    write_run(run, cluster, record, cluster.complete ? &stop : nullptr, solid_bar);
+    if (solid_drawn) std::fprintf(stderr, "\r\033[K");
   } catch (const Interrupted&) {
+    if (solid_drawn) std::fprintf(stderr, "\r\033[K");
     std::fprintf(stderr, "dla3d: stopped by %s while the solid was built; the other files are written, no solid file\n",
                  signal_name(stop_signal));
     return 128 + stop_signal;
+  } catch (...) {
+    if (solid_drawn) std::fprintf(stderr, "\r\033[K");
+    throw;
   }
   if (!cluster.complete) save(cluster);  // after the files: they matter more
 

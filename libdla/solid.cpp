@@ -58,6 +58,8 @@ constexpr double kVoxelsAcross = 3.0;
 constexpr double kBytesPerLeaf = 6e3;
 //! A print must be this many of its thinnest walls long.
 constexpr double kPrintSizeWalls = 10.0;
+//! The share of a build's progress that filling the grid takes (about its share of the time).
+constexpr double kFillShare = 0.5;
 constexpr int kLeafLog2 = 3, kLeafSide = 1 << kLeafLog2;
 //! Two pieces' surfaces meet in a crease where their normals part by more than about 25 degrees.
 constexpr double kCreaseCosine = 0.9;
@@ -296,7 +298,7 @@ FloatLeaf* fill_leaf(const openvdb::Coord& origin, const LeafPiece* begin, const
 //! The grid of `pieces`: their union's narrow-band level set. Leaves are filled on `threads`
 //! threads and added in leaf order.
 openvdb::FloatGrid::Ptr rasterize(const std::vector<Piece>& pieces, const std::vector<LeafPiece>& pairs, double voxel,
-                                  int threads, const StopFlag* stop) {
+                                  int threads, const StopFlag* stop, const SolidProgress& progress) {
   const float band = static_cast<float>(kBandVoxels * voxel);
   // Where each leaf's pieces begin in `pairs`.
   std::vector<std::size_t> starts;
@@ -308,13 +310,15 @@ openvdb::FloatGrid::Ptr rasterize(const std::vector<Piece>& pieces, const std::v
   std::vector<char> deep(leaves, 0);
   std::atomic<std::size_t> next{0};
   std::atomic<bool> stopped{false};
-  const auto work = [&] {
+  // The calling thread reports progress as it takes each chunk of leaves.
+  const auto work = [&](bool reports) {
     constexpr std::size_t kChunk = 64;
     for (std::size_t from; (from = next.fetch_add(kChunk)) < leaves;) {
       if (stop && stop->load()) {
         stopped = true;
         return;
       }
+      if (reports && progress) progress(kFillShare * static_cast<double>(from) / static_cast<double>(leaves), "filling the grid");
       for (std::size_t l = from; l < std::min(leaves, from + kChunk); ++l) {
         bool is_deep = false;
         filled[l] = fill_leaf(leaf_origin(pairs[starts[l]].leaf), pairs.data() + starts[l],
@@ -324,8 +328,8 @@ openvdb::FloatGrid::Ptr rasterize(const std::vector<Piece>& pieces, const std::v
     }
   };
   std::vector<std::thread> helpers;
-  for (int t = 1; t < threads; ++t) helpers.emplace_back(work);
-  work();
+  for (int t = 1; t < threads; ++t) helpers.emplace_back(work, false);
+  work(true);
   for (std::thread& t : helpers) t.join();
   auto grid = openvdb::FloatGrid::create(band);
   FloatTree& tree = grid->tree();
@@ -747,7 +751,7 @@ SolidPlan plan_solid(const Cluster& cluster, const std::vector<float>& radii, co
   return plan;
 }
 
-Solid build_solid(const SolidPlan& plan, const StopFlag* stop) {
+Solid build_solid(const SolidPlan& plan, const StopFlag* stop, const SolidProgress& progress) {
   detail::initialize_openvdb();
   Solid solid;
   if (!plan.work) return solid;
@@ -762,8 +766,12 @@ Solid build_solid(const SolidPlan& plan, const StopFlag* stop) {
   // OpenVDB's own work (meshing, smoothing) on as many of them as TBB may use here: more would
   // only print TBB's warning.
   tbb::task_arena arena(std::min(threads, tbb::info::default_concurrency()));
-  openvdb::FloatGrid::Ptr grid = rasterize(pieces, pairs, voxel, threads, stop);
+  const auto report = [&](double fraction, std::string_view stage) {
+    if (progress) progress(fraction, stage);
+  };
+  openvdb::FloatGrid::Ptr grid = rasterize(pieces, pairs, voxel, threads, stop, progress);
   if (smooth > 0.0) {
+    report(kFillShare, "smoothing");
     arena.execute([&] {
       const float inside = static_cast<float>(smooth / voxel + kBandVoxels + 1.0);
       grid = openvdb::tools::levelSetRebuild(*grid, 0.0f, static_cast<float>(kBandVoxels), inside);
@@ -774,7 +782,10 @@ Solid build_solid(const SolidPlan& plan, const StopFlag* stop) {
     grid->setName("surface");
   }
   if (stop && stop->load()) throw Interrupted("the solid was stopped before it was meshed");
+  report(smooth > 0.0 ? 0.65 : kFillShare, "meshing");
   arena.execute([&] { solid.mesh = mesh_of(*grid, o.adaptivity); });
+  if (stop && stop->load()) throw Interrupted("the solid was stopped while it was meshed");
+  report(0.8, "fitting the surface");
   if (smooth == 0.0) project_onto(solid.mesh, pieces, pairs, voxel, threads);
 
   // Half the thinnest sphere's volume: the mesh's facets cut inside a little.
@@ -817,6 +828,7 @@ Solid build_solid(const SolidPlan& plan, const StopFlag* stop) {
   m.active_voxels = grid->activeVoxelCount();
   m.size = solid.mesh.vertices.empty() ? Eigen::Vector3d::Zero() : box.sizes().cast<double>().eval();
   solid.origin = w.origin;
+  report(1.0, "built");
   auto owned = std::make_shared<detail::SolidGrid>();
   owned->surface = grid;
   solid.grid = std::move(owned);

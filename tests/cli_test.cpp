@@ -171,6 +171,24 @@ TEST(Cli, CtrlCKeepsTheWorkAndResumeEndsAsAnUninterruptedRun) {
   EXPECT_EQ(dla3d(dir, "--resume whole.csv -n 5").exit_code, 2);
 }
 
+TEST(Cli, CtrlCWhileTheSolidBuildsKeepsTheOtherFilesAndLeavesNoSolidFile) {
+  ScratchDir dir;
+  // Growth takes a few hundredths of a second; the solid, at a fine voxel, seconds.
+  const int code =
+      interrupted(dir, "-n 3000 -q --radius pipe --solid-voxel 0.03 --formats csv,json,stl,vdb -o part", SIGINT, 1.0);
+  const std::string err = read_file(dir / "err.txt");
+  ASSERT_EQ(code, 130) << err;
+  EXPECT_NE(err.find("stopped by SIGINT while the solid was built; the other files are written, no solid file"),
+            std::string::npos) << err;
+  EXPECT_NE(read_file(dir / "part.json").find("\"complete\": true"), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir / "part.csv"));
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_TRUE(name.find(".stl") == std::string::npos && name.find(".vdb") == std::string::npos &&
+                name.find(".tmp") == std::string::npos) << name << " was left";
+  }
+}
+
 TEST(Cli, SigtermWritesPartialFiles) {
   ScratchDir dir;
   const int code = interrupted(dir, "-n 300000 -o part", SIGTERM, 1.0);

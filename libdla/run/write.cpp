@@ -88,8 +88,8 @@ const SolidWriterEntry kSolidWriters[] = {
 
 //! Builds the planned solid once, on every core, and writes each of its files on a thread of
 //! its own.
-SolidMeasures write_solid(const SolidPlan& plan, const WriteJob& job, const StopFlag* stop) {
-  const Solid solid = build_solid(plan, stop);
+SolidMeasures write_solid(const SolidPlan& plan, const WriteJob& job, const WriteContext& context) {
+  const Solid solid = build_solid(plan, context.stop, context.solid_progress);
   std::vector<std::future<void>> writers;
   for (const SolidWriterEntry& writer : kSolidWriters) {
     if (!(job.files.formats.*(writer.wanted))) continue;
@@ -137,7 +137,7 @@ FilesWritten write_files(const Cluster& cluster, const OutputOptions& files, con
   FilesWritten written;
   std::future<SolidMeasures> solid;
   if (files.formats.solid())
-    solid = std::async(std::launch::async, [&] { return write_solid(plan, job, context.stop); });
+    solid = std::async(std::launch::async, [&] { return write_solid(plan, job, context); });
   // Every writer finishes before the first failure is thrown: one failing loses no other file.
   std::exception_ptr failure;
   try {
@@ -164,14 +164,15 @@ FilesWritten write_files(const Cluster& cluster, const OutputOptions& files, con
 }
 
 void write_run(const Run& run, const Cluster& cluster, const OutputOptions& files, RunRecord& record,
-               const StopFlag* stop) {
+               const StopFlag* stop, const SolidProgress& solid_progress) {
   const auto start = std::chrono::steady_clock::now();
   record.printed = files.solid.print_size > 0.0;
   // The record is written even when a file fails (Ctrl-C while the solid builds), but not for
   // a solid refused before any file was written.
   std::exception_ptr failure;
   try {
-    record.solid = write_files(cluster, files, {run.threads, run.constraint, run.scene_mesh, record.command, stop}).solid;
+    record.solid =
+        write_files(cluster, files, {run.threads, run.constraint, run.scene_mesh, record.command, stop, solid_progress}).solid;
   } catch (const InvalidInput&) {
     throw;
   } catch (...) {

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string_view>
@@ -123,9 +124,13 @@ struct SolidPlan {
 //! would take more than `solid_memory`: before anything is allocated by the voxel.
 SolidPlan plan_solid(const Cluster& cluster, const std::vector<float>& radii, const SolidOptions& options);
 
+//! Called as the solid builds, from one thread, with the fraction done (0 to 1) and the stage:
+//! "filling the grid", "smoothing", "meshing", "fitting the surface", "built".
+using SolidProgress = std::function<void(double fraction, std::string_view stage)>;
+
 //! Builds a planned solid on its options' threads (the same solid on any number). Throws
 //! Interrupted when `stop` is set while it builds.
-Solid build_solid(const SolidPlan& plan, const StopFlag* stop = nullptr);
+Solid build_solid(const SolidPlan& plan, const StopFlag* stop = nullptr, const SolidProgress& progress = {});
 
 inline Solid build_solid(const Cluster& cluster, const std::vector<float>& radii, const SolidOptions& options,
                          const StopFlag* stop = nullptr) {

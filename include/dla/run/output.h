@@ -68,6 +68,7 @@ struct WriteContext {
   const TriangleMesh* scene_mesh = nullptr;    //!< the POV-Ray scene and the web viewer show it
   std::string comment;                         //!< the POV-Ray scene's first line (the command)
   const StopFlag* stop = nullptr;              //!< set, it stops the solid: no solid file is written
+  SolidProgress solid_progress;                //!< how the solid's build goes (solid.h)
 };
 
 //! What writing measured: the solid's measures, when a solid format was asked for.

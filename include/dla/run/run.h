@@ -116,11 +116,12 @@ Cluster grow_recorded(Run& run, const ProgressFn& progress, const StopFlag* stop
 //! `record`, with the solid's measures when a solid format is asked for. The POV-Ray scene's
 //! first line is `record.command`. The record is written even when another file fails, and
 //! then the failure is thrown: InvalidInput for a solid beyond the memory it may take,
-//! Interrupted when `stop` stops the solid.
+//! Interrupted when `stop` stops the solid. `solid_progress` hears how the solid's build goes.
 void write_run(const Run& run, const Cluster& cluster, const OutputOptions& files, RunRecord& record,
-               const StopFlag* stop = nullptr);
-inline void write_run(const Run& run, const Cluster& cluster, RunRecord& record, const StopFlag* stop = nullptr) {
-  write_run(run, cluster, run.files, record, stop);
+               const StopFlag* stop = nullptr, const SolidProgress& solid_progress = {});
+inline void write_run(const Run& run, const Cluster& cluster, RunRecord& record, const StopFlag* stop = nullptr,
+                      const SolidProgress& solid_progress = {}) {
+  write_run(run, cluster, run.files, record, stop, solid_progress);
 }
 
 //! With a mesh: a spacing of about a hundredth of its box's longest side, rounded to two digits.
