@@ -7,7 +7,7 @@
 //   build/bench/dla_look_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 // (medians in docs/performance.md).
 
-#include "dla/models/dla.h"
+#include "dla_tree.h"
 #include "dla/look/look.h"
 #include "dla/io/mesh_writers.h"
 
@@ -17,18 +17,6 @@
 #include <map>
 
 namespace {
-
-const dla::Cluster& dla_tree(std::size_t n) {
-  static std::map<std::size_t, dla::Cluster> trees;
-  dla::Cluster& tree = trees[n];
-  if (tree.particles.empty()) {
-    dla::DlaOptions o;
-    o.particles = n;
-    o.threads = 2;
-    tree = dla::grow(o);
-  }
-  return tree;
-}
 
 void attributes(benchmark::State& state) {
   const dla::Cluster& tree = dla_tree(static_cast<std::size_t>(state.range(0)));

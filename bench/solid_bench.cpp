@@ -11,7 +11,7 @@
 #include "dla/io/solid_writers.h"
 #include "dla/look/look.h"
 #include "dla/look/solid.h"
-#include "dla/models/dla.h"
+#include "dla_tree.h"
 
 #include <benchmark/benchmark.h>
 
@@ -19,18 +19,6 @@
 #include <map>
 
 namespace {
-
-const dla::Cluster& dla_tree(std::size_t n) {
-  static std::map<std::size_t, dla::Cluster> trees;
-  dla::Cluster& tree = trees[n];
-  if (tree.particles.empty()) {
-    dla::DlaOptions o;
-    o.particles = n;
-    o.threads = 2;
-    tree = dla::grow(o);
-  }
-  return tree;
-}
 
 void solid_stl(benchmark::State& state) {
   const dla::Cluster& tree = dla_tree(static_cast<std::size_t>(state.range(0)));

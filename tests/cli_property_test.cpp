@@ -304,6 +304,24 @@ std::pair<std::string, std::size_t> ply_parts(const std::string& ply) {
   return {ply.substr(0, header_end + 11), ply.size() - header_end - 11};
 }
 
+//! What is wrong with the .glb `name` in `dir`: its header, and the glTF-Validator's report
+//! when it is installed; "" if nothing.
+std::string glb_fault(const ScratchDir& dir, const std::string& name) {
+  const std::string glb = read_file(dir / name);
+  std::uint32_t head[3] = {0, 0, 0};
+  if (glb.size() >= 12) std::memcpy(head, glb.data(), 12);
+  if (head[0] != 0x46546C67 || head[1] != 2 || head[2] != glb.size()) return name + "'s header is not glTF 2's";
+  if (testing::gltf_validator().empty()) return "";
+  const std::string report = testing::validate_glb(dir / name);
+  return report.empty() ? "" : name + " fails the glTF-Validator: " + report;
+}
+
+//! What is wrong with the .obj `name` in `dir`: "" if it is whole.
+std::string obj_fault(const ScratchDir& dir, const std::string& name) {
+  const std::string obj = read_file(dir / name);
+  return obj.rfind("# dla3d ", 0) == 0 && obj.back() == '\n' ? "" : name + " is not whole";
+}
+
 //! Checks the files of a run that exited 0 under `prefix` in `dir`, writing `formats` (a
 //! --formats value); returns what is wrong.
 std::string check_files(const ScratchDir& dir, const std::string& prefix, const std::string& formats) {
@@ -408,19 +426,12 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
       return prefix + ".html does not hold the " + std::to_string(particles) + " particles";
   }
   if (wants("glb")) {
-    const std::string glb = read_file(dir / (prefix + ".glb"));
-    std::uint32_t head[3] = {0, 0, 0};
-    if (glb.size() >= 12) std::memcpy(head, glb.data(), 12);
-    if (head[0] != 0x46546C67 || head[1] != 2 || head[2] != glb.size()) return prefix + ".glb's header is not glTF 2's";
-    if (!testing::gltf_validator().empty()) {
-      const std::string report = testing::validate_glb(dir / (prefix + ".glb"));
-      if (!report.empty()) return prefix + ".glb fails the glTF-Validator: " + report;
-    }
+    const std::string fault = glb_fault(dir, prefix + ".glb");
+    if (!fault.empty()) return fault;
   }
-
   if (wants("obj")) {
-    const std::string obj = read_file(dir / (prefix + ".obj"));
-    if (obj.rfind("# dla3d ", 0) != 0 || obj.back() != '\n') return prefix + ".obj is not whole";
+    const std::string fault = obj_fault(dir, prefix + ".obj");
+    if (!fault.empty()) return fault;
   }
 
   // The solid: closed and oriented, its shells counted in the JSON.
@@ -438,18 +449,12 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
   if (wants("vdb") && read_file(dir / (prefix + ".vdb")).rfind(std::string(" BDV\0\0\0\0", 8), 0) != 0)
     return prefix + ".vdb is not OpenVDB's";
   if (wants("solid-glb")) {
-    const std::string glb = read_file(dir / (prefix + "_solid.glb"));
-    std::uint32_t head[3] = {0, 0, 0};
-    if (glb.size() >= 12) std::memcpy(head, glb.data(), 12);
-    if (head[0] != 0x46546C67 || head[1] != 2 || head[2] != glb.size()) return prefix + "_solid.glb's header is not glTF 2's";
-    if (!testing::gltf_validator().empty()) {
-      const std::string report = testing::validate_glb(dir / (prefix + "_solid.glb"));
-      if (!report.empty()) return prefix + "_solid.glb fails the glTF-Validator: " + report;
-    }
+    const std::string fault = glb_fault(dir, prefix + "_solid.glb");
+    if (!fault.empty()) return fault;
   }
   if (wants("solid-obj")) {
-    const std::string obj = read_file(dir / (prefix + "_solid.obj"));
-    if (obj.rfind("# dla3d ", 0) != 0 || obj.back() != '\n') return prefix + "_solid.obj is not whole";
+    const std::string fault = obj_fault(dir, prefix + "_solid.obj");
+    if (!fault.empty()) return fault;
   }
 
   if (wants("png")) {
