@@ -10,9 +10,9 @@
 #include "solid_grid.h"
 
 #include "dla/core/errors.h"
-#include <Eigen/Geometry>
 #include "dla/index/detail/nanoflann.h"
 
+#include <Eigen/Geometry>
 #include <openvdb/tools/LevelSetRebuild.h>
 #include <openvdb/tools/Prune.h>
 #include <openvdb/tools/ValueTransformer.h>
