@@ -65,8 +65,10 @@ int run(const CommandLine& line, const std::vector<std::string>& args, const Res
     if (!show_solid || now - writing < std::chrono::seconds(1) || now - drawn < std::chrono::milliseconds(100)) return;
     drawn = now;
     solid_drawn = true;
-    std::fprintf(stderr, "\r\033[Kdla3d: the solid: %3d%% %.*s", static_cast<int>(fraction * 100.0),
-                 static_cast<int>(stage.size()), stage.data());
+    const double elapsed = std::chrono::duration<double>(now - writing).count();
+    const int left = fraction > 0.0 ? static_cast<int>(elapsed * (1.0 - fraction) / fraction) : 0;
+    std::fprintf(stderr, "\r\033[Kdla3d: the solid: %3d%% %.*s  ETA %d:%02d", static_cast<int>(fraction * 100.0),
+                 static_cast<int>(stage.size()), stage.data(), left / 60, left % 60);
   };
   try {
     // A first Ctrl-C while the solid builds stops it; after one that stopped growth, a second

@@ -64,6 +64,8 @@ void write_run_report(const Cluster& cluster, const ModelRecord& model, const Lo
         .number("voxel", m.voxel, 9)
         .number("scale", m.scale, 9)
         .count("active_voxels", m.active_voxels)
+        .number("estimated_bytes", m.estimated_bytes, 3)
+        .number("estimated_seconds", m.estimated_seconds, 3)
         .raw("size", "[" + json::number(m.size.x(), 7) + ", " + json::number(m.size.y(), 7) + ", " +
                          json::number(m.size.z(), 7) + "]")
         .close();

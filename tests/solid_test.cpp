@@ -289,6 +289,9 @@ TEST(Solid, RefusesWhatWouldNotFitAndNamesAVoxelThatDoes) {
   EXPECT_GT(o.voxel, 0.01);
   const Solid solid = build_solid(c, radii, o);  // the named voxel fits under the same limit
   EXPECT_EQ(solid.measures.shells, 1u);
+  EXPECT_GT(solid.measures.estimated_bytes, 0.0);
+  EXPECT_LE(solid.measures.estimated_bytes, o.memory * 1e6);
+  EXPECT_GT(solid.measures.estimated_seconds, 0.0);
 }
 
 TEST(Solid, BadOptionsAreRefusedByName) {

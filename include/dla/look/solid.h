@@ -93,6 +93,8 @@ struct SolidMeasures {
   double voxel = 0.0;           //!< the voxel's edge
   double scale = 1.0;           //!< mesh units per scene unit: 1 without `print_size`
   std::size_t active_voxels = 0;//!< the narrow band's voxels
+  double estimated_bytes = 0.0;  //!< what the plan expected the build to take (SolidPlan)
+  double estimated_seconds = 0.0;
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  //!< the mesh's bounding box
 };
 
@@ -114,7 +116,8 @@ struct Solid {
 //! What building a structure's solid will take, found before any of it is built: the scale,
 //! the voxel, the pieces, and the memory the build is estimated to need.
 struct SolidPlan {
-  double bytes = 0.0;  //!< the build's estimated peak
+  double bytes = 0.0;    //!< the build's estimated peak
+  double seconds = 0.0;  //!< the build's and its STL's estimated time
   double voxel = 0.0;  //!< the voxel's edge, in the mesh's units
   std::shared_ptr<const detail::SolidWork> work;
 };
