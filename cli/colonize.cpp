@@ -8,7 +8,7 @@ namespace {
 
 struct ColonizeWords {
   std::vector<std::string> root_at;
-  std::string attractor_region, attractor_center, attractor_box, noise, tropism, roots_in, collision;
+  std::string attractor_region, attractor_center, attractor_box, noise, tropism, roots_in, collision, venation;
   long long max_nodes, attractor_count, max_iterations, root_count = 0;
   CLI::Option *attractors, *roots;
   std::unique_ptr<SeedWords> seeds;
@@ -27,6 +27,7 @@ void finish(ColonizeRunOptions& c, const ColonizeWords& w) {
   c.attractors.count = static_cast<std::size_t>(w.attractor_count);
   c.root_count = static_cast<std::size_t>(w.root_count);
   c.attractors.region = parse_attractor_region(w.attractor_region);
+  c.colonization.venation = parse_venation(w.venation);
   c.sample_attractors = w.attractors->count() > 0 && !c.attractors_from.empty();
   c.roots_in = parse_root_region(w.roots_in);
   c.collision = parse_collision_mode(w.collision);
@@ -72,6 +73,11 @@ Subcommand add_colonize_command(CLI::App& app, const Model& model) {
   command->add_option("--influence", c->colonization.influence, "an attractor pulls its nearest node only this close, "
                                                                  "in spacings, above the kill distance; default: any")
       ->group(colonizing);
+  w->venation = std::string(to_string(c->colonization.venation));
+  command->add_option("--venation", w->venation, "open: an attractor pulls its nearest node, a tree; closed: every "
+                                                 "node of its relative neighbourhood, and veins that reach it join: "
+                                                 "loops (Runions et al.; needs --influence)")
+      ->capture_default_str()->group(colonizing);
   command->add_option("--noise", w->noise, "each new node moves by up to A spacings, in features S spacings wide; "
                                            "A in [0, 10], S > 0")->type_name("A,S")->group(colonizing);
   command->add_option("--tropism", w->tropism, "added to each step's unit direction (gravity, light), "

@@ -19,6 +19,9 @@ struct FramesCommand {
   OutputOptions files;
   std::string csv_path;
   std::size_t count = 30;  //!< frames: frame k of K holds the seeds and k/K of the rest
+  //! Links made on the whole structure, each shown from its later particle's frame; none: the
+  //! CSV's own (PREFIX_links.csv beside it).
+  LinkOptions links;
 };
 
 //! What the command line asks for.

@@ -24,6 +24,7 @@ void finish(DropRunOptions& d, const DropWords& w) {
   d.constraint.side = parse_side(w.side);
   d.constraint.mode = parse_constraint_mode(w.constraint);
   w.seeds->finish(d.seeds, !d.stl.empty());
+  d.links = links_of(w.seeded.links);
   w.files->finish(d.files);
   validate(d);
 }

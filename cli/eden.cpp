@@ -9,7 +9,7 @@ namespace {
 struct EdenWords {
   long long sites = 0;
   int dimensions = 2;
-  std::string lattice, mode, mask;
+  std::string lattice, mode, mask, links;
   CLI::Option* dimensions_option;
   std::unique_ptr<OutputWords> files;
 };
@@ -28,6 +28,7 @@ void finish(EdenRunOptions& e, const EdenWords& w) {
   } else {
     e.mask_file = w.mask;  // read, and checked, when the run is prepared
   }
+  e.links = links_of(w.links);
   w.files->finish(e.files);
   validate(e);
 }
@@ -64,6 +65,7 @@ Subcommand add_eden_command(CLI::App& app, const Model& model) {
   command->add_option("--rng-seed", e->eden.rng_seed, "seed of the random generator: the same seed gives "
                                                       "the same files")
       ->capture_default_str()->group(group);
+  add_links_option(*command, group, w->links, true);
   w->files = std::make_unique<OutputWords>(*command, e->files, *quiet);
   return {command, [w, e, quiet](CommandLine& line, const std::vector<std::string>&) {
             finish(*e, *w);

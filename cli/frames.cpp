@@ -9,8 +9,10 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <thread>
 
 namespace dla::cli {
 
@@ -29,6 +31,7 @@ Subcommand add_frames_command(CLI::App& app) {
   struct Words {
     long long count = 30;
     bool quiet = false;
+    std::string links;
     std::unique_ptr<OutputWords> files;
   };
   auto w = std::make_shared<Words>();
@@ -40,6 +43,7 @@ Subcommand add_frames_command(CLI::App& app) {
   command->add_option("csv", frames->csv_path, "a CSV that dla3d wrote")->required();
   command->add_option("--count", w->count, "frames, 1-100000: frame k of K holds the seeds and k/K of the "
                                            "other particles, in attach order")->capture_default_str();
+  add_links_option(*command, "Options", w->links);
   w->files = std::make_unique<OutputWords>(*command, frames->files, w->quiet, "glb");
   CLI::Option* output = command->get_option("--output");
   output->description("prefix of the files written, each PREFIX_NNNN.EXT; default: the CSV's, without .csv");
@@ -49,6 +53,9 @@ Subcommand add_frames_command(CLI::App& app) {
             if (w->count < 1 || w->count > 100000)
               throw InvalidInput("--count " + std::to_string(w->count) + " is not a number of frames in 1-100000");
             fr.count = static_cast<std::size_t>(w->count);
+            fr.links = links_of(w->links);
+            if (fr.links.lattice)
+              throw InvalidInput("--links lattice: a CSV does not say its lattice; `dla3d eden --links lattice` makes them");
             if (!output->count()) {
               fr.files.output = fr.csv_path;
               if (fr.files.output.size() > 4 && fr.files.output.compare(fr.files.output.size() - 4, 4, ".csv") == 0)
@@ -64,7 +71,9 @@ Subcommand add_frames_command(CLI::App& app) {
 }
 
 int frames(const FramesCommand& command, bool quiet, const StopFlag& stop, const volatile std::sig_atomic_t& stop_signal) {
-  const Cluster whole = read_csv(command.csv_path);
+  Cluster whole = read_csv(command.csv_path);
+  if (command.links.any())
+    whole.links = neighbour_links(whole, command.links, static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 16u)));
   if ((command.files.formats.svg || command.files.formats.png) && whole.dimensions != 2)
     throw InvalidInput(command.csv_path + " holds 3D growth: --formats svg and png draw 2D growth");
   OutputOptions files = command.files;
@@ -86,13 +95,7 @@ int frames(const FramesCommand& command, bool quiet, const StopFlag& stop, const
     // Frame k: the seeds and the first k/K of the rest, rounded to the nearest particle.
     const auto shown = static_cast<std::size_t>(std::llround(static_cast<double>(others) * static_cast<double>(k) /
                                                              static_cast<double>(command.count)));
-    Cluster frame;
-    frame.particles.assign(whole.particles.begin(),
-                           whole.particles.begin() + static_cast<std::ptrdiff_t>(whole.seed_count + shown));
-    frame.seed_count = whole.seed_count;
-    frame.center = whole.center;
-    frame.spacing = whole.spacing;
-    frame.dimensions = whole.dimensions;
+    const Cluster frame = first_particles(whole, whole.seed_count + shown);
     files.output = frame_prefix(command.files.output, k, command.count);
     write_files(frame, files, {1, nullptr, nullptr,
                                "frame " + std::to_string(k) + " of " + std::to_string(command.count) + " of " + command.csv_path,

@@ -17,6 +17,7 @@ struct GrowWords {
   std::string side = std::string(to_string(Side::inside));
   std::string constraint_mode = std::string(to_string(ConstraintMode::reject));
   std::string text, font = kDefaultFont;
+  std::string links;
   double spacing = 1.0;
   CLI::Option *particles_option, *spacing_option, *seed_at_option, *text_option, *font_option, *shell_option,
       *spawn_option, *threads_option;
@@ -56,6 +57,7 @@ void add_options(CLI::App& app, DlaRunOptions& g, CommandLine& line, GrowWords& 
       ->capture_default_str()->group(growth);
   app.add_option("--index", w.index, "nearest-particle look-up: grid, kdtree or brute")
       ->capture_default_str()->group(growth);
+  add_links_option(app, growth, w.links);
   w.threads_option = app.add_option("--threads", options.threads,
                                     "walkers run at once, 1-256 (grid index); the files do not depend on it")
                          ->capture_default_str()->group(growth);
@@ -133,6 +135,7 @@ void finish(CommandLine& line, DlaRunOptions& g, const GrowWords& w) {
   if (w.spawn_option->count()) g.spawn = spawn;
   options.spawn_axis = parse_axis(w.spawn_axis);
   options.index = parse_index_kind(w.index);
+  g.links = links_of(w.links);
   w.files->finish(g.files);
   if (w.text_option->count()) {
     // "\n" typed in the shell is a line break.

@@ -182,6 +182,16 @@ void add_refused_mesh_controls(CLI::App& app, const char* group, std::string_vie
   }
 }
 
+void add_links_option(CLI::App& command, const char* group, std::string& words, bool lattice) {
+  command
+      .add_option("--links", words,
+                  std::string("also link each particle, as it attaches, to up to K (default 1) earlier ones within D "
+                              "spacings and at least 8 tree steps away: loops (docs/loops.md)") +
+                      (lattice ? "; lattice: every pair of neighbouring sites" : ""))
+      ->type_name(lattice ? "D[,K]|lattice" : "D[,K]")
+      ->group(group);
+}
+
 void add_seeded_options(CLI::App& command, const char* group, SeededWords& w, int& dimensions, double& spacing,
                         std::uint64_t& rng_seed, const std::string& spacing_help) {
   command.add_option("-n,--particles", w.particles, "particles to attach, seeds not counted")
@@ -194,6 +204,7 @@ void add_seeded_options(CLI::App& command, const char* group, SeededWords& w, in
       ->type_name("X,Y,Z")->allow_extra_args(false)->group(group);
   command.add_option("--rng-seed", rng_seed, "seed of the random generator: the same seed gives the same files")
       ->capture_default_str()->group(group);
+  add_links_option(command, group, w.links);
 }
 
 }  // namespace dla::cli

@@ -72,9 +72,15 @@ struct SeededWords {
   std::vector<std::string> seed_at;
   CLI::Option* spacing = nullptr;
   CLI::Option* seed_at_option = nullptr;
+  std::string links;
 };
 void add_seeded_options(CLI::App& command, const char* group, SeededWords& words, int& dimensions, double& spacing,
                         std::uint64_t& rng_seed, const std::string& spacing_help);
+
+//! --links D[,K] (and with `lattice`, Eden's word lattice) into `words`.
+void add_links_option(CLI::App& command, const char* group, std::string& words, bool lattice = false);
+//! --links' words as the library's options; none given: no links.
+inline LinkOptions links_of(const std::string& words) { return words.empty() ? LinkOptions{} : parse_links(words); }
 
 // Each model's file adds its options, named and described as the library's registry says
 // (dla/run/run.h), and says how to finish them. DLA's are the top level's (`dla3d [options]`),

@@ -98,6 +98,10 @@ int run(const CommandLine& line, const std::vector<std::string>& args, const Res
     for (const std::string& name : file_names(run.files)) written += (written.empty() ? "" : " ") + name;
     const std::string render = run.files.formats.pov ? "; render: povray +W1280 +H960 +A " + output + ".pov" : "";
     std::fprintf(stderr, "dla3d: %s\n", run.summary(cluster, record).c_str());
+    if (!cluster.links.empty())
+      std::fprintf(stderr, "dla3d: %s links join the branches in %s loops\n",
+                   with_commas(static_cast<double>(cluster.links.size())).c_str(),
+                   with_commas(static_cast<double>(cycle_count(cluster))).c_str());
     if (record.solid)
       std::fprintf(stderr, "dla3d: %s\n",
                    spell_options(describe(*record.solid, record.printed), OptionSpelling::cli).c_str());

@@ -1,5 +1,7 @@
 #include "dla/io/csv_reader.h"
 
+#include "dla/io/csv_writer.h"
+
 #include <algorithm>
 #include <array>
 #include <cerrno>
@@ -82,11 +84,44 @@ Cluster parse_csv(std::string_view text, const std::string& name) {
   return cluster;
 }
 
-Cluster read_csv(const std::string& path) {
+void parse_links_csv(std::string_view text, const std::string& name, Cluster& cluster) {
+  const auto next_line = [&text] {
+    const std::size_t end = text.find('\n');
+    std::string_view line = text.substr(0, end);
+    text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    return line;
+  };
+  if (next_line() != "a,b") throw InvalidInput(name + ": is not a dla3d links CSV (no 'a,b' header)");
+  const auto count = static_cast<double>(cluster.particles.size());
+  cluster.links.clear();
+  for (std::size_t row = 2; !text.empty(); ++row) {
+    const std::string_view line = next_line();
+    if (line.empty()) continue;
+    std::array<double, 6> v{};
+    if (!parse_row(line, v, 2) || !(v[0] >= 0.0 && v[0] < v[1] && v[1] < count) || v[0] != std::floor(v[0]) ||
+        v[1] != std::floor(v[1]))
+      throw InvalidInput(name + ": line " + std::to_string(row) + " is not two particles a,b with a below b");
+    cluster.links.push_back({static_cast<std::int32_t>(v[0]), static_cast<std::int32_t>(v[1])});
+  }
+  std::stable_sort(cluster.links.begin(), cluster.links.end(), [](const Link& a, const Link& b) { return a.later < b.later; });
+}
+
+namespace {
+
+std::string read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IOError("cannot read '" + path + "': " + std::strerror(errno));
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return parse_csv(text, path);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+Cluster read_csv(const std::string& path) {
+  Cluster cluster = parse_csv(read_text(path), path);
+  const std::string links = links_csv_path(path);
+  if (std::ifstream(links).good()) parse_links_csv(read_text(links), links, cluster);
+  return cluster;
 }
 
 }  // namespace dla

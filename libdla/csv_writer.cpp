@@ -2,6 +2,8 @@
 
 #include "output_file.h"
 
+#include <cstdio>
+
 namespace dla {
 
 namespace {
@@ -34,9 +36,26 @@ void write(const Cluster& cluster, const Look* look, const std::string& path) {
     }
   });
   out.commit();
+  const std::string links_path = links_csv_path(path);
+  if (cluster.links.empty()) {
+    std::remove(links_path.c_str());
+    return;
+  }
+  detail::OutputFile links(links_path);
+  links << "a,b\n";
+  for (const Link& link : cluster.links) {
+    links.integer(link.earlier) << ',';
+    links.integer(link.later) << '\n';
+  }
+  links.commit();
 }
 
 }  // namespace
+
+std::string links_csv_path(const std::string& csv_path) {
+  const bool csv = csv_path.size() >= 4 && csv_path.compare(csv_path.size() - 4, 4, ".csv") == 0;
+  return (csv ? csv_path.substr(0, csv_path.size() - 4) : csv_path) + "_links.csv";
+}
 
 void write_csv(const Cluster& cluster, const std::string& path) { write(cluster, nullptr, path); }
 

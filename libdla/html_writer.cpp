@@ -116,7 +116,14 @@ void write_html(const Cluster& cluster, const Look& look, const std::string& pat
       for (const ColorScale& scale : scales) colors.push_back(static_cast<std::uint8_t>(std::lround(255.0 * std::clamp(scale(i), 0.0, 1.0))));
   }
 
+  // The links as (earlier, later) pairs in order of the later: the first k particles' links
+  // are a prefix.
+  std::vector<std::int32_t> links;
+  links.reserve(2 * cluster.links.size());
+  for (const Link& link : cluster.links) links.insert(links.end(), {link.earlier, link.later});
+
   std::string meta = "{\"particles\": " + std::to_string(n) + ", \"seeds\": " + std::to_string(cluster.seed_count) +
+                     ", \"links\": " + std::to_string(cluster.links.size()) +
                      ", \"dimensions\": " + std::to_string(cluster.dimensions) + ", \"spacing\": " +
                      json::number(cluster.spacing) + ", \"up\": \"" + std::string(to_string(options.up)) +
                      "\", \"view\": [";
@@ -156,6 +163,7 @@ void write_html(const Cluster& cluster, const Look& look, const std::string& pat
          "<script type=\"application/json\" id=\"dla-meta\">" << meta << "</script>\n";
   block(out, "dla-positions", positions);
   block(out, "dla-parents", parents);
+  if (!links.empty()) block(out, "dla-links", links);
   block(out, "dla-radii", radii);
   block(out, "dla-colors", colors);
   if (mesh && !mesh->triangles.empty()) {

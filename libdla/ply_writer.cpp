@@ -23,15 +23,18 @@ void write_ply(const Cluster& cluster, const Look& look, const std::string& path
   detail::OutputFile out(path);
   header(out, encoding);
   out << "comment radius in scene units, by the " << to_string(look.options.radius.model)
-      << " model; order is the Strahler order; tip is 1 for a particle with no child\n"
-         "element vertex ";
+      << " model; order is the Strahler order; tip is 1 for a particle with no child\n";
+  // A tree's edges are parent to child; with links, `link` tells them from the links.
+  const bool linked = !cluster.links.empty();
+  if (linked) out << "comment an edge's link is 0 for the tree's (parent to child), 1 for a link that joins branches\n";
+  out << "element vertex ";
   out.integer(static_cast<long long>(ps.size()));
   out << "\nproperty float x\nproperty float y\nproperty float z\nproperty float radius\nproperty float age\n"
          "property int depth\nproperty int descendants\nproperty uchar order\nproperty uchar tip\n"
          "property int seed\nproperty int parent\n";
   out << "element edge ";
-  out.integer(static_cast<long long>(ps.size() - cluster.seed_count));
-  out << "\nproperty int vertex1\nproperty int vertex2\nend_header\n";
+  out.integer(static_cast<long long>(ps.size() - cluster.seed_count + cluster.links.size()));
+  out << "\nproperty int vertex1\nproperty int vertex2\n" << (linked ? "property uchar link\n" : "") << "end_header\n";
   const auto vertex = [&](detail::Text& text, std::size_t i) {
     const Particle& p = ps[i];
     const auto order = static_cast<std::uint8_t>(a.strahler(i));
@@ -54,14 +57,16 @@ void write_ply(const Cluster& cluster, const Look& look, const std::string& path
     text.integer(p.seed) << ' ';
     text.integer(p.parent) << '\n';
   };
-  const auto edge = [&](detail::Text& text, std::size_t i) {
-    if (ps[i].parent < 0) return;
+  const auto edge = [&](detail::Text& text, std::int32_t a, std::int32_t b, std::uint8_t link) {
     if (binary) {
-      text.raw(ps[i].parent).raw(static_cast<std::int32_t>(i));
+      text.raw(a).raw(b);
+      if (linked) text.raw(link);
       return;
     }
-    text.integer(ps[i].parent) << ' ';
-    text.integer(static_cast<long long>(i)) << '\n';
+    text.integer(a) << ' ';
+    text.integer(b);
+    if (linked) text << ' ' << static_cast<char>('0' + link);
+    text << '\n';
   };
   // Ranges of 4,096 particles formatted at once and appended in order.
   const auto each = [&](auto&& write) {
@@ -70,7 +75,12 @@ void write_ply(const Cluster& cluster, const Look& look, const std::string& path
     });
   };
   each(vertex);
-  each(edge);
+  each([&](detail::Text& text, std::size_t i) {
+    if (ps[i].parent >= 0) edge(text, ps[i].parent, static_cast<std::int32_t>(i), 0);
+  });
+  write_in_order(out, cluster.links.size(), 1 << 12, detail::format_threads(), [&](detail::Text& text, std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) edge(text, cluster.links[k].earlier, cluster.links[k].later, 1);
+  });
   out.commit();
 }
 

@@ -66,13 +66,13 @@ void write_png(const Cluster& cluster, const std::string& path, const PngOptions
   // Each particle a disk as wide as a dot (at least a pixel), later ones over earlier.
   const double radius = std::max(0.5, 0.5 * f.dot), offset = o.margin + 0.5 * f.dot, scale = f.scale;
   const std::size_t count = cluster.particles.size();
-  for (std::size_t i = 0; i < count; ++i) {
-    const Vec3& p = cluster.particles[i].position;
+  // Which band: the attach order runs through the cycle `bands` times.
+  const auto band = [&](std::size_t i) -> const std::array<std::uint8_t, 3>& {
+    return kBands[static_cast<std::size_t>(static_cast<double>(i) / static_cast<double>(count) * o.bands * 3.0) % 3];
+  };
+  const auto dot = [&](const Vec3& p, const std::array<std::uint8_t, 3>& color) {
     const double cx = offset + (p.x() - f.min.x()) * scale;
     const double cy = static_cast<double>(height) - (offset + (p.y() - f.min.y()) * scale);  // y up
-    // Which band: the attach order runs through the cycle `bands` times.
-    const auto step = static_cast<std::size_t>(static_cast<double>(i) / static_cast<double>(count) * o.bands * 3.0);
-    const std::array<std::uint8_t, 3>& color = kBands[step % 3];
     const auto x0 = static_cast<long long>(std::floor(cx - radius)), x1 = static_cast<long long>(std::ceil(cx + radius));
     const auto y0 = static_cast<long long>(std::floor(cy - radius)), y1 = static_cast<long long>(std::ceil(cy + radius));
     for (long long y = std::max(0LL, y0); y < std::min(f.height, y1); ++y)
@@ -83,6 +83,15 @@ void write_png(const Cluster& cluster, const std::string& path, const PngOptions
           continue;
         std::copy(color.begin(), color.end(), rgb.begin() + static_cast<std::ptrdiff_t>((static_cast<std::size_t>(y) * width + static_cast<std::size_t>(x)) * 3));
       }
+  };
+  for (std::size_t i = 0; i < count; ++i) dot(cluster.particles[i].position, band(i));
+  // A link: dots half a dot apart, in its later particle's band.
+  for (const Link& link : cluster.links) {
+    const Vec3& a = cluster.particles[static_cast<std::size_t>(link.earlier)].position;
+    const Vec3& b = cluster.particles[static_cast<std::size_t>(link.later)].position;
+    const auto steps = static_cast<std::size_t>(std::ceil((b - a).norm() * scale / std::max(0.5, 0.5 * f.dot)));
+    for (std::size_t k = 1; k < steps; ++k)
+      dot(a + (b - a) * (static_cast<double>(k) / static_cast<double>(steps)), band(static_cast<std::size_t>(link.later)));
   }
 
   // libpng reports its errors by longjmp, past any C++ frame: it writes into memory here,

@@ -198,6 +198,21 @@ void write_geometry(const Cluster& cluster, const SceneFrame& frame, const Look&
         text << " }\n";
       }
     });
+    // A link: a cylinder as wide as the thinner end's blob.
+    for (const Link& link : cluster.links) {
+      const auto a = static_cast<std::size_t>(link.earlier), b = static_cast<std::size_t>(link.later);
+      out << "  cylinder { ";
+      vector(out, ps[a].position, frame);
+      out << ", ";
+      vector(out, ps[b].position, frame);
+      out << ", min(DLA_BlobRadius(";
+      radius(out, a);
+      out << "), DLA_BlobRadius(";
+      radius(out, b);
+      out << ")), 1";
+      paint(out, b);
+      out << " }\n";
+    }
     out << "}\n";
   } else {
     out << "#declare DLA_Structure = union {\n";
@@ -249,6 +264,20 @@ void write_geometry(const Cluster& cluster, const SceneFrame& frame, const Look&
     write_in_order(out, ps.size(), kChunk, detail::format_threads(), [&](detail::Text& text, std::size_t begin, std::size_t end) {
       for_each_strand_in(cluster, begin, end, is_tip, continues, [&](const Strand& strand) { write_strand(text, strand); });
     });
+    // A link: a sphere sweep from one particle to the other, with each one's radius.
+    for (const Link& link : cluster.links) {
+      const auto a = static_cast<std::size_t>(link.earlier), b = static_cast<std::size_t>(link.later);
+      out << "  sphere_sweep { linear_spline, 2, ";
+      vector(out, ps[a].position, frame);
+      out << ", ";
+      radius(out, a);
+      out << ", ";
+      vector(out, ps[b].position, frame);
+      out << ", ";
+      radius(out, b);
+      paint(out, b);
+      out << " }\n";
+    }
     out << "}\n";
   }
   out.commit();
@@ -305,6 +334,17 @@ void write_growth(const Cluster& cluster, const SceneFrame& frame, const Look& l
     text.fixed(a.seed_reach > 0 ? a.seed_distance(ps[i].position) / a.seed_reach : 0.0, 3);
   });
   if (colored) write_array(out, "DLA_Value", ps.size(), [&](detail::Text& text, std::size_t i) { text.fixed(color(i), 4); });
+  // The links, each shown once its later particle is.
+  const std::vector<Link>& links = cluster.links;
+  if (!links.empty()) {
+    write_array(out, "DLA_LinkA", links.size(), [&](detail::Text& text, std::size_t k) { text.integer(links[k].earlier); });
+    write_array(out, "DLA_LinkB", links.size(), [&](detail::Text& text, std::size_t k) { text.integer(links[k].later); });
+  }
+  const auto link_loop = [&](const std::string& shape) {
+    if (links.empty()) return std::string();
+    return "  #for (DLA_K, 0, " + std::to_string(links.size() - 1) + ")\n    #if (DLA_LinkB[DLA_K] < DLA_N)\n      " + shape +
+           "\n    #end\n  #end\n";
+  };
 
   const auto radius = [&](const char* i) {
     return std::string("DLA_R(DLA_Place[") + i + "], DLA_Descendants[" + i + "] + 1, " +
@@ -343,7 +383,10 @@ void write_growth(const Cluster& cluster, const SceneFrame& frame, const Look& l
            "  #for (DLA_I, 0, DLA_N - 1)\n"
            "    sphere { DLA_Position[DLA_I], DLA_BlobRadius(" << radius("DLA_I") << "), 1" << paint("DLA_I") << " }\n"
            "  #end\n"
-           "}\n";
+        << link_loop("cylinder { DLA_Position[DLA_LinkA[DLA_K]], DLA_Position[DLA_LinkB[DLA_K]], min(DLA_BlobRadius(" +
+                     radius("DLA_LinkA[DLA_K]") + "), DLA_BlobRadius(" + radius("DLA_LinkB[DLA_K]") + ")), 1" +
+                     paint("DLA_LinkB[DLA_K]") + " }")
+        << "}\n";
   } else {
     out << "// A sphere at each seed, and a sphere_sweep along the part grown of each strand, from its last\n"
            "// particle so far up to its start: a strand leaving a branch point starts there, inside its\n"
@@ -379,7 +422,9 @@ void write_growth(const Cluster& cluster, const SceneFrame& frame, const Look& l
            "      }\n"
            "    #end\n"
            "  #end\n"
-           "}\n";
+        << link_loop("sphere_sweep { linear_spline, 2, DLA_Position[DLA_LinkA[DLA_K]], " + radius("DLA_LinkA[DLA_K]") +
+                     ", DLA_Position[DLA_LinkB[DLA_K]], " + radius("DLA_LinkB[DLA_K]") + paint("DLA_LinkB[DLA_K]") + " }")
+        << "}\n";
   }
   // The finished structure's tips have their no-overlap scale in PREFIX_tips.inc; the tips of
   // a moment get half a spacing.

@@ -37,6 +37,8 @@ void write_run_report(const Cluster& cluster, const ModelRecord& model, const Lo
       .count("seeds", cluster.seed_count)
       .count("attached", attached(cluster))
       .count("strands", count_strands(cluster))
+      .count("links", cluster.links.size())
+      .count("cycles", cycle_count(cluster))
       .close();
   if (model.statistics) model.statistics(out);
 

@@ -404,6 +404,12 @@ std::vector<Piece> make_pieces(const Cluster& cluster, const std::vector<float>&
       pieces.push_back({at(i), at(i), r[i], r[i], false});
     }
   }
+  // A link is a branch like any other: the capsule between its particles.
+  if (o.shape == SolidShape::branches)
+    for (const Link& link : cluster.links) {
+      const auto a = static_cast<std::size_t>(link.earlier), b = static_cast<std::size_t>(link.later);
+      pieces.push_back({at(b), at(a), r[b], r[a], false});
+    }
   if (o.join_seeds) {
     std::vector<Point> seeds;
     std::vector<double> seed_radii;

@@ -61,18 +61,23 @@ void write_svg(const Cluster& cluster, const Look& look, const std::string& path
   out.fixed(-hi.y(), decimals) << "\" width=\"";
   out.fixed(hi.x() - lo.x(), decimals) << "\" height=\"";
   out.fixed(hi.y() - lo.y(), decimals) << "\" fill=\"white\"/>\n<g stroke=\"black\" stroke-linecap=\"round\">\n";
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    if (ps[i].parent < 0) continue;
-    const Vec3& a = ps[static_cast<std::size_t>(ps[i].parent)].position;
-    const Vec3& b = ps[i].position;
+  // A branch from a to b, as wide as `radius`, in particle i's colour.
+  const auto line = [&](const Vec3& a, const Vec3& b, double radius, std::size_t i) {
     out << "<line x1=\"";
     out.fixed(a.x(), decimals) << "\" y1=\"";
     out.fixed(-a.y(), decimals) << "\" x2=\"";
     out.fixed(b.x(), decimals) << "\" y2=\"";
     out.fixed(-b.y(), decimals) << "\" stroke-width=\"";
-    out.fixed(2.0 * look.radius(cluster, i), decimals) << '"';
+    out.fixed(2.0 * radius, decimals) << '"';
     if (colored) out << " stroke=\"" << srgb_hex(color_at(scale(i))) << '"';
     out << "/>\n";
+  };
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (ps[i].parent >= 0) line(ps[static_cast<std::size_t>(ps[i].parent)].position, ps[i].position, look.radius(cluster, i), i);
+  // A link is as wide as the thinner of its ends, and takes its later particle's colour.
+  for (const Link& link : cluster.links) {
+    const auto a = static_cast<std::size_t>(link.earlier), b = static_cast<std::size_t>(link.later);
+    line(ps[a].position, ps[b].position, std::min(look.radius(cluster, a), look.radius(cluster, b)), b);
   }
   out << "</g>\n</svg>\n";
   out.commit();

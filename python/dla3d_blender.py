@@ -57,6 +57,10 @@ class DLA3DSettings(bpy.types.PropertyGroup):
                                                "thinnest branch (fine, and slow for fine tips)")
     smooth: bpy.props.FloatProperty(name="Smooth", default=0.0, min=0.0, max=100.0,
                                     description="Solid: round inner corners to this radius, in spacings")
+    links: bpy.props.FloatProperty(name="Links", default=0.0, min=0.0, max=100.0,
+                                   description="Join branches into loops: link each particle to an earlier one "
+                                               "within this many spacings (Eden: its lattice neighbours; "
+                                               "colonize: closed venation); 0: a tree")
 
 
 def mesh_arrays(obj, depsgraph):
@@ -81,6 +85,11 @@ def grow_options(settings, obj, depsgraph):
     """The model's keyword arguments for dla3d."""
     model = settings.model
     options = {"rng_seed": settings.rng_seed, "radius": settings.radius}
+    if settings.links > 0:
+        if model == "colonize":
+            options.update(venation="closed", influence=8.0)
+        else:
+            options["links"] = "lattice" if model == "eden" else settings.links
     uses_mesh = model in MESH_MODELS and obj is not None and obj.type == 'MESH'
     arrays = mesh_arrays(obj, depsgraph) if uses_mesh else None
     if model == "grow":
@@ -106,8 +115,13 @@ def grow_options(settings, obj, depsgraph):
 
 
 def make_curves(result, name):
-    """A curves object: one poly curve per strand, with the look's radius and the age per point."""
+    """A curves object: one poly curve per strand and per link, with the look's radius and the age
+    per point."""
     ids, starts = result.strands()
+    # Each link a curve of two points after the strands.
+    links = result.links
+    ids = np.concatenate([ids, links.ravel()]).astype(np.int64)
+    starts = np.concatenate([starts, starts[-1] + 2 * np.arange(1, len(links) + 1)])
     curve = bpy.data.curves.new(name, 'CURVE')
     curve.dimensions = '3D'
     positions = result.positions
@@ -223,6 +237,7 @@ class DLA3D_PT_panel(bpy.types.Panel):
         if settings.model == "grow":
             layout.prop(settings, "seeds")
         layout.prop(settings, "rng_seed")
+        layout.prop(settings, "links")
         layout.prop(settings, "radius")
         layout.prop(settings, "output")
         if settings.output == 'MESH':

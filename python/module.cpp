@@ -151,6 +151,21 @@ auto word(const char* name, py::handle value, Parse&& parse) {
   return parse(text(name, value));
 }
 
+//! `links`: D spacings, (D, K), or a word as dla3d writes it: "D,K" or "lattice".
+LinkOptions links(const char* name, py::handle value) {
+  if (py::isinstance<py::str>(value)) return parse_links(text(name, value));
+  const bool pair = py::hasattr(value, "__len__");
+  const std::vector<double> dk = pair ? numbers(name, value, 2) : std::vector<double>{number(name, value), 1.0};
+  if (!(dk[0] > 0.0)) throw InvalidInput("`links` " + shown(value) + ": the distance is not above 0");
+  if (!(dk[1] >= 1 && dk[1] <= static_cast<double>(kMaxLinksEach) && dk[1] == std::floor(dk[1])))
+    throw InvalidInput("`links` " + shown(value) + ": K " + detail::format_number(dk[1]) + " is not a whole number in 1-64");
+  LinkOptions o;
+  o.distance = dk[0];
+  o.most = static_cast<std::size_t>(dk[1]);
+  validate(o);
+  return o;
+}
+
 using Vertices = py::array_t<double, py::array::c_style | py::array::forcecast>;
 using Faces = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
 
@@ -278,6 +293,7 @@ Table<DlaRunOptions> dla_table() {
   t["seed_at"] = [](O& o, py::handle v, Given&) { o.seed_at = points("seed_at", v); };
   t["rng_seed"] = [](O& o, py::handle v, Given&) { o.growth.rng_seed = count("rng_seed", v); };
   t["min_step"] = [](O& o, py::handle v, Given&) { o.growth.min_step = number("min_step", v); };
+  t["links"] = [](O& o, py::handle v, Given&) { o.links = links("links", v); };
   t["index"] = [](O& o, py::handle v, Given&) { o.growth.index = word("index", v, parse_index_kind); };
   t["threads"] = [](O& o, py::handle v, Given&) { o.growth.threads = static_cast<int>(whole("threads", v)); };
   t["stl"] = [](O& o, py::handle v, Given& g) { o.stl = mesh("stl", v, g); };
@@ -321,6 +337,7 @@ Table<ColonizeRunOptions> colonize_table() {
   t["spacing"] = [](O& o, py::handle v, Given&) { o.colonization.spacing = number("spacing", v); };
   t["kill_distance"] = [](O& o, py::handle v, Given&) { o.colonization.kill_distance = number("kill_distance", v); };
   t["influence"] = [](O& o, py::handle v, Given&) { o.colonization.influence = number("influence", v); };
+  t["venation"] = [](O& o, py::handle v, Given&) { o.colonization.venation = word("venation", v, parse_venation); };
   t["noise"] = [](O& o, py::handle v, Given&) {
     const std::vector<double> n = numbers("noise", v, 2);
     o.colonization.noise_amplitude = n[0];
@@ -362,6 +379,7 @@ Table<EdenRunOptions> eden_table() {
   using O = EdenRunOptions;
   Table<O> t;
   add_look(t);
+  t["links"] = [](O& o, py::handle v, Given&) { o.links = links("links", v); };
   t["sites"] = [](O& o, py::handle v, Given&) {
     if ((o.eden.sites = count("sites", v)) == 0) throw InvalidInput("`sites` 0 is not at least 1");
   };
@@ -398,6 +416,7 @@ Table<DropRunOptions> drop_table() {
   Table<O> t;
   add_look(t);
   add_seeded(t, &O::drop);
+  t["links"] = [](O& o, py::handle v, Given&) { o.links = links("links", v); };
   t["spacing"] = [](O& o, py::handle v, Given&) { o.spacing = number("spacing", v); };
   t["seed_at"] = [](O& o, py::handle v, Given&) { o.seed_at = points("seed_at", v); };
   t["stickiness"] = [](O& o, py::handle v, Given&) { o.drop.stickiness = number("stickiness", v); };
@@ -421,6 +440,7 @@ Table<BallisticRunOptions> ballistic_table() {
   Table<O> t;
   add_look(t);
   add_seeded(t, &O::ballistic);
+  t["links"] = [](O& o, py::handle v, Given&) { o.links = links("links", v); };
   t["spacing"] = [](O& o, py::handle v, Given&) { o.ballistic.spacing = number("spacing", v); };
   t["seed_at"] = [](O& o, py::handle v, Given&) { o.ballistic.seeds = points("seed_at", v); };
   t["direction"] = [](O& o, py::handle v, Given&) {
@@ -711,6 +731,13 @@ PYBIND11_MODULE(_core, m) {
         const auto n = static_cast<py::ssize_t>(r.cluster.particles.size());
         return shared_array(n ? &r.cluster.particles[0].seed : nullptr, {n}, {sizeof(Particle)}, self);
       }, "(N,) int32: which seed's tree each particle is in")
+      .def_property_readonly("links", [](py::object self) {
+        const Result& r = self.cast<const Result&>();
+        const auto n = static_cast<py::ssize_t>(r.cluster.links.size());
+        return shared_array(n ? &r.cluster.links[0].earlier : nullptr, {n, 2}, {sizeof(Link), sizeof(std::int32_t)}, self);
+      }, "(L, 2) int32: links beside the tree (links=, venation='closed'), earlier particle first, in order of the later")
+      .def_property_readonly("cycles", [](const Result& r) { return cycle_count(r.cluster); },
+                             "independent loops the links close")
       .def_property_readonly("depth", [](py::object self) {
         Result& r = self.cast<Result&>();
         const std::vector<std::int32_t>& depth = r.look().attributes.depth;

@@ -24,6 +24,7 @@
 #include "test_util.h"
 
 #include "dla/io/checkpoint.h"
+#include "dla/io/csv_reader.h"
 #include "dla/io/csv_writer.h"
 #include "dla/models/dla.h"
 #include "dla/mesh/mesh.h"
@@ -68,6 +69,7 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--rng-seed", {"0", "1", "7", "18446744073709551615", "-1", "x"}},
       {"--min-step", {"0.5", "1", "0.01", "0", "2", "1e-300", "nan"}},
       {"--index", {"grid", "kdtree", "brute", "octree"}},
+      {"--links", {"2", "1.5,3", "4,8", "1", "0", "-1", "2,0", "2,65", "101", "lattice", "x", "2,"}},
       {"--threads", {"1", "2", "3", "0", "300", "-1"}},
       {"--stl", {"box.off", "ball.stl", "paint.ply", "missing.stl", "noise.stl", "out.csv"}},
       {"--mesh", {"ball.stl", "box.off", "paint.ply", "missing.stl"}},
@@ -148,6 +150,7 @@ const std::map<std::string, std::vector<std::string>>& colonize_table() {
       {"--spacing", {"1", "0.5", "1e-6", "1e6", "1e-25", "1e25", "0", "-1", "nan", "1e-300", "1e100"}},
       {"--kill-distance", {"2", "1.5", "1", "0.5", "1e7", "nan"}},
       {"--influence", {"8", "3", "inf", "1", "-1", "nan"}},
+      {"--venation", {"open", "closed", "closed", "shut"}},
       {"--noise", {"0.3,4", "1,1", "0,8", "11,1", "1,0", "1", "nan,1"}},
       {"--tropism", {"0,0.3,0", "0,-1,0", "0,0,0", "11,0,0", "nan,0,0", "1,2"}},
       {"--dimensions", {"3", "2", "1", "x"}},
@@ -183,6 +186,7 @@ const std::map<std::string, std::vector<std::string>>& eden_table() {
       {"--seed-radius", {"2", "0", "100", "-1", "101", "nan", "inf"}},
       {"--spacing", {"1", "0.5", "1e-6", "1e6", "1e-25", "1e25", "0", "-1", "nan", "1e-300", "1e100"}},
       {"--rng-seed", {"1", "7", "18446744073709551615", "-1"}},
+      {"--links", {"lattice", "lattice", "1.5,2", "0", "x"}},
   };
   return table;
 }
@@ -195,6 +199,7 @@ std::map<std::string, std::vector<std::string>> seeded_table(std::map<std::strin
       {"--spacing", {"1", "0.5", "1e-6", "1e6", "1e-25", "1e25", "0", "-1", "nan", "1e-300"}},
       {"--seed-at", {"0,0,0", "3,0,0", "0,0,5", "1e12,0,0", "nan,0,0", "x"}},
       {"--rng-seed", {"1", "7", "18446744073709551615", "-1"}},
+      {"--links", {"2", "3,2", "1", "0", "lattice", "x"}},
   });
   return extra;
 }
@@ -232,6 +237,7 @@ const std::map<std::string, std::vector<std::string>>& ballistic_table() {
 const std::map<std::string, std::vector<std::string>>& frames_table() {
   static const std::map<std::string, std::vector<std::string>> table = {
       {"--count", {"3", "1", "0", "100001", "-2", "x", "2.5"}},
+      {"--links", {"2", "3,2", "0", "lattice", "x"}},
   };
   return table;
 }
@@ -336,6 +342,7 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
   if (json.find("\"complete\": true") == std::string::npos) return "exit 0 but the JSON says incomplete";
   const auto particles = static_cast<std::size_t>(json_value(json, "particles", "\"counts\""));
   const auto edges = static_cast<std::size_t>(json_value(json, "attached", "\"counts\""));
+  const auto links = static_cast<std::size_t>(json_value(json, "links", "\"counts\""));
   const double spacing = json_value(json, "spacing");
   // Space colonization's noise moves each node by up to its amplitude in each coordinate, and
   // a collision mesh moves it as far as its surface.
@@ -369,6 +376,22 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
     const std::string fault = dla::testing::tree_fault(grown, {0.0, longest, false});
     if (!fault.empty()) return prefix + ".csv is not a tree: " + fault;
     if (grown.particles.size() != particles) return prefix + ".csv has another count than the JSON";
+    // The links: as many as the JSON counts, each two particles, none a tree edge or twice.
+    const std::string links_csv = read_file(dir / (prefix + "_links.csv"));
+    if (links == 0 && !links_csv.empty()) return prefix + "_links.csv is there without links";
+    if (links > 0) {
+      try {
+        dla::parse_links_csv(links_csv, prefix + "_links.csv", grown);
+      } catch (const std::exception& e) {
+        return e.what();
+      }
+      if (grown.links.size() != links) return prefix + "_links.csv has another count than the JSON";
+      std::set<std::pair<std::int32_t, std::int32_t>> seen;
+      for (const dla::Link& link : grown.links)
+        if (grown.particles[static_cast<std::size_t>(link.later)].parent == link.earlier ||
+            !seen.insert({link.earlier, link.later}).second)
+          return prefix + "_links.csv repeats a tree edge or a link";
+    }
   }
 
   if (wants("ply")) {
@@ -380,7 +403,7 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
     // Each vertex's floats (x, y, z, radius, age) are finite floats.
     std::vector<double> floats;
     if (header.find("format binary_little_endian") != std::string::npos) {
-      if (body != 38 * particles + 8 * edges) return prefix + ".ply's body is not its header's size";
+      if (body != 38 * particles + (links ? 9 : 8) * (edges + links)) return prefix + ".ply's body is not its header's size";
       for (std::size_t v = 0; v < particles; ++v)
         for (std::size_t k = 0; k < 5; ++k) {
           float value;
@@ -388,7 +411,7 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
           floats.push_back(value);
         }
     } else if (static_cast<std::size_t>(std::count(ply.begin() + static_cast<std::ptrdiff_t>(header.size()), ply.end(), '\n')) !=
-               particles + edges) {
+               particles + edges + links) {
       return prefix + ".ply's body has another number of lines than its header says";
     } else {
       std::istringstream lines(ply.substr(header.size()));
@@ -472,7 +495,7 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
     for (std::size_t at = svg.find("<line "); at != std::string::npos; at = svg.find("<line ", at + 1)) ++lines;
     if (svg.rfind("<?xml", 0) != 0 || svg.size() < 8 || svg.compare(svg.size() - 7, 7, "</svg>\n") != 0)
       return prefix + ".svg is not whole";
-    if (lines != edges) return prefix + ".svg draws " + std::to_string(lines) + " branches";
+    if (lines != edges + links) return prefix + ".svg draws " + std::to_string(lines) + " branches and links";
   }
 
   if (!wants("pov")) return "";

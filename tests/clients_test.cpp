@@ -8,6 +8,7 @@
 #include "png_util.h"
 #include "dla/mesh/shapes.h"
 #include "dla/models/dla.h"
+#include "dla/models/links.h"
 #include "dla/io/mesh_writers.h"
 #include "dla/io/ply_writer.h"
 
@@ -167,6 +168,44 @@ TEST(GltfValidator, FindsNoErrorInTheGlb) {
   EXPECT_EQ(testing::validate_glb(dir / "empty.glb"), "") << "a structure with no branch";
 }
 
+// A structure with links: Blender reads the PLY's edges, tree and links, and the glb with a tube
+// for each link; the validator passes that glb.
+TEST(Blender, ImportsTheLinksOfThePlyAndTheGlb) {
+  DLA_NEED_BLENDER();
+  ScratchDir dir;
+  Cluster c = sample();
+  c.links = neighbour_links(c, parse_links("2.5,2"));
+  ASSERT_GT(c.links.size(), 20u);
+  LookOptions options;
+  options.color_by = ColorBy::age;
+  const Look look = make_look(c, options);
+  write_ply(c, look, dir / "linked.ply");
+  write_glb(c, look, dir / "linked.glb");
+  const Imported ply = blender_import(dir, "linked.ply");
+  EXPECT_EQ(ply.vertices, static_cast<long>(c.particles.size()));
+  EXPECT_EQ(ply.edges, static_cast<long>(c.particles.size() - c.seed_count + c.links.size()));
+  const Tubes t = tubes_of(c, look);
+  const Imported glb = blender_import(dir, "linked.glb");
+  EXPECT_EQ(glb.vertices, static_cast<long>(t.vertices));
+  EXPECT_EQ(glb.faces, static_cast<long>(t.triangles));
+  EXPECT_EQ(glb.edges, static_cast<long>(t.triangles * 3 / 2)) << "each link's tube is closed";
+}
+
+TEST(GltfValidator, FindsNoErrorInTheGlbWithLinks) {
+  DLA_NEED_GLTF_VALIDATOR();
+  ScratchDir dir;
+  Cluster c = sample();
+  c.links = neighbour_links(c, parse_links("3,3"));
+  ASSERT_GT(c.links.size(), 20u);
+  for (const ColorBy color : {ColorBy::none, ColorBy::depth}) {
+    LookOptions options;
+    options.color_by = color;
+    const std::string glb = dir / ("linked_" + std::string(to_string(color)) + ".glb");
+    write_glb(c, make_look(c, options), glb);
+    EXPECT_EQ(testing::validate_glb(glb), "") << glb;
+  }
+}
+
 //! Pixels of a screenshot that differ from the viewer's background (#0a0d12) by more than
 //! antialiasing's faint edge; with `glass` (a mesh in the page), only the bright ones: the
 //! structure uncoloured, not the dim glass.
@@ -199,8 +238,9 @@ TEST(Chromium, OpensTheWebViewerAndReplaysGrowth) {
   DLA_NEED_CHROMIUM();
   ScratchDir dir;
   write_stl(make_sphere(Vec3::Zero(), 12.0, 12, 24), dir / "ball.stl");
-  ASSERT_EQ(testing::dla3d(dir, "-n 25000 -q -o lines --formats html --color-by age").exit_code, 0);
-  ASSERT_EQ(testing::dla3d(dir, "-n 2000 -q -o tubes --formats html --stl ball.stl --spacing 0.4").exit_code, 0);
+  // With links: lines and tubes of them too, revealed with their later particle.
+  ASSERT_EQ(testing::dla3d(dir, "-n 25000 -q -o lines --formats html --color-by age --links 2").exit_code, 0);
+  ASSERT_EQ(testing::dla3d(dir, "-n 2000 -q -o tubes --formats html --stl ball.stl --spacing 0.4 --links 2").exit_code, 0);
   for (const auto& [page, particles, seeds] : {std::tuple{"lines", 25001, 1}, std::tuple{"tubes", 2001, 1}}) {
     SCOPED_TRACE(page);
     const std::string line = open_page(dir, std::string(page) + ".html");
@@ -215,6 +255,7 @@ TEST(Chromium, OpensTheWebViewerAndReplaysGrowth) {
     const long quarter = seeds + std::lround(0.25 * (particles - seeds));
     EXPECT_NE(line.find("\"full\":\"" + with_commas(particles) + " of "), std::string::npos) << line;
     EXPECT_NE(line.find("\"quarter\":\"" + with_commas(quarter) + " of "), std::string::npos) << line;
+    EXPECT_NE(line.find(" links\""), std::string::npos) << "the page counts its links: " << line;
     const auto shown = [&](const std::string& key) {
       const std::size_t at = line.find("\"" + key + "\":\"");
       std::string digits;

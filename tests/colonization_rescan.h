@@ -2,13 +2,17 @@
 // Space colonization as the Hyphae write-up states it: every iteration, every live attractor
 // scans every node for its closest. The oracle the kept closest nodes of colonize() are tested
 // against, node for node (tests/colonization_test.cpp), and the baseline they are measured
-// against (bench/colonization_bench.cpp).
+// against (bench/colonization_bench.cpp). And closed venation as Runions et al. state it: every
+// iteration, every live source finds its relative neighbourhood among all nodes.
 
 #include "dla/models/colonization.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <set>
+#include <utility>
 #include <vector>
 
 namespace dla::testing {
@@ -58,6 +62,87 @@ inline Cluster colonize_by_rescan(const ColonizationOptions& o, const std::vecto
     if (tree.particles.size() == first_new) break;
     kill_near(first_new);
   }
+  return tree;
+}
+
+//! Closed venation by brute force: after every growth step, each live source scans every node
+//! for its relative neighbourhood (within the influence: no node nearer both), is removed when
+//! all of it lies within the kill distance, and links the nodes that reached it to the nearest.
+inline Cluster colonize_closed_by_rescan(const ColonizationOptions& o, const std::vector<Vec3>& sources,
+                                         const std::vector<Vec3>& roots) {
+  validate(o);
+  Cluster tree = detail::seeded(roots, o.spacing, o.dimensions);
+  const double kill2 = detail::kill_distance2(o), reach2 = detail::reach2(o);
+  std::vector<bool> alive(sources.size(), true);
+  std::vector<std::vector<std::pair<double, std::int32_t>>> pulled(sources.size());
+  std::set<std::pair<std::int32_t, std::int32_t>> linked;
+  // The tree distance between a and b by their ancestors' depths.
+  const auto tree_steps = [&](std::int32_t a, std::int32_t b) {
+    std::vector<std::int32_t> up;
+    for (std::int32_t v = a; v >= 0; v = tree.particles[static_cast<std::size_t>(v)].parent) up.push_back(v);
+    int m = 0;
+    for (std::int32_t v = b; v >= 0; v = tree.particles[static_cast<std::size_t>(v)].parent, ++m) {
+      const auto at = std::find(up.begin(), up.end(), v);
+      if (at != up.end()) return static_cast<int>(at - up.begin()) + m;
+    }
+    return std::numeric_limits<int>::max();
+  };
+  const auto update = [&] {
+    for (std::size_t s = 0; s < sources.size(); ++s) {
+      if (!alive[s]) continue;
+      std::vector<std::pair<double, std::int32_t>> neighbourhood;
+      for (std::size_t v = 0; v < tree.particles.size(); ++v) {
+        const double d2 = (tree.particles[v].position - sources[s]).squaredNorm();
+        if (d2 > reach2) continue;
+        bool blocked = false;
+        for (std::size_t u = 0; u < tree.particles.size() && !blocked; ++u)
+          blocked = (tree.particles[u].position - sources[s]).squaredNorm() < d2 &&
+                    (tree.particles[u].position - tree.particles[v].position).squaredNorm() < d2;
+        if (!blocked) neighbourhood.emplace_back(d2, static_cast<std::int32_t>(v));
+      }
+      std::sort(neighbourhood.begin(), neighbourhood.end());
+      pulled[s].clear();
+      for (const auto& member : neighbourhood)
+        if (member.first > kill2) pulled[s].push_back(member);
+      if (neighbourhood.empty() || !pulled[s].empty()) continue;
+      alive[s] = false;
+      const std::int32_t hub = neighbourhood.front().second;
+      for (std::size_t k = 1; k < neighbourhood.size(); ++k) {
+        const std::int32_t v = neighbourhood[k].second;
+        if (tree_steps(hub, v) >= kLoopSteps) linked.insert({std::min(hub, v), std::max(hub, v)});
+      }
+    }
+  };
+  update();
+  const detail::LatticeNoise noise(o.rng_seed);
+  std::vector<std::int32_t> last_child(roots.size(), -1);
+  for (std::size_t iteration = 0; iteration < o.max_iterations && tree.particles.size() < o.max_nodes; ++iteration) {
+    if (std::find(alive.begin(), alive.end(), true) == alive.end()) break;
+    std::vector<std::array<std::int64_t, 3>> sums(tree.particles.size(), {0, 0, 0});
+    std::vector<int> pulls(tree.particles.size(), 0);
+    for (std::size_t s = 0; s < sources.size(); ++s) {
+      if (!alive[s]) continue;
+      for (const auto& [d2, v] : pulled[s]) {
+        const auto d = detail::fixed_direction(tree.particles[static_cast<std::size_t>(v)].position, sources[s]);
+        for (std::size_t axis = 0; axis < 3; ++axis) sums[static_cast<std::size_t>(v)][axis] += d[axis];
+        ++pulls[static_cast<std::size_t>(v)];
+      }
+    }
+    const std::size_t first_new = tree.particles.size();
+    for (std::size_t v = 0; v < first_new && tree.particles.size() < o.max_nodes; ++v) {
+      Vec3 next;
+      if (pulls[v] == 0 || !colonization_step(o, noise, tree.particles[v].position, sums[v], &next)) continue;
+      if (last_child[v] >= 0 && tree.particles[static_cast<std::size_t>(last_child[v])].position == next) continue;
+      last_child[v] = static_cast<std::int32_t>(tree.particles.size());
+      tree.particles.push_back({next, static_cast<std::int32_t>(v), tree.particles[v].seed});
+      last_child.push_back(-1);
+    }
+    if (tree.particles.size() == first_new) break;
+    update();
+  }
+  for (const auto& [a, b] : linked) tree.links.push_back({a, b});
+  std::sort(tree.links.begin(), tree.links.end(),
+            [](const Link& x, const Link& y) { return std::make_pair(x.later, x.earlier) < std::make_pair(y.later, y.earlier); });
   return tree;
 }
 

@@ -405,5 +405,36 @@ TEST(Render, PovRayShowsDropAndBallisticAggregates) {
   expect_framed_render(ballistic(lines), dir);
 }
 
+
+// Links are branches in the scene: they add to the picture, the growth frames draw them as the
+// whole scene does once their later particle is shown, and the blob look renders them.
+TEST(Render, LinksShowInTheSceneAndInItsGrowth) {
+  DlaOptions o;
+  o.particles = 2000;
+  o.dimensions = 2;
+  Cluster c = grow(o);
+  const auto count = [](const std::vector<bool>& pixels) { return std::count(pixels.begin(), pixels.end(), true); };
+  const auto lit_at = [&](const Cluster& cluster, const char* show, const char* style) {
+    ScratchDir dir;
+    PovOptions options;
+    options.style = parse_pov_style(style);
+    write_pov(cluster, dir / "scene", options);
+    std::string pov = read_file(dir / "scene.pov");
+    set("DLA_Show", show)(pov);
+    std::ofstream(dir / "scene.pov") << pov;
+    return structure_pixels(render(dir, "-A"));
+  };
+  const std::vector<bool> tree = lit_at(c, "1", "branches");
+  c.links = neighbour_links(c, parse_links("4,3"));
+  ASSERT_GT(c.links.size(), 50u);
+  const std::vector<bool> linked = lit_at(c, "1", "branches"), grown = lit_at(c, "0.99999", "branches");
+  EXPECT_GT(count(linked), count(tree) + 50) << "the links add to the picture";
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < linked.size(); ++i) differ += linked[i] != grown[i];
+  EXPECT_LT(differ, linked.size() / 500) << "PREFIX_growth.inc draws the links PREFIX.inc does";
+  EXPECT_LT(count(lit_at(c, "0.3", "branches")), count(linked) * 3 / 4);
+  EXPECT_GT(count(lit_at(c, "1", "blob")), count(lit_at(c, "0.5", "blob")));
+}
+
 }  // namespace
 }  // namespace dla

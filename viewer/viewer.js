@@ -23,6 +23,9 @@ const count = meta.particles;
 const seeds = meta.seeds;
 const positions = new Float32Array(embedded('dla-positions'));
 const parents = new Int32Array(embedded('dla-parents'));
+// Links beside the tree: (earlier, later) pairs in order of the later particle.
+const links = meta.links ? new Int32Array(embedded('dla-links')) : new Int32Array(0);
+const linkCount = links.length / 2;
 const radii = new Float32Array(embedded('dla-radii'));
 // One byte a particle for each colour attribute, in meta.colorings' order: value / 255.
 const colorings = new Uint8Array(embedded('dla-colors'));
@@ -87,6 +90,28 @@ const lineGeometry = new THREE.BufferGeometry();
 }
 const lines = new THREE.LineSegments(lineGeometry, new THREE.LineBasicMaterial({ vertexColors: true }));
 scene.add(lines);
+// The links as lines too, a segment each, so the links of the first k particles are a draw range.
+const linkGeometry = new THREE.BufferGeometry();
+{
+  const ends = new Float32Array(6 * linkCount);
+  for (let k = 0; k < linkCount; ++k) {
+    ends.set(positions.subarray(3 * links[2 * k], 3 * links[2 * k] + 3), 6 * k);
+    ends.set(positions.subarray(3 * links[2 * k + 1], 3 * links[2 * k + 1] + 3), 6 * k + 3);
+  }
+  linkGeometry.setAttribute('position', new THREE.BufferAttribute(ends, 3));
+  linkGeometry.setAttribute('color', new THREE.BufferAttribute(new Float32Array(6 * linkCount), 3));
+}
+const linkLines = new THREE.LineSegments(linkGeometry, lines.material);
+scene.add(linkLines);
+// How many links the first `shown` particles hold: those whose later particle is among them.
+function linksShown(shown) {
+  let lo = 0, hi = linkCount;
+  while (lo < hi) {
+    const mid = (lo + hi) >> 1;
+    if (links[2 * mid + 1] < shown) lo = mid + 1; else hi = mid;
+  }
+  return lo;
+}
 
 // Tubes, at modest sizes: a cylinder from each particle to its parent, as wide as the
 // particle's branch radius, and a sphere at each particle to round the joints. Instances in
@@ -97,8 +122,8 @@ if (count <= meta.tube_limit) {
   const ball = new THREE.SphereGeometry(1, 10, 6);
   const material = new THREE.MeshStandardMaterial({ roughness: 0.45, metalness: 0.0 });
   tubes = { sticks: new THREE.InstancedMesh(cylinder, material, count), joints: new THREE.InstancedMesh(ball, material, count),
-            placed: -1 };
-  scene.add(tubes.sticks, tubes.joints);
+            links: new THREE.InstancedMesh(cylinder, material, Math.max(linkCount, 1)), placed: -1 };
+  scene.add(tubes.sticks, tubes.joints, tubes.links);
 }
 
 // The branch radii of the first `shown` particles, in spacings, as the POV-Ray scene's frames
@@ -150,7 +175,19 @@ function placeTubes(shown) {
     tubes.sticks.setMatrixAt(i, matrix.compose(from, turn, scale.set(r[i], length, r[i])));
     tubes.joints.setMatrixAt(i, matrix.compose(from, turn.identity(), scale.set(r[i], r[i], r[i])));
   }
+  // A link as wide as its thinner end.
+  for (let k = 0, shownLinks = linksShown(shown); k < shownLinks; ++k) {
+    const a = links[2 * k], b = links[2 * k + 1];
+    from.fromArray(positions, 3 * b);
+    to.fromArray(positions, 3 * a);
+    axis.subVectors(to, from);
+    const length = axis.length();
+    const width = Math.min(r[a], r[b]);
+    turn.setFromUnitVectors(up, length > 0 ? axis.divideScalar(length) : up);
+    tubes.links.setMatrixAt(k, matrix.compose(from, turn, scale.set(width, length, width)));
+  }
   tubes.sticks.instanceMatrix.needsUpdate = tubes.joints.instanceMatrix.needsUpdate = true;
+  tubes.links.instanceMatrix.needsUpdate = true;
   tubes.placed = shown;
 }
 
@@ -196,7 +233,18 @@ function paint() {
     }
   }
   colors.needsUpdate = true;
+  // A link takes its later particle's colour.
+  const linkColors = linkGeometry.getAttribute('color');
+  for (let k = 0; k < linkCount; ++k) {
+    const b = links[2 * k + 1];
+    color.setRGB(colors.getX(2 * b), colors.getY(2 * b), colors.getZ(2 * b));
+    linkColors.setXYZ(2 * k, color.r, color.g, color.b);
+    linkColors.setXYZ(2 * k + 1, color.r, color.g, color.b);
+    if (tubes) tubes.links.setColorAt(k, color);
+  }
+  linkColors.needsUpdate = true;
   if (tubes) tubes.sticks.instanceColor.needsUpdate = tubes.joints.instanceColor.needsUpdate = true;
+  if (tubes && tubes.links.instanceColor) tubes.links.instanceColor.needsUpdate = true;
 }
 
 // The first `shown` particles: the seeds and a fraction of the rest, as DLA_Show in POV-Ray.
@@ -204,15 +252,19 @@ function show() {
   const fraction = Number(slider.value) / Number(slider.max);
   const shown = seeds + Math.round(fraction * (count - seeds));
   lineGeometry.setDrawRange(0, 2 * shown);
+  const shownLinks = linksShown(shown);
+  linkGeometry.setDrawRange(0, 2 * shownLinks);
   const asTubes = !!tubes && tubeBox.checked;
-  lines.visible = !asTubes;
+  lines.visible = linkLines.visible = !asTubes;
   if (tubes) {
-    tubes.sticks.visible = tubes.joints.visible = asTubes;
+    tubes.sticks.visible = tubes.joints.visible = tubes.links.visible = asTubes;
     tubes.sticks.count = tubes.joints.count = shown;
+    tubes.links.count = shownLinks;
     if (asTubes) placeTubes(shown);
   }
   if (meshObject) meshObject.visible = meshBox.checked;
-  label.textContent = `${shown.toLocaleString('en')} of ${count.toLocaleString('en')} particles`;
+  label.textContent = `${shown.toLocaleString('en')} of ${count.toLocaleString('en')} particles` +
+    (linkCount ? `, ${shownLinks.toLocaleString('en')} links` : '');
 }
 
 let playing = false, lastFrame = 0;

@@ -9,6 +9,7 @@ namespace dla {
 void validate(const BallisticRunOptions& b) {
   validate(b.ballistic);
   validate(b.files, b.ballistic.dimensions, false);
+  detail::validate_links(b.links);
 }
 
 namespace detail {
@@ -20,6 +21,7 @@ class BallisticRun : public Run {
  public:
   explicit BallisticRun(const BallisticRunOptions& o) : options_(o.ballistic) {
     files = resolve(o.files, nullptr, false);
+    links = o.links;
     total = options_.seeds.size() + options_.particles;
   }
 
@@ -44,6 +46,7 @@ class BallisticRun : public Run {
       w.count("particles", o.particles).integer("dimensions", o.dimensions).number("spacing", o.spacing).points("seeds", o.seeds);
       if (o.direction.squaredNorm() > 0.0) w.point("direction", o.direction);
       else w.text("direction", "random");
+      if (links.any()) w.text("links", to_string(links));
     };
     out.statistics = [this](RecordWriter& w) {
       w.open("lines")

@@ -207,6 +207,7 @@ class ColonizeRun : public Run {
         .number("spacing", o.spacing)
         .number("kill_distance", o.kill_distance)
         .number("influence", o.influence)
+        .text("venation", to_string(o.venation))
         .number("noise_amplitude", o.noise_amplitude)
         .number("noise_scale", o.noise_scale)
         .point("tropism", o.tropism)

@@ -25,6 +25,7 @@ DlaOptions walk_options(const DlaRunOptions& o) {
 void validate(const DlaRunOptions& o) {
   const bool mesh = o.has_mesh();
   validate(o.files, o.growth.dimensions, mesh);
+  detail::validate_links(o.links);
   if (o.growth.fill == 0.0 && o.growth.fill_distance != DlaOptions{}.fill_distance)
     throw InvalidInput("`fill_distance` is for `fill`");
   if (o.growth.spawn_box && o.spawn.value_or(o.growth.spawn) != SpawnMode::box)
@@ -80,6 +81,7 @@ class DlaRun : public Run {
     check_memory(options_.particles);
     total = options_.particles;
     fill = options_.fill;
+    links = o.links;
     constraint = constraint_.get();
     scene_mesh = !scene_mesh_.triangles.empty() ? &scene_mesh_ : constraint_ && o.scene_mesh ? &constraint_->mesh() : nullptr;
   }
@@ -90,6 +92,10 @@ class DlaRun : public Run {
                          : resume(options_, *resumed_, progress, stop, &stats_);
     return constraint_ ? dla::grow(options_, *constraint_, progress, stop, &stats_)
                        : dla::grow(options_, progress, stop, &stats_);
+  }
+
+  std::vector<Link> make_links(const Cluster& cluster) const override {
+    return links_inside(cluster, links, threads, constraint_.get());
   }
 
   std::size_t done(const Cluster& so_far) const override { return attached(so_far); }
@@ -208,6 +214,7 @@ class DlaRun : public Run {
     if (o.rotate_degrees != 0.0)
       out.text("rotate_axis", to_string(o.rotate_axis)).number("rotate_degrees_per_1000", o.rotate_degrees);
     out.number("min_step", o.min_step).text("index", to_string(o.index));
+    if (links.any()) out.text("links", to_string(links));
   }
 
   void record_constraint(RecordWriter& out) const {

@@ -25,6 +25,7 @@ void validate(const DropRunOptions& d) {
     validate(drop);
   }
   validate(d.files, d.drop.dimensions, mesh);
+  detail::validate_links(d.links);
 }
 
 namespace detail {
@@ -56,6 +57,7 @@ class DropRun : public Run {
       mesh_line = detail::mesh_line(mesh_file_, *constraint_, options_.spacing);
     }
     total = options_.seeds.size() + options_.particles;
+    links = o.links;
     constraint = constraint_.get();
     scene_mesh = !scene_mesh_.triangles.empty() ? &scene_mesh_ : constraint_ && o.scene_mesh ? &constraint_->mesh() : nullptr;
   }
@@ -73,6 +75,10 @@ class DropRun : public Run {
                   stats_.zone_full ? " (then the drop zone was full)" : "",
                   with_commas(static_cast<double>(stats_.on_structure)).c_str(), bounding_radius(cluster));
     return line;
+  }
+
+  std::vector<Link> make_links(const Cluster& cluster) const override {
+    return links_inside(cluster, links, threads, constraint_.get());
   }
 
   ModelRecord record() const override {
@@ -111,6 +117,7 @@ class DropRun : public Run {
       out.text("mesh", mesh_file_)
           .text("side", to_string(constraint_->options().side))
           .text("constraint", to_string(constraint_->options().mode));
+    if (links.any()) out.text("links", to_string(links));
   }
 
   DropOptions options_;

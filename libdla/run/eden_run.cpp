@@ -16,6 +16,7 @@ void validate(const EdenRunOptions& e) {
                       e.eden.mask_threshold != unset.mask_threshold;
   if (e.eden.mode == EdenMode::perimeter && masked) throw InvalidInput("`mask` and `mask_threshold` are for `mode` drop");
   if (e.mask_file.empty()) validate(e.eden);
+  validate(e.links);
 }
 
 namespace detail {
@@ -27,6 +28,7 @@ class EdenRun : public Run {
  public:
   explicit EdenRun(const EdenRunOptions& o) : options_(o.eden), mask_file_(o.mask_file) {
     files = resolve(o.files, nullptr, false);
+    links = o.links;
     unit = "sites";
     total = options_.sites;
     if (!mask_file_.empty()) {
@@ -43,6 +45,10 @@ class EdenRun : public Run {
   }
 
   Cluster grow(const ProgressFn& progress, const StopFlag* stop) override { return dla::eden(options_, progress, stop); }
+
+  std::vector<Link> make_links(const Cluster& cluster) const override {
+    return links.lattice ? lattice_links(cluster, options_.lattice, threads) : Run::make_links(cluster);
+  }
 
   std::string summary(const Cluster& cluster, const RunRecord& record) const override {
     char line[256];
@@ -77,6 +83,7 @@ class EdenRun : public Run {
       out.raw("mask_sites", sites + "]").integer("mask_threshold", o.mask_threshold);
     }
     out.number("seed_radius", o.seed_radius).number("spacing", o.spacing);
+    if (links.any()) out.text("links", to_string(links));
   }
 
   EdenOptions options_;

@@ -36,6 +36,13 @@ TriangleMesh with_entering(TriangleMesh mesh, const std::vector<TriangleMesh>& e
 //! model's option that places them without a mesh.
 void validate_mesh_seeds(const MeshSeeds& seeds, bool mesh, const char* placed_by);
 
+//! Links between neighbours (links.h); lattice links are Eden's alone.
+void validate_links(const LinkOptions& links);
+
+//! The links of a structure grown in a constraint mesh: none that leaves its growing side.
+std::vector<Link> links_inside(const Cluster& cluster, const LinkOptions& links, int threads,
+                               const MeshConstraint* constraint);
+
 //! What `make` makes, with `name` (the mesh's) before what it refuses.
 template <class Make>
 auto named(const std::string& name, Make&& make) {

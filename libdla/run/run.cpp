@@ -48,6 +48,20 @@ OutputOptions resolve(OutputOptions files, const Box* mesh_box, bool mesh_look, 
   return files;
 }
 
+void validate_links(const LinkOptions& links) {
+  if (links.lattice) throw InvalidInput("`links` lattice links the sites of an Eden cluster; give D[,K] spacings");
+  validate(links);
+}
+
+std::vector<Link> links_inside(const Cluster& cluster, const LinkOptions& links, int threads,
+                               const MeshConstraint* constraint) {
+  if (!constraint) return neighbour_links(cluster, links, threads);
+  return neighbour_links(cluster, links, threads, [constraint](const Vec3& earlier, const Vec3& later) {
+    const BranchCheck check = constraint->check_branch(earlier, later);
+    return check.accepted && !check.clipped;
+  });
+}
+
 std::vector<TriangleMesh> read_all(const MeshReader& read, const std::vector<std::string>& paths) {
   std::vector<TriangleMesh> meshes;
   for (const std::string& path : paths) meshes.push_back(read(path, nullptr));
@@ -122,6 +136,7 @@ Cluster grow_recorded(Run& run, const ProgressFn& progress, const StopFlag* stop
     cluster = e.partial();
     record.stopped_by = std::string("error: ") + e.what();
   }
+  if (run.links.any()) cluster.links = run.make_links(cluster);
   record.grow_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return cluster;
 }

@@ -1,5 +1,5 @@
 """Run inside Blender (test_blender.py): install and enable the add-on, grow in an icosphere
-with its operator, and check the curves and the tube mesh it makes.
+with its operator, and check the curves (with links too), the tube mesh and the solid it makes.
 
     blender -b --factory-startup --python blender_addon_check.py -- ADDON PYTHONPATH [RENDER.png]
 """
@@ -81,6 +81,18 @@ closed.from_mesh(solids[0].data)
 assert all(edge.is_manifold for edge in closed.edges), "the solid has an open or non-manifold edge"
 closed.free()
 solids[0].hide_render = True
+
+# Links: a curve of two points each after the strands.
+settings.output, settings.links = 'CURVES', 2.0
+bpy.context.view_layer.objects.active = sphere
+assert bpy.ops.dla3d.grow() == {'FINISHED'}
+looped = [o for o in bpy.context.scene.objects if o.type == 'CURVES' and o is not curves[0]]
+assert len(looped) == 1
+bpy.context.view_layer.objects.active = sphere
+linked = dla3d.grow(**grow_options(settings, sphere, bpy.context.evaluated_depsgraph_get()))
+assert len(linked.links) > 0
+assert len(looped[0].data.curves) == len(linked.strands()[1]) - 1 + len(linked.links), len(looped[0].data.curves)
+looped[0].hide_render = True
 
 print(f"dla3d add-on: {len(data.curves)} curves, {len(data.points)} points, radii "
       f"{radius.min():.4f}-{radius.max():.4f}; {len(vertices)} tube vertices")

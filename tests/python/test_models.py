@@ -22,6 +22,10 @@ MODELS = [
     ("drop", {"particles": 2000, "rng_seed": 3}),
     ("ballistic", {"particles": 2000, "rng_seed": 4}),
     ("eden", {"sites": 2000, "rng_seed": 6}),
+    # Loops: links beside the tree, closed venation and the lattice graph.
+    ("grow", {"particles": 2000, "links": (2.5, 2)}),
+    ("colonize", {"max_nodes": 2000, "venation": "closed", "influence": 8.0, "dimensions": 2}),
+    ("eden", {"sites": 1000, "links": "lattice", "lattice": "hex"}),
 ]
 COLUMNS = "id,x,y,z,parent,seed,radius,age,depth,descendants,order,tip"
 
@@ -50,6 +54,11 @@ def expect_tree(result):
     assert (parent[k:] >= 0).all() and (parent[k:] < np.arange(k, n)).all()
     assert (seed[k:] == seed[parent[k:]]).all()
     assert np.isfinite(result.positions).all()
+    # Links beside the tree: two particles each, earlier first, none a tree edge.
+    links = result.links
+    assert links.shape == (len(links), 2)
+    assert ((0 <= links[:, 0]) & (links[:, 0] < links[:, 1]) & (links[:, 1] < n)).all()
+    assert not (parent[links[:, 1]] == links[:, 0]).any()
 
 
 @pytest.mark.parametrize("model,options", MODELS)
@@ -88,6 +97,14 @@ def test_arrays_are_the_clis_csv_for_the_same_seed(model, options, cli, tmp_path
     np.testing.assert_array_equal(table[:, 9], result.descendants)
     np.testing.assert_array_equal(table[:, 10], result.order)
     np.testing.assert_array_equal(table[:, 11], result.tip)
+    # The links, and the CLI's PREFIX_links.csv.
+    assert result.links.dtype == np.int32 and result.links.shape == (len(result.links), 2)
+    looped = "links" in options or "venation" in options
+    assert (len(result.links) > 0) == looped
+    if looped:
+        links = np.loadtxt(tmp_path / "cli_links.csv", delimiter=",", skiprows=1, dtype=np.int32, ndmin=2)
+        np.testing.assert_array_equal(links, result.links)
+        assert 0 < result.cycles <= len(result.links)
     # And what the module writes is the CLI's, byte for byte.
     result.write(str(tmp_path / "py"), formats=["csv", "ply", "pov"])
     cli(*words, "-q", "--formats", "csv,ply,pov", "-o", str(tmp_path / "cli"))
@@ -333,8 +350,10 @@ RANDOM_OPTIONS = {
              "drift": [(0, 0.2, 0), (1, 2), "up"], "seeds": [1, 2, 0], "rng_seed": [0, 7, -1],
              "radius": ["pipe", "taper", "boundary", "seed-distance", "fat"], "threads": [1, 2, 0, 300],
              "seed_at": [[(0, 0, 0), (10, 0, 0)], [(0, 0, 0), (0, 0, 0)], (1, 2, 3)], "index": ["grid", "kdtree", "x"],
-             "tube_sides": [3, 8, 2, 65], "color_by": ["age", "depth", "mood"], "n": [200, -1]},
-    "colonize": {"max_nodes": [10, 400, -1, 0], "attractors": [100, 0, -5], "kill_distance": [0.5, 2, -1, 0],
+             "tube_sides": [3, 8, 2, 65], "color_by": ["age", "depth", "mood"], "n": [200, -1],
+             "links": [2, (3, 2), "1.5,4", 0, -1, (2, 0), (2, 1.5), "lattice", "x", (1, 2, 3)]},
+    "colonize": {"venation": ["open", "closed", "shut", 1], "influence": [6, 2.5, -1],
+                 "max_nodes": [10, 400, -1, 0], "attractors": [100, 0, -5], "kill_distance": [0.5, 2, -1, 0],
                  "noise": [(0.3, 5), (2, 2), -1], "dimensions": [2, 3, 5], "roots": [1, 3, 0, -2],
                  "rng_seed": [1, 2], "tropism": [(0, 1, 0), "down"], "influence": [5, 0, -1]},
     "drop": {"particles": [100, -1, 0], "dimensions": [2, 3], "zone": ["disk", "box", "ring"],
@@ -343,7 +362,7 @@ RANDOM_OPTIONS = {
                   "rng_seed": [5], "spacing": [0.5, -1]},
     "eden": {"sites": [100, 0, -2], "lattice": ["square4", "square8", "hex", "cubic6", "tri"],
              "mode": ["perimeter", "site", "growth", "x"], "dimensions": [2, 3], "rng_seed": [9],
-             "mask_threshold": [0.5, 2]},
+             "mask_threshold": [0.5, 2], "links": ["lattice", 1.5, "grid"]},
 }
 
 

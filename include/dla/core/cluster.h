@@ -23,9 +23,21 @@ struct Particle {
   std::int32_t seed;    //!< which seed's tree it belongs to, 0-based in DlaOptions::seeds
 };
 
+//! A link between two particles beside the tree: a branch that joins another (links.h, closed
+//! venation). `later` is the one whose arrival made the link, so a structure's first k particles
+//! hold the links whose `later` is below k.
+struct Link {
+  std::int32_t earlier;
+  std::int32_t later;  //!< above `earlier`
+  bool operator==(const Link& other) const { return earlier == other.earlier && later == other.later; }
+};
+
 //! A grown structure.
 struct Cluster {
   std::vector<Particle> particles;  //!< seeds first, then in attach order
+  //! Links beside the tree, in order of `later` (then as made); the tree's measures (depth,
+  //! descendants, Strahler order, the pipe model) ignore them.
+  std::vector<Link> links;
   std::size_t seed_count = 0;       //!< the first seed_count particles are the seeds
   Vec3 center = Vec3::Zero();       //!< centre of the seeds: the centre of the launch sphere
   double spacing = 1.0;
@@ -47,6 +59,41 @@ using StopFlag = std::atomic<bool>;
 
 //! Particles attached so far, seeds not counted.
 inline std::size_t attached(const Cluster& cluster) { return cluster.particles.size() - cluster.seed_count; }
+
+//! The structure's first `count` particles, with the links among them: as it was when they had
+//! attached.
+inline Cluster first_particles(const Cluster& cluster, std::size_t count) {
+  Cluster part;
+  part.particles.assign(cluster.particles.begin(), cluster.particles.begin() + static_cast<std::ptrdiff_t>(count));
+  for (const Link& link : cluster.links)
+    if (static_cast<std::size_t>(link.later) < count) part.links.push_back(link);
+  part.seed_count = std::min(cluster.seed_count, count);
+  part.center = cluster.center;
+  part.spacing = cluster.spacing;
+  part.dimensions = cluster.dimensions;
+  part.complete = cluster.complete;
+  return part;
+}
+
+//! Independent cycles of the tree with its links (the cycle rank E - V + C): each link closes
+//! one, except a link that joins two seeds' trees for the first time.
+inline std::size_t cycle_count(const Cluster& cluster) {
+  std::vector<std::int32_t> root(cluster.particles.size());
+  for (std::size_t i = 0; i < root.size(); ++i) root[i] = static_cast<std::int32_t>(i);
+  const auto find = [&](std::int32_t v) {
+    while (root[static_cast<std::size_t>(v)] != v) v = root[static_cast<std::size_t>(v)] = root[static_cast<std::size_t>(root[static_cast<std::size_t>(v)])];
+    return v;
+  };
+  for (std::size_t i = 0; i < root.size(); ++i)
+    if (cluster.particles[i].parent >= 0) root[i] = find(cluster.particles[i].parent);  // parents come first
+  std::size_t cycles = 0;
+  for (const Link& link : cluster.links) {
+    const std::int32_t a = find(link.earlier), b = find(link.later);
+    if (a == b) ++cycles;
+    else root[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+  }
+  return cycles;
+}
 
 //! Largest distance of a particle centre from `cluster.center`.
 inline double bounding_radius(const Cluster& cluster) {

@@ -16,7 +16,11 @@ namespace dla {
 //! particle, a number that is not finite, no branch to measure.
 Cluster parse_csv(std::string_view text, const std::string& name);
 
-//! Reads and parses the CSV at `path`; throws IOError if it cannot be read.
+//! Parses the rows `a,b` of a PREFIX_links.csv into `cluster`'s links; throws InvalidInput for a
+//! row that is not two particles of it, earlier first.
+void parse_links_csv(std::string_view text, const std::string& name, Cluster& cluster);
+//! Reads and parses the CSV at `path`, with the links of PREFIX_links.csv beside it if there is
+//! one; throws IOError if one cannot be read.
 Cluster read_csv(const std::string& path);
 
 }  // namespace dla

@@ -2,7 +2,8 @@
 //! \file csv_writer.h
 //! Particles as CSV, one row per particle in attach order, coordinates in the shortest form
 //! that reads back to the same double: `id,x,y,z,parent,seed`, and with a look also
-//! `radius,age,depth,descendants,order,tip` (as in the PLY).
+//! `radius,age,depth,descendants,order,tip` (as in the PLY). A structure with links also gets
+//! PREFIX_links.csv beside PREFIX.csv: `a,b`, a row a link, `b` the later particle.
 
 #include "dla/look/look.h"
 
@@ -10,7 +11,10 @@
 
 namespace dla {
 
-//! The tree alone: `id,x,y,z,parent,seed`. Throws IOError if the file cannot be written.
+//! The path of the links' file beside a CSV: PREFIX_links.csv for PREFIX.csv.
+std::string links_csv_path(const std::string& csv_path);
+//! The tree alone: `id,x,y,z,parent,seed`, and the links. Throws IOError if a file cannot be
+//! written. Without links, an old PREFIX_links.csv is removed: it would be read back with it.
 void write_csv(const Cluster& cluster, const std::string& path);
 
 //! The tree and the look's radius and attributes. Throws IOError.

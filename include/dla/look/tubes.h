@@ -3,6 +3,7 @@
 //! The structure as a triangle mesh: one closed tube per strand (strands.h), swept along the
 //! strand with rotation-minimising frames so it does not twist, capped at both ends. A strand
 //! that leaves a branch point starts inside its parent's tube, so branches join without a gap.
+//! Then a tube per link (links.h), rounded at both ends inside the tubes it joins.
 //! The glTF and OBJ writers stream these pieces. See docs/look.md.
 
 #include "dla/look/attributes.h"
@@ -93,9 +94,14 @@ inline void kept_points(const Cluster& cluster, const std::vector<float>& radii,
 
 }  // namespace detail
 
+//! A link's tube: a ring about each end and a rounded cap beyond it.
+inline std::size_t link_tube_vertices(int sides) { return 4 * static_cast<std::size_t>(sides) + 2; }
+inline std::size_t link_tube_triangles(int sides) { return 8 * static_cast<std::size_t>(sides); }
+
 //! Calls visit(const TubePiece&) for the tube of each strand of two or more particles, in
-//! strand order (strands.h, from the attributes' links); `radii` are the branch radii
-//! (Look::radii) in spacings. A seed with no child has no tube.
+//! strand order (strands.h, from the attributes' links), then for each link's tube; `radii` are
+//! the branch radii (Look::radii) in spacings. A seed with no child has no tube, and a link to a
+//! branch `min_branch` prunes has none.
 template <class Visit>
 void for_each_tube(const Cluster& cluster, const Attributes& attributes, const std::vector<float>& radii,
                    const TubeOptions& options, Visit&& visit) {
@@ -210,6 +216,54 @@ void for_each_tube(const Cluster& cluster, const Attributes& attributes, const s
     }
     visit(static_cast<const TubePiece&>(piece));
   });
+  // Whether particle i's branch keeps its tube: its strand's first own particle's subtree.
+  const auto branch_kept = [&](std::size_t i) {
+    while (continues(i)) i = static_cast<std::size_t>(cluster.particles[i].parent);
+    return attributes.descendants[i] + 1 >= options.min_branch;
+  };
+  const auto k = static_cast<std::uint32_t>(sides);
+  for (const Link& link : cluster.links) {
+    const auto a = static_cast<std::size_t>(link.earlier), b = static_cast<std::size_t>(link.later);
+    if (options.min_branch > 1 && !(branch_kept(a) && branch_kept(b))) continue;
+    const Vec3& from = cluster.particles[a].position;
+    const Vec3& to = cluster.particles[b].position;
+    if (from == to) continue;
+    const Vec3 t = (to - from).normalized();
+    Eigen::Index axis = 0;
+    t.cwiseAbs().minCoeff(&axis);
+    const Vec3 n = t.cross(Vec3::Unit(axis)).normalized(), side = t.cross(n);
+    const double ra = radii[a] * cluster.spacing, rb = radii[b] * cluster.spacing;
+    piece.clear();
+    // Rings: the cap behind `from`, `from`, `to`, the cap beyond `to`; each leaning as its cap.
+    const std::array<Vec3, 4> centers = {from - 0.7 * ra * t, from, to, to + 0.7 * rb * t};
+    const std::array<double, 4> ring_radii = {0.7 * ra, ra, rb, 0.7 * rb}, leans = {-1.0, 0.0, 0.0, 1.0};
+    for (std::size_t j = 0; j < 4; ++j)
+      for (int s = 0; s < sides; ++s) {
+        const Vec3 out = cosines[static_cast<std::size_t>(s)] * n + sines[static_cast<std::size_t>(s)] * side;
+        piece.positions.push_back((centers[j] + ring_radii[j] * out).cast<float>());
+        piece.normals.push_back((out + leans[j] * t).normalized().cast<float>());
+        piece.particles.push_back(j < 2 ? link.earlier : link.later);
+      }
+    const auto back = static_cast<std::uint32_t>(piece.positions.size());
+    piece.positions.push_back((from - ra * t).cast<float>());
+    piece.normals.push_back((-t).cast<float>());
+    piece.particles.push_back(link.earlier);
+    const auto front = static_cast<std::uint32_t>(piece.positions.size());
+    piece.positions.push_back((to + rb * t).cast<float>());
+    piece.normals.push_back(t.cast<float>());
+    piece.particles.push_back(link.later);
+    for (std::uint32_t j = 0; j < 3; ++j)
+      for (std::uint32_t s = 0; s < k; ++s) {
+        const std::uint32_t p = j * k + s, q = j * k + (s + 1) % k;
+        piece.triangles.push_back({p, q, q + k});
+        piece.triangles.push_back({p, q + k, p + k});
+      }
+    for (std::uint32_t s = 0; s < k; ++s) {
+      piece.triangles.push_back({back, (s + 1) % k, s});
+      piece.triangles.push_back({3 * k + s, 3 * k + (s + 1) % k, front});
+    }
+    visit(static_cast<const TubePiece&>(piece));
+  }
 }
 
 }  // namespace dla

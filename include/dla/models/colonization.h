@@ -10,7 +10,9 @@
 //! 2. each node that some attractors chose grows one step along the normalised sum of the
 //!    unit directions to them, plus the tropism, moved by the noise;
 //! 3. attractors within the kill distance of a new node die;
-//! until no attractor is left, no node grows, or a limit is met.
+//! until no attractor is left, no node grows, or a limit is met. With closed venation
+//! (closed_venation.h), step 1 pulls every node of each attractor's relative neighbourhood, and
+//! step 3 removes an attractor once all of them have reached it, linking them there.
 //!
 //! The closest nodes are kept, not rescanned: each iteration's new nodes update only the
 //! attractors they come closer to than their current node, found in an index over the
@@ -24,6 +26,7 @@
 #include "dla/core/options.h"
 #include "dla/core/random.h"
 #include "dla/index/attractor_tree.h"
+#include "dla/models/closed_venation.h"
 #include "dla/models/model_shell.h"
 #include "dla/mesh/surface_distance.h"
 
@@ -32,6 +35,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -201,6 +205,20 @@ class CollisionObject {
   CollisionMode mode_;
 };
 
+//! Which nodes an attractor pulls, and when it dies (`--venation`; Runions et al. 2005).
+enum class Venation {
+  open,    //!< its closest node; it dies when any node comes within the kill distance: a tree
+  closed,  //!< every node of its relative neighbourhood; it dies when all have come within the
+           //!< kill distance, and veins that reach it from different sides join there: loops
+};
+
+inline std::string_view to_string(Venation venation) { return venation == Venation::open ? "open" : "closed"; }
+
+inline Venation parse_venation(std::string_view word) {
+  constexpr Venation values[] = {Venation::open, Venation::closed};
+  return detail::parse_word(word, values, "venation");
+}
+
 //! How the tree grows among its attractors. Distances are in spacings: the step, the node
 //! spacing, is the tree's spacing.
 struct ColonizationOptions {
@@ -218,6 +236,8 @@ struct ColonizationOptions {
   Vec3 tropism = Vec3::Zero();   //!< added to each step's unit direction (gravity, light),
                                  //!< each coordinate in [-10, 10]
   int dimensions = 3;            //!< 2: attractors, roots and steps in z = 0 (leaf venation)
+  //! Closed venation needs a finite `influence`: an attractor's neighbourhood is the nodes within it.
+  Venation venation = Venation::open;
   std::uint64_t rng_seed = 1;    //!< seeds the noise
   //! A collision object (3D only), not owned: each new node is pushed out of it or stuck to
   //! it, after the noise. A node that would land within a tenth of a step of its parent does
@@ -246,6 +266,9 @@ inline void validate(const ColonizationOptions& o) {
     throw InvalidInput("dimensions " + std::to_string(o.dimensions) + " is not 2 or 3");
   if (o.collide && o.dimensions != 3) throw InvalidInput("a collision mesh needs 3 dimensions");
   if (o.vessel && o.dimensions != 3) throw InvalidInput("a vessel needs 3 dimensions");
+  if (o.venation == Venation::closed && !std::isfinite(o.influence))
+    throw InvalidInput("`venation` closed needs a finite `influence`: the nodes within it are an attractor's "
+                       "neighbourhood (try 4 times the kill distance)");
 }
 
 namespace detail {
@@ -351,7 +374,13 @@ inline Cluster colonize(const ColonizationOptions& o, std::vector<Vec3> attracto
   Cluster tree = detail::seeded(roots, o.spacing, o.dimensions);
   const double kill2 = detail::kill_distance2(o), reach2 = detail::reach2(o);
 
-  AttractorTree index(std::move(attractors), reach2, kill2);
+  const bool closed = o.venation == Venation::closed;
+  // The attractors: open venation's index of closest nodes, or closed venation's sources.
+  std::optional<AttractorTree> index;
+  std::optional<detail::ClosedVenation> sources;
+  if (closed) sources.emplace(std::move(attractors), reach2, kill2);
+  else index.emplace(std::move(attractors), reach2, kill2);
+  const auto live = [&] { return closed ? sources->live() : index->live(); };
 
   // Per node: the fixed-point sum of unit directions to its attractors, how many, and its
   // last child (a node whose attractors have not changed would grow the same child again).
@@ -369,18 +398,29 @@ inline Cluster colonize(const ColonizationOptions& o, std::vector<Vec3> attracto
     changed[node] = 1;
   };
   const auto moved = [&](std::size_t a, std::int32_t from, std::int32_t to) {
-    const Vec3 attractor = index.position(a);
+    const Vec3 attractor = index->position(a);
     if (from != AttractorTree::kNone) pull(attractor, from, -1);
     if (to != AttractorTree::kDied) pull(attractor, to, 1);
   };
-  std::vector<Vec3> new_positions(roots);
-  index.add_nodes(0, new_positions, moved);
+  std::vector<Vec3> new_positions;
+  const auto add_nodes = [&](std::size_t first) {
+    if (closed) {
+      sources->add_nodes(
+          tree.particles, first,
+          [&](std::size_t s, std::int32_t v, std::int64_t sign) { pull(sources->position(s), v, sign); }, tree.links);
+      return;
+    }
+    new_positions.clear();
+    for (std::size_t v = first; v < tree.particles.size(); ++v) new_positions.push_back(tree.particles[v].position);
+    index->add_nodes(static_cast<std::int32_t>(first), new_positions, moved);
+  };
+  add_nodes(0);
 
   const detail::LatticeNoise noise(o.rng_seed);
   std::vector<std::pair<std::int32_t, Vec3>> grown;  // this iteration's new nodes: parent, position
   detail::ModelShell shell(progress, stop);
   try {
-    for (std::size_t iteration = 0; iteration < o.max_iterations && index.live() > 0 && tree.particles.size() < o.max_nodes;
+    for (std::size_t iteration = 0; iteration < o.max_iterations && live() > 0 && tree.particles.size() < o.max_nodes;
          ++iteration) {
       if (!shell.go_on(tree)) {
         tree.complete = false;
@@ -408,13 +448,14 @@ inline Cluster colonize(const ColonizationOptions& o, std::vector<Vec3> attracto
         changed.push_back(0);
         last_child[static_cast<std::size_t>(parent)] = v;
       }
-      new_positions.clear();
-      for (std::size_t v = first_new; v < tree.particles.size(); ++v) new_positions.push_back(tree.particles[v].position);
-      index.add_nodes(static_cast<std::int32_t>(first_new), new_positions, moved);
+      add_nodes(first_new);
     }
   } catch (...) {
     detail::ModelShell::keep_what_grew(tree);
   }
+  // In order of the later node, as every structure keeps its links.
+  std::sort(tree.links.begin(), tree.links.end(),
+            [](const Link& a, const Link& b) { return std::make_pair(a.later, a.earlier) < std::make_pair(b.later, b.earlier); });
   shell.finish(tree);
   return tree;
 }

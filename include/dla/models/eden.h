@@ -19,6 +19,7 @@
 #include "dla/core/errors.h"
 #include "dla/core/options.h"
 #include "dla/core/random.h"
+#include "dla/models/links.h"
 #include "dla/models/model_shell.h"
 
 #include <algorithm>
@@ -298,6 +299,11 @@ class EdenLattice {
 
 }  // namespace detail
 
+//! The lattice graph of an Eden cluster beside its tree (`links` lattice): a link between every
+//! pair of occupied lattice neighbours that the tree does not join. Neighbours are the sites
+//! within the lattice's longest neighbour step, and no other site is that near.
+inline std::vector<Link> lattice_links(const Cluster& cluster, Lattice lattice, int threads = 1);
+
 //! The position of lattice site c, `spacing` apart, the seed at the origin.
 inline Vec3 eden_position(Lattice lattice, const std::array<int, 3>& c, double spacing) {
   if (lattice == Lattice::hex) return spacing * Vec3(c[0] + 0.5 * c[1], c[1] * (std::sqrt(3.0) / 2), 0.0);
@@ -418,6 +424,16 @@ inline Cluster eden(const EdenOptions& o, const ProgressFn& progress = {}, const
   }
   shell.finish(cluster);
   return cluster;
+}
+
+inline std::vector<Link> lattice_links(const Cluster& cluster, Lattice lattice, int threads) {
+  const std::vector<std::array<int, 3>> neighbours = lattice_neighbours(lattice);
+  double step = 0.0;
+  for (const std::array<int, 3>& c : neighbours) step = std::max(step, eden_position(lattice, c, 1.0).norm());
+  LinkOptions o;
+  o.distance = step * (1.0 + 1e-6);
+  o.most = neighbours.size();
+  return neighbour_links(cluster, o, threads, {}, 2);  // all but the tree's own edges
 }
 
 }  // namespace dla

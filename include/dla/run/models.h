@@ -14,6 +14,7 @@
 #include "dla/models/drop.h"
 #include "dla/models/eden.h"
 #include "dla/models/dla.h"
+#include "dla/models/links.h"
 #include "dla/run/output.h"
 
 #include <cstddef>
@@ -58,6 +59,7 @@ struct DlaRunOptions {
   ConstraintOptions constraint;              //!< side, reject or clip, shell
   MeshSeeds seeds;
   bool scene_mesh = true;                    //!< the POV-Ray scene shows the mesh as glass
+  LinkOptions links;                         //!< links between neighbours beside the tree (links.h)
   OutputOptions files;
 
   bool has_mesh() const { return !stl.empty() || text.has_value(); }
@@ -103,6 +105,7 @@ struct ColonizeRunOptions {
 struct EdenRunOptions {
   EdenOptions eden;
   std::string mask_file;  //!< the mask drawn in a file; empty: a preset (eden.mask) or none
+  LinkOptions links;      //!< links beside the tree: lattice, or between neighbours (links.h)
   OutputOptions files;
 };
 
@@ -115,12 +118,14 @@ struct DropRunOptions {
   ConstraintOptions constraint;   //!< side, reject or clip; no shell: drops fall through space
   MeshSeeds seeds;                //!< with a mesh: where the seeds go; default one on the growing side
   bool scene_mesh = true;
+  LinkOptions links;              //!< links between neighbours beside the tree (links.h)
   OutputOptions files;
 };
 
 //! `dla3d ballistic`, `dla3d.ballistic()`: ballistic aggregation along straight lines.
 struct BallisticRunOptions {
   BallisticOptions ballistic;
+  LinkOptions links;  //!< links between neighbours beside the tree (links.h)
   OutputOptions files;
 };
 

@@ -49,6 +49,8 @@ class Run {
   virtual double filled() const { return 0.0; }
   //! The walks that grew the structure so far, which a checkpoint keeps (DLA); else null.
   virtual const WalkStats* walks() const { return nullptr; }
+  //! The links beside the tree that `links` asks for, made once growth ends (links.h).
+  virtual std::vector<Link> make_links(const Cluster& cluster) const { return neighbour_links(cluster, links, threads); }
   //! The model's part of the JSON record of the run: its options and statistics (the
   //! statistics as growth left them).
   virtual ModelRecord record() const = 0;
@@ -58,7 +60,8 @@ class Run {
   OutputOptions files;
   std::size_t total = 0;           //!< particles at most, for a progress bar
   const char* unit = "particles";  //!< what they are called in a summary
-  int threads = 1;                 //!< for the look's measurements and the writers
+  int threads = 1;                 //!< for the look's measurements, the links and the writers
+  LinkOptions links;               //!< links beside the tree (links.h); none: a tree
   //! "NAME: 1,234 triangles; REPAIRS; spacing S", for a run with a constraint mesh, else empty.
   std::string mesh_line;
   //! The mesh the look measures distances to (the boundary radius model), or null.
@@ -105,7 +108,8 @@ const Model* find_model(std::string_view name);
 //! cannot be read.
 std::unique_ptr<Run> prepare_run(const RunOptions& options, const MeshReader& read = {}, const Resumed& resumed = {});
 
-//! Grows `run` under `progress` and `stop`, keeping what grew when growth fails part way, and
+//! Grows `run` under `progress` and `stop`, keeping what grew when growth fails part way (with
+//! the links its options ask for among what grew), and
 //! records the time taken and, when growth failed part way, "error: " and why in
 //! `record.stopped_by`. What stopped a structure short otherwise (a signal, a callback) only
 //! the caller knows, and records.
