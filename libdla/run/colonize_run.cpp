@@ -6,6 +6,8 @@
 #include "dla/core/random.h"
 #include "dla/mesh/mesh.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 
@@ -126,6 +128,18 @@ namespace detail {
 
 namespace {
 
+//! Refuses closed venation among more attractors than this machine's memory holds: each keeps
+//! its neighbourhood and its cells, about 200 bytes with its share of the nodes.
+void check_closed_memory(std::size_t attractors) {
+  constexpr double kBytesPerAttractor = 200.0;
+  const double memory = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  const double needed = kBytesPerAttractor * static_cast<double>(attractors);
+  if (memory > 0 && needed > memory)
+    throw InvalidInput("`venation` closed among " + format_count(attractors) + " attractors needs about " +
+                       format_number(needed / 1e9) + " GB of memory; this machine has " + format_number(memory / 1e9) +
+                       " GB: " + format_count(static_cast<std::size_t>(memory / kBytesPerAttractor)) + " attractors fit");
+}
+
 //! Space colonization among attractors scattered or read from a file.
 class ColonizeRun : public Run {
  public:
@@ -169,6 +183,7 @@ class ColonizeRun : public Run {
     } else {
       roots_ = colonize_roots(o, attractors_, mesh);
     }
+    if (options_.venation == Venation::closed) check_closed_memory(attractors_.size());
     attractors_from_ = o.attractors_from;
     attractor_count_ = attractors_.size();
     vessel_file_ = o.stl;

@@ -128,8 +128,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     dla::cli::CommandLine line = dla::cli::parse_command_line(words);
     if (line.kind != dla::cli::CommandLine::Kind::run || !make_small(line.run)) return 0;
     const std::unique_ptr<dla::Run> run = dla::prepare_run(line.run);
-    const dla::Cluster cluster = grow_briefly(*run);
+    dla::Cluster cluster = grow_briefly(*run);
     if (!dla::testing::tree_fault(cluster, rules_of(line.run)).empty()) std::abort();
+    // Its links: two particles each, earlier first, none a tree edge, in order of the later.
+    if (run->links.any()) cluster.links = run->make_links(cluster);
+    for (std::size_t k = 0; k < cluster.links.size(); ++k) {
+      const dla::Link& link = cluster.links[k];
+      if (!(0 <= link.earlier && link.earlier < link.later &&
+            static_cast<std::size_t>(link.later) < cluster.particles.size()) ||
+          cluster.particles[static_cast<std::size_t>(link.later)].parent == link.earlier ||
+          (k > 0 && link.later < cluster.links[k - 1].later))
+        std::abort();
+    }
     // The look the options ask for: attributes, radii, tubes and instancing points.
     const dla::OutputOptions& files = run->files;
     const dla::Look look = dla::make_look(cluster, files.look);

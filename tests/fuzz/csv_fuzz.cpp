@@ -1,6 +1,7 @@
 // libFuzzer target for the CSV reader of `dla3d analyze` and the measures it prints: any bytes
 // must either be refused with InvalidInput or give a tree (parents before children) whose
-// measures compute without a fault. Build with -DDLA_FUZZ=ON (clang); see docs/testing.md.
+// measures compute without a fault. The same bytes as a PREFIX_links.csv of a small tree give
+// links between two of its particles, earlier first, or InvalidInput. Build with -DDLA_FUZZ=ON (clang); see docs/testing.md.
 
 #include "dla/core/analysis.h"
 #include "dla/io/csv_reader.h"
@@ -11,6 +12,15 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+  try {
+    dla::Cluster tree;
+    for (int i = 0; i < 8; ++i) tree.particles.push_back({dla::Vec3(i, 0, 0), i - 1, 0});
+    dla::parse_links_csv(bytes, "fuzz", tree);
+    for (const dla::Link& link : tree.links)
+      if (!(0 <= link.earlier && link.earlier < link.later && link.later < 8)) std::abort();
+    dla::cycle_count(tree);
+  } catch (const dla::InvalidInput&) {
+  }
   try {
     const dla::Cluster cluster = dla::parse_csv(bytes, "fuzz");
     for (std::size_t i = 0; i < cluster.particles.size(); ++i) {
