@@ -34,17 +34,19 @@ bool parse_row(std::string_view line, std::array<double, 6>& values, std::size_t
   return field == columns;
 }
 
+//! The first line of `text`, without its line end (\n or \r\n), taken off `text`.
+std::string_view next_line(std::string_view& text) {
+  const std::size_t end = text.find('\n');
+  std::string_view line = text.substr(0, end);
+  text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  return line;
+}
+
 }  // namespace
 
 Cluster parse_csv(std::string_view text, const std::string& name) {
-  const auto next_line = [&text] {
-    const std::size_t end = text.find('\n');
-    std::string_view line = text.substr(0, end);
-    text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    return line;
-  };
-  const std::string_view header = next_line();
+  const std::string_view header = next_line(text);
   if (header != "id,x,y,z,parent,seed" && header.rfind("id,x,y,z,parent,seed,", 0) != 0)
     throw InvalidInput(name + ": is not a dla3d CSV (no 'id,x,y,z,parent,seed' header)");
   const auto columns = static_cast<std::size_t>(std::count(header.begin(), header.end(), ',')) + 1;
@@ -52,7 +54,7 @@ Cluster parse_csv(std::string_view text, const std::string& name) {
   cluster.dimensions = 2;
   std::vector<double> lengths;
   for (std::size_t row = 2; !text.empty(); ++row) {
-    const std::string_view line = next_line();
+    const std::string_view line = next_line(text);
     if (line.empty()) continue;
     std::array<double, 6> v{};
     if (!parse_row(line, v, columns))
@@ -85,18 +87,11 @@ Cluster parse_csv(std::string_view text, const std::string& name) {
 }
 
 void parse_links_csv(std::string_view text, const std::string& name, Cluster& cluster) {
-  const auto next_line = [&text] {
-    const std::size_t end = text.find('\n');
-    std::string_view line = text.substr(0, end);
-    text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    return line;
-  };
-  if (next_line() != "a,b") throw InvalidInput(name + ": is not a dla3d links CSV (no 'a,b' header)");
+  if (next_line(text) != "a,b") throw InvalidInput(name + ": is not a dla3d links CSV (no 'a,b' header)");
   const auto count = static_cast<double>(cluster.particles.size());
   cluster.links.clear();
   for (std::size_t row = 2; !text.empty(); ++row) {
-    const std::string_view line = next_line();
+    const std::string_view line = next_line(text);
     if (line.empty()) continue;
     std::array<double, 6> v{};
     if (!parse_row(line, v, 2) || !(v[0] >= 0.0 && v[0] < v[1] && v[1] < count) || v[0] != std::floor(v[0]) ||

@@ -28,6 +28,7 @@
 #include <vector>
 
 using namespace dla;
+using dla::testing::tree_steps;
 
 namespace {
 
@@ -37,18 +38,6 @@ Cluster dla_tree(std::size_t n, int dimensions, std::uint64_t seed = 3) {
   o.dimensions = dimensions;
   o.rng_seed = seed;
   return grow(o);
-}
-
-//! Tree steps between a and b, by their ancestor chains; a large number in different trees.
-int tree_steps(const Cluster& c, std::int32_t a, std::int32_t b) {
-  std::vector<std::int32_t> up;
-  for (std::int32_t v = a; v >= 0; v = c.particles[static_cast<std::size_t>(v)].parent) up.push_back(v);
-  int m = 0;
-  for (std::int32_t v = b; v >= 0; v = c.particles[static_cast<std::size_t>(v)].parent, ++m) {
-    const auto at = std::find(up.begin(), up.end(), v);
-    if (at != up.end()) return static_cast<int>(at - up.begin()) + m;
-  }
-  return std::numeric_limits<int>::max();
 }
 
 //! The links by brute force: each particle against every earlier one, nearest first (ties: the
