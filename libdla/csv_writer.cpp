@@ -52,11 +52,6 @@ void write(const Cluster& cluster, const Look* look, const std::string& path) {
 
 }  // namespace
 
-std::string links_csv_path(const std::string& csv_path) {
-  const bool csv = csv_path.size() >= 4 && csv_path.compare(csv_path.size() - 4, 4, ".csv") == 0;
-  return (csv ? csv_path.substr(0, csv_path.size() - 4) : csv_path) + "_links.csv";
-}
-
 void write_csv(const Cluster& cluster, const std::string& path) { write(cluster, nullptr, path); }
 
 void write_csv(const Cluster& cluster, const Look& look, const std::string& path) { write(cluster, &look, path); }

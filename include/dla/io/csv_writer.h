@@ -12,7 +12,10 @@
 namespace dla {
 
 //! The path of the links' file beside a CSV: PREFIX_links.csv for PREFIX.csv.
-std::string links_csv_path(const std::string& csv_path);
+inline std::string links_csv_path(const std::string& csv_path) {
+  const bool csv = csv_path.size() >= 4 && csv_path.compare(csv_path.size() - 4, 4, ".csv") == 0;
+  return (csv ? csv_path.substr(0, csv_path.size() - 4) : csv_path) + "_links.csv";
+}
 //! The tree alone: `id,x,y,z,parent,seed`, and the links. Throws IOError if a file cannot be
 //! written. Without links, an old PREFIX_links.csv is removed: it would be read back with it.
 void write_csv(const Cluster& cluster, const std::string& path);
