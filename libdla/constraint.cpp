@@ -42,25 +42,7 @@ ConstraintMode parse_constraint_mode(std::string_view word) {
 }
 
 double distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  // Ericson, Real-Time Collision Detection, 5.1.5: the closest point by Voronoi regions.
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0.0 && d2 <= 0.0) return ap.norm();
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0.0 && d4 <= d3) return bp.norm();
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return (p - (a + d1 / (d1 - d3) * ab)).norm();
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0.0 && d5 <= d6) return cp.norm();
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return (p - (a + d2 / (d2 - d6) * ac)).norm();
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0)
-    return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).norm();
-  const double denom = 1.0 / (va + vb + vc);
-  return (p - (a + ab * (vb * denom) + ac * (vc * denom))).norm();
+  return (p - closest_point_on_triangle(p, a, b, c)).norm();
 }
 
 namespace {
@@ -88,7 +70,8 @@ MeshConstraint::MeshConstraint(const TriangleMesh& mesh, const ConstraintOptions
       radius_(0.5 * (box_.max - box_.min).norm()),
       gap_(std::max(1e-4 * spacing, 1e-6 * (box_.max - box_.min).maxCoeff())),
       inside_(mesh_, spacing + gap_, spacing),
-      hits_(mesh_) {
+      hits_(mesh_),
+      surface_(mesh_) {
   // Cumulative areas, and the volume's centroid by the divergence theorem.
   area_prefix_.reserve(mesh_.triangles.size());
   double area = 0.0, volume = 0.0;
@@ -102,6 +85,12 @@ MeshConstraint::MeshConstraint(const TriangleMesh& mesh, const ConstraintOptions
     moment += v * (a + b + c) / 4.0;
   }
   centroid_ = volume > 0.0 && std::isfinite(volume) ? Vec3(moment / volume) : center_;
+  // The guide: where the search for each of as many equal slices of the total area starts.
+  const std::size_t slices = area_prefix_.size();
+  area_guide_.resize(slices + 1);
+  for (std::size_t j = 0; j <= slices; ++j)
+    area_guide_[j] = static_cast<std::uint32_t>(
+        std::upper_bound(area_prefix_.begin(), area_prefix_.end(), slice_start(j)) - area_prefix_.begin());
   const double layers = options.side == Side::surface && options.shell == 0.0 ? kShellSpacings : options.shell;
   if (layers != 0.0) {
     detail::require_in("`shell`", layers, 1.0, 1000.0);
@@ -113,12 +102,11 @@ MeshConstraint::MeshConstraint(const TriangleMesh& mesh, const ConstraintOptions
     if (shell_->voxel_count() == 0)
       throw InvalidInput("the shell, " + detail::format_number(shell_thickness_) + " thick, holds no voxel of the " +
                          detail::format_number(shell_->cell_size()) + " the mesh's size allows: use a larger spacing");
-    distance_ = std::make_unique<SurfaceDistance>(mesh_);
   }
 }
 
 bool MeshConstraint::in_shell(const Vec3& p) const {
-  if (distance_->distance(p) > shell_thickness_) return false;
+  if (surface_.distance(p) > shell_thickness_) return false;
   switch (options_.side) {
     case Side::inside: return inside_.contains(p);
     case Side::outside: return !inside_.contains(p);
@@ -170,9 +158,19 @@ Vec3 MeshConstraint::draw_inside(Rng& rng) const {
 
 Vec3 MeshConstraint::surface_point(Rng& rng, Vec3* normal) const {
   const double target = rng.uniform() * area_prefix_.back();
+  // The first prefix past the target, searched for only within the target's slice.
+  const std::size_t slices = area_prefix_.size();
+  auto first = area_prefix_.begin(), last = area_prefix_.end();
+  const double fraction = target / area_prefix_.back();
+  if (fraction >= 0.0 && fraction < 1.0) {  // else an area too large for a double: search it all
+    std::size_t j = std::min(static_cast<std::size_t>(fraction * static_cast<double>(slices)), slices - 1);
+    if (j > 0 && target < slice_start(j)) --j;  // the division may round across a slice's start
+    if (j + 1 < slices && target >= slice_start(j + 1)) ++j;
+    first = area_prefix_.begin() + area_guide_[j];
+    last = area_prefix_.begin() + std::min<std::size_t>(area_guide_[j + 1] + 1, slices);
+  }
   const std::size_t t = std::min<std::size_t>(
-      static_cast<std::size_t>(std::upper_bound(area_prefix_.begin(), area_prefix_.end(), target) - area_prefix_.begin()),
-      mesh_.triangles.size() - 1);
+      static_cast<std::size_t>(std::upper_bound(first, last, target) - area_prefix_.begin()), slices - 1);
   const auto& tri = mesh_.triangles[t];
   const Vec3 &a = mesh_.vertices[tri[0]], &b = mesh_.vertices[tri[1]], &c = mesh_.vertices[tri[2]];
   double u = rng.uniform(), v = rng.uniform();
@@ -412,12 +410,7 @@ std::vector<Vec3> farthest_apart(const std::vector<Vec3>& points, std::size_t co
   return taken;
 }
 
-double MeshConstraint::distance_to_surface(const Vec3& p) const {
-  double best = std::numeric_limits<double>::infinity();
-  for (const auto& t : mesh_.triangles)
-    best = std::min(best, distance_to_triangle(p, mesh_.vertices[t[0]], mesh_.vertices[t[1]], mesh_.vertices[t[2]]));
-  return best;
-}
+double MeshConstraint::distance_to_surface(const Vec3& p) const { return surface_.distance(p); }
 
 std::vector<Vec3> MeshConstraint::place_seeds(std::size_t count, std::uint64_t rng_seed) const {
   if (count == 0) throw InvalidInput("`seeds` 0: at least one seed is needed");

@@ -13,6 +13,29 @@ namespace dla {
 
 namespace {
 
+constexpr double kMaxBuckets = 1024.0 * 1024.0;
+
+//! Whether every edge is used as often one way as the other: a closed surface (or several),
+//! around which the winding number is the same along every line.
+bool is_closed(const TriangleMesh& mesh) {
+  std::vector<std::pair<std::uint64_t, int>> edges;  // (the two ends, lower first; +1 or -1)
+  edges.reserve(3 * mesh.triangles.size());
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint64_t a = t[k], b = t[(k + 1) % 3];
+      edges.emplace_back(a < b ? a << 32 | b : b << 32 | a, a < b ? 1 : -1);
+    }
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < edges.size();) {
+    int sum = 0;
+    std::size_t j = i;
+    for (; j < edges.size() && edges[j].first == edges[i].first; ++j) sum += edges[j].second;
+    if (sum != 0) return false;
+    i = j;
+  }
+  return true;
+}
+
 //! Twice the signed area of (u, v, q) in the xy plane; exactly -orient(v, u, q).
 inline double orient(const Vec3& u, const Vec3& v, double qx, double qy) {
   return (u.x() - qx) * (v.y() - qy) - (u.y() - qy) * (v.x() - qx);
@@ -58,11 +81,15 @@ InsideTest::InsideTest(const TriangleMesh& mesh, double band, double cell) {
   const double dims[3] = {static_cast<double>(grid_.dims[0]), static_cast<double>(grid_.dims[1]),
                           static_cast<double>(grid_.dims[2])};
 
-  // Buckets in xy of about four cells, for the exact test.
-  bucket_ = 4.0 * side;
+  // Buckets in xy of a cell, or larger so that there are at most about a million: a vertical
+  // line then meets few triangles besides those it crosses. Each bucket lists its triangles
+  // twice, by falling top and by rising bottom, so that a winding number reads only those that
+  // reach above its point, or on a closed mesh those that reach below, whichever are fewer.
+  const double columns = dims[0] * dims[1];
+  bucket_ = side * std::max(1.0, std::ceil(std::sqrt(columns / kMaxBuckets)));
   bucket_origin_ = origin;
-  bucket_dims_[0] = static_cast<int>(std::ceil(dims[0] / 4.0));
-  bucket_dims_[1] = static_cast<int>(std::ceil(dims[1] / 4.0));
+  bucket_dims_[0] = static_cast<int>(std::ceil(dims[0] * side / bucket_));
+  bucket_dims_[1] = static_cast<int>(std::ceil(dims[1] * side / bucket_));
   const auto bucket_range = [&](std::size_t t, int axis) {
     const double a = corners_[3 * t][axis], b = corners_[3 * t + 1][axis], c = corners_[3 * t + 2][axis];
     const double lo_f = (std::min({a, b, c}) - bucket_origin_[axis]) / bucket_;
@@ -70,26 +97,41 @@ InsideTest::InsideTest(const TriangleMesh& mesh, double band, double cell) {
     return std::pair<int, int>{std::clamp(static_cast<int>(std::floor(lo_f)), 0, bucket_dims_[axis] - 1),
                                std::clamp(static_cast<int>(std::floor(hi_f)), 0, bucket_dims_[axis] - 1)};
   };
-  bucket_start_.assign(static_cast<std::size_t>(bucket_dims_[0]) * bucket_dims_[1] + 1, 0);
-  for (int pass = 0; pass < 2; ++pass) {
-    std::vector<std::uint32_t> fill(bucket_start_.begin(), bucket_start_.end() - 1);
-    for (std::size_t t = 0; t < triangles; ++t) {
-      const auto [x0, x1] = bucket_range(t, 0);
-      const auto [y0, y1] = bucket_range(t, 1);
-      for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x) {
-          const std::size_t b = static_cast<std::size_t>(y) * bucket_dims_[0] + x;
-          if (pass == 0)
-            ++bucket_start_[b + 1];
-          else
-            bucket_triangles_[fill[b]++] = static_cast<std::uint32_t>(t);
-        }
-    }
-    if (pass == 0) {
-      for (std::size_t b = 1; b < bucket_start_.size(); ++b) bucket_start_[b] += bucket_start_[b - 1];
-      bucket_triangles_.resize(bucket_start_.back());
-    }
+  // A crossing's height is a weighted mean of the corners' heights: it can pass the highest or
+  // lowest corner by rounding, never by a billionth of the heights.
+  std::vector<double> top(triangles), bottom(triangles);
+  for (std::size_t t = 0; t < triangles; ++t) {
+    const double a = corners_[3 * t].z(), b = corners_[3 * t + 1].z(), c = corners_[3 * t + 2].z();
+    const double margin = 1e-9 * std::max({std::abs(a), std::abs(b), std::abs(c)});
+    top[t] = std::max({a, b, c}) + margin;
+    bottom[t] = std::min({a, b, c}) - margin;
   }
+  const auto for_each_bucket = [&](std::uint32_t t, auto&& visit) {
+    const auto [x0, x1] = bucket_range(t, 0);
+    const auto [y0, y1] = bucket_range(t, 1);
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) visit(static_cast<std::size_t>(y) * bucket_dims_[0] + x);
+  };
+  bucket_start_.assign(static_cast<std::size_t>(bucket_dims_[0]) * bucket_dims_[1] + 1, 0);
+  for (std::uint32_t t = 0; t < triangles; ++t) for_each_bucket(t, [&](std::size_t b) { ++bucket_start_[b + 1]; });
+  for (std::size_t b = 1; b < bucket_start_.size(); ++b) bucket_start_[b] += bucket_start_[b - 1];
+  for (const bool falling : {true, false}) {
+    std::vector<std::uint32_t> order(triangles);
+    for (std::uint32_t t = 0; t < triangles; ++t) order[t] = t;
+    const std::vector<double>& height = falling ? top : bottom;
+    std::sort(order.begin(), order.end(),
+              [&](std::uint32_t s, std::uint32_t t) { return falling ? height[s] > height[t] : height[s] < height[t]; });
+    ByHeight& list = falling ? from_top_ : from_bottom_;
+    list.triangles.resize(bucket_start_.back());
+    list.heights.resize(bucket_start_.back());
+    std::vector<std::uint32_t> fill(bucket_start_.begin(), bucket_start_.end() - 1);
+    for (const std::uint32_t t : order)
+      for_each_bucket(t, [&](std::size_t b) {
+        list.triangles[fill[b]] = t;
+        list.heights[fill[b]++] = height[t];
+      });
+  }
+  closed_ = is_closed(mesh);
 
   const std::vector<bool> inside = inside_centres(grid_);
   cells_.resize(inside.size());
@@ -183,9 +225,29 @@ int InsideTest::winding_number(const Vec3& p) const {
   const double fx = (p.x() - bucket_origin_.x()) / bucket_, fy = (p.y() - bucket_origin_.y()) / bucket_;
   if (!(fx >= 0.0 && fy >= 0.0 && fx < bucket_dims_[0] && fy < bucket_dims_[1])) return 0;
   const std::size_t b = static_cast<std::size_t>(fy) * bucket_dims_[0] + static_cast<std::size_t>(fx);
+  const std::uint32_t first = bucket_start_[b], last = bucket_start_[b + 1];
+  const double* tops = from_top_.heights.data();
+  const double* bottoms = from_bottom_.heights.data();
+  const std::uint32_t above = static_cast<std::uint32_t>(
+      std::partition_point(tops + first, tops + last, [&](double h) { return h > p.z(); }) - tops);
   int winding = 0;
-  for (std::uint32_t k = bucket_start_[b]; k < bucket_start_[b + 1]; ++k) {
-    const std::size_t t = bucket_triangles_[k];
+  if (closed_) {
+    // On a closed mesh every vertical line crosses as much one way as the other, so the
+    // crossings at and below p, counted the other way, give the same number.
+    const std::uint32_t below = static_cast<std::uint32_t>(
+        std::partition_point(bottoms + first, bottoms + last, [&](double h) { return h <= p.z(); }) - bottoms);
+    if (below - first < above - first) {
+      for (std::uint32_t k = first; k < below; ++k) {
+        const std::size_t t = from_bottom_.triangles[k];
+        double z;
+        const int sign = vertical_crossing(corners_[3 * t], corners_[3 * t + 1], corners_[3 * t + 2], p.x(), p.y(), z);
+        if (sign && z <= p.z()) winding -= sign;
+      }
+      return winding;
+    }
+  }
+  for (std::uint32_t k = first; k < above; ++k) {
+    const std::size_t t = from_top_.triangles[k];
     double z;
     const int sign = vertical_crossing(corners_[3 * t], corners_[3 * t + 1], corners_[3 * t + 2], p.x(), p.y(), z);
     if (sign && z > p.z()) winding += sign;

@@ -14,6 +14,7 @@
 #include "dla/mesh/shapes.h"
 #include "dla/mesh/surface_distance.h"
 #include "dla/io/svg_writer.h"
+#include "mesh_util.h"
 #include "test_util.h"
 
 #include <gtest/gtest.h>
@@ -145,18 +146,57 @@ TEST(Attributes, AMillionParticlesInWellUnderASecond) {
   EXPECT_EQ(a.strahler(0), 1);
 }
 
+// Embree's point queries against a scan of every triangle: far away, near the surface (where
+// the floats' rounding matters), from any hint, and on a mesh with a degenerate triangle.
 TEST(SurfaceDistance, ClosestPointsMatchBruteForce) {
-  const MeshConstraint ball(make_sphere(Vec3(1, 2, 3), 10.0, 12, 24), {}, 0.5);
-  const SurfaceDistance surface(ball.mesh());
+  TriangleMesh mesh = make_sphere(Vec3(1, 2, 3), 10.0, 12, 24);
+  mesh.triangles.push_back({0, 1, 1});  // a degenerate triangle: a segment
+  const SurfaceDistance surface(mesh);
   std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> u(-20, 20);
-  for (int i = 0; i < 300; ++i) {
-    const Vec3 p(u(rng), u(rng), u(rng));
-    const double brute = ball.distance_to_surface(p);
-    ASSERT_NEAR(surface.distance(p), brute, 1e-9 * (1 + brute)) << p.transpose();
-    EXPECT_NEAR(ball.distance_to_surface(surface.closest_point(p)), 0.0, 1e-9);
+  std::uniform_real_distribution<double> u(-20, 20), unit(0, 1);
+  std::uniform_int_distribution<std::uint32_t> any(0, static_cast<std::uint32_t>(mesh.triangles.size() - 1));
+  for (int i = 0; i < 600; ++i) {
+    Vec3 p(u(rng), u(rng), u(rng));
+    if (i % 2) {  // within a millionth of a point of the surface
+      const auto& t = mesh.triangles[any(rng) % (mesh.triangles.size() - 1)];
+      double a = unit(rng), b = unit(rng);
+      if (a + b > 1) a = 1 - a, b = 1 - b;
+      const Vec3 &x = mesh.vertices[t[0]], &y = mesh.vertices[t[1]], &z = mesh.vertices[t[2]];
+      p = x + a * (y - x) + b * (z - x) + 1e-6 * (2 * unit(rng) - 1) * (y - x).cross(z - x).normalized();
+    }
+    const double brute = testing::brute_distance(mesh, p);
+    const SurfaceDistance::Closest closest = surface.closest(p);
+    ASSERT_NEAR((closest.point - p).norm(), brute, 1e-12 * (1 + brute)) << p.transpose();
+    const auto& t = mesh.triangles[closest.triangle];
+    EXPECT_NEAR(testing::brute_distance({mesh.vertices, {t}, {}}, closest.point), 0.0, 1e-9);
+    // A hint only speeds the search: any triangle, far or near, gives the same point.
+    for (const std::uint32_t hint : {any(rng), closest.triangle, SurfaceDistance::kNoHint}) {
+      const SurfaceDistance::Closest hinted = surface.closest(p, hint);
+      ASSERT_EQ(hinted.triangle, closest.triangle);
+      ASSERT_EQ(hinted.point, closest.point);
+    }
   }
+  // Beyond the range of floats, the scan answers.
+  EXPECT_NEAR(surface.distance(Vec3(1e100, 2, 3)), 1e100, 1e86);
   EXPECT_THROW(SurfaceDistance(TriangleMesh{}), InvalidInput);
+}
+
+// Where two triangles are equally near, the one listed first is the answer, from every hint.
+TEST(SurfaceDistance, TiesGoToTheTriangleListedFirst) {
+  const TriangleMesh box = make_box(Vec3::Zero(), Vec3(2, 2, 2));
+  const SurfaceDistance surface(box);
+  const Vec3 center(1, 1, 1);  // as near to all twelve
+  std::uint32_t first = 0;  // the least (squared distance, index)
+  double least = std::numeric_limits<double>::infinity();
+  for (std::uint32_t t = 0; t < box.triangles.size(); ++t) {
+    const auto& tri = box.triangles[t];
+    const double d = (closest_point_on_triangle(center, box.vertices[tri[0]], box.vertices[tri[1]], box.vertices[tri[2]]) -
+                      center).squaredNorm();
+    if (d < least) least = d, first = t;
+  }
+  EXPECT_NEAR(least, 1.0, 1e-12);
+  for (std::uint32_t hint = 0; hint < box.triangles.size(); ++hint) ASSERT_EQ(surface.closest(center, hint).triangle, first);
+  EXPECT_EQ(surface.closest(center).triangle, first);
 }
 
 TEST(Attributes, BoundaryDistanceIsTheSurfacesOnAnyThreadCount) {
@@ -168,7 +208,7 @@ TEST(Attributes, BoundaryDistanceIsTheSurfacesOnAnyThreadCount) {
   const Attributes two = compute_attributes(c, {&surface, nullptr, 2});
   ASSERT_EQ(one.boundary_distance, two.boundary_distance);
   for (std::size_t i = 0; i < c.particles.size(); i += 97)
-    ASSERT_NEAR(one.boundary_distance[i], ball.distance_to_surface(c.particles[i].position), 1e-5);
+    ASSERT_NEAR(one.boundary_distance[i], testing::brute_distance(ball.mesh(), c.particles[i].position), 1e-5);
 }
 
 TEST(Attributes, TipGapsAreTheSameOnAnyThreadCount) {

@@ -296,7 +296,8 @@ TEST(MeshRepair, AllDegenerateIsAnError) {
 }
 
 // The exact winding number against solid angles, and the grid against the exact test, at
-// random points around `mesh`.
+// random points around `mesh` and as many within a millionth of its surface (the surface spawn
+// asks there), on either side.
 void expect_inside_test_matches(const TriangleMesh& mesh, int samples, std::uint64_t seed) {
   const double band = 0.3;
   const InsideTest test(mesh, band, 0.25);
@@ -304,12 +305,24 @@ void expect_inside_test_matches(const TriangleMesh& mesh, int samples, std::uint
   const Vec3 lo = box.min.array() - 1.0, hi = box.max.array() + 1.0;
   Rng rng(seed);
   int inside = 0;
-  for (int i = 0; i < samples; ++i) {
+  for (int i = 0; i < 2 * samples; ++i) {
     Vec3 p;
-    for (int a = 0; a < 3; ++a) p[a] = lo[a] + (hi[a] - lo[a]) * rng.uniform();
+    if (i < samples) {
+      for (int a = 0; a < 3; ++a) p[a] = lo[a] + (hi[a] - lo[a]) * rng.uniform();
+    } else {
+      const auto& t = mesh.triangles[std::min(mesh.triangles.size() - 1,
+                                              static_cast<std::size_t>(rng.uniform() * mesh.triangles.size()))];
+      double u = rng.uniform(), v = rng.uniform();
+      if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
+      const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
+      const Vec3 normal = (b - a).cross(c - a).normalized();
+      if (!normal.allFinite()) continue;
+      p = a + u * (b - a) + v * (c - a) + (rng.uniform() < 0.5 ? -1e-6 : 1e-6) * normal;
+    }
     const double gwn = testing::generalized_winding_number(mesh, p);
     if (std::abs(gwn - std::round(gwn)) > 1e-6) continue;  // on the surface, up to rounding
     ASSERT_EQ(test.winding_number(p), static_cast<int>(std::lround(gwn))) << p.transpose();
+    if (i >= samples) continue;
     inside += test.contains(p);
     const Region region = test.region(p);
     if (region != Region::surface) {
@@ -358,6 +371,42 @@ TEST(InsideTest, CountsOverlapsOfASelfIntersectingMesh) {
   EXPECT_EQ(test.winding_number(Vec3(1, 1, 0.5)), 1);
   EXPECT_EQ(test.winding_number(Vec3(1.25, 0.75, 1.5)), 1);
   EXPECT_EQ(test.winding_number(Vec3(2.5, 1.5, 1.5)), 1);
+}
+
+// Two overlapping boxes are closed, so the winding number may count below a point as well as
+// above it: the overlap still counts twice, at random points and near every face.
+TEST(InsideTest, CountsOverlapsNearTheSurface) {
+  TriangleMesh two = make_box(Vec3::Zero(), Vec3(2, 2, 2));
+  append(two, make_box(Vec3(1, 1, 1), Vec3(3, 3, 3)));
+  expect_inside_test_matches(two, 3000, 6);
+}
+
+// A mesh with a hole keeps the ray up: the crossings above a point, as a scan of every triangle
+// counts them.
+TEST(InsideTest, AnOpenMeshCountsTheCrossingsAbove) {
+  const TriangleMesh open = read_mesh(TEST_DATA_DIR "/open_box.off");
+  const InsideTest test(open, 0.3, 0.25);
+  const Box box = bounding_box(open);
+  Rng rng(7);
+  int counted = 0;
+  for (int i = 0; i < 3000; ++i) {
+    Vec3 p;
+    for (int a = 0; a < 3; ++a) p[a] = box.min[a] - 1.0 + (box.max[a] - box.min[a] + 2.0) * rng.uniform();
+    int crossings = 0;  // signed, as the normal's z
+    for (const auto& t : open.triangles) {
+      const Vec3 &a = open.vertices[t[0]], &b = open.vertices[t[1]], &c = open.vertices[t[2]];
+      const Vec3 n = (b - a).cross(c - a);
+      if (n.z() == 0.0) continue;
+      const double z = a.z() - (n.x() * (p.x() - a.x()) + n.y() * (p.y() - a.y())) / n.z();
+      const Vec3 q(p.x(), p.y(), z);
+      if (z > p.z() && n.dot((b - a).cross(q - a)) > 0 && n.dot((c - b).cross(q - b)) > 0 &&
+          n.dot((a - c).cross(q - c)) > 0)
+        crossings += n.z() > 0 ? 1 : -1;
+    }
+    ASSERT_EQ(test.winding_number(p), crossings) << p.transpose();
+    counted += crossings != 0;
+  }
+  EXPECT_GT(counted, 100);  // below the box: inside it, the ray leaves by the hole
 }
 
 TEST(InsideTest, MatchesSolidAnglesOnTheBust) {

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -24,6 +25,29 @@ inline double generalized_winding_number(const TriangleMesh& mesh, const Vec3& p
     sum += 2.0 * std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la);
   }
   return sum / (4.0 * 3.14159265358979323846);
+}
+
+//! Distance from p to the nearest triangle, by a scan of every one: the oracle of closest points.
+inline double brute_distance(const TriangleMesh& mesh, const Vec3& p) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& t : mesh.triangles) {
+    const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
+    // The nearest of the face's plane foot (if it falls inside) and the three edges.
+    const Vec3 n = (b - a).cross(c - a);
+    double d = std::numeric_limits<double>::infinity();
+    if (n.squaredNorm() > 0.0) {
+      const Vec3 foot = p - n * (n.dot(p - a) / n.squaredNorm());
+      if (n.dot((b - a).cross(foot - a)) >= 0 && n.dot((c - b).cross(foot - b)) >= 0 && n.dot((a - c).cross(foot - c)) >= 0)
+        d = (p - foot).norm();
+    }
+    for (const auto& [u, v] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}}) {
+      const double len2 = (v - u).squaredNorm();
+      const double s = len2 > 0.0 ? std::clamp((p - u).dot(v - u) / len2, 0.0, 1.0) : 0.0;
+      d = std::min(d, (p - (u + s * (v - u))).norm());
+    }
+    best = std::min(best, d);
+  }
+  return best;
 }
 
 //! Parameters t in [0, 1] where from + t (to - from) meets a triangle: the smallest, or -1.

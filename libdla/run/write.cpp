@@ -15,9 +15,11 @@
 
 #include <malloc.h>
 
+#include <algorithm>
 #include <chrono>
 #include <future>
 #include <memory>
+#include <thread>
 
 namespace dla {
 
@@ -113,13 +115,13 @@ FilesWritten write_files(const Cluster& cluster, const OutputOptions& files, con
   // The writers' threads free buffers of a few hundred kB: mapped, not kept in each thread's
   // heap, where glibc's adaptive threshold would leave them (about 1 byte a particle at 10^7).
   mallopt(M_MMAP_THRESHOLD, 128 * 1024);
-  const Look look = [&] {
-    // The distance to the mesh feeds the boundary model and the scene's switch to it.
-    const std::unique_ptr<SurfaceDistance> surface =
-        context.constraint ? std::make_unique<SurfaceDistance>(context.constraint->mesh()) : nullptr;
-    // The tips' gaps only for the files with instancing points: PREFIX_tips.ply and .inc.
-    return make_look(cluster, files.look, {surface.get(), nullptr, context.threads, files.formats.tips});
-  }();
+  // The distance to the mesh feeds the boundary model and the scene's switch to it; measured
+  // on every core, as the files do not depend on how many. The tips' gaps only for the files
+  // with instancing points: PREFIX_tips.ply and .inc.
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const Look look = make_look(cluster, files.look,
+                              {context.constraint ? &context.constraint->surface() : nullptr, nullptr,
+                               std::max(context.threads, cores), files.formats.tips});
   // The solid's plan first: a solid that would not fit is refused before any file is written.
   const SolidPlan plan = files.formats.solid() ? plan_solid(cluster, look.radii(cluster), files.solid) : SolidPlan{};
   const WriteJob job{cluster, look, files, pov, context.scene_mesh};

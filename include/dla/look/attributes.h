@@ -175,9 +175,16 @@ inline Attributes compute_attributes(const Cluster& cluster, const AttributeOpti
 
   if (options.surface) {
     a.boundary_distance.resize(n);
+    std::vector<std::uint32_t> nearest(n);  // each particle's closest triangle
     const auto measure = [&](std::size_t from, std::size_t to) {
-      for (std::size_t i = from; i < to; ++i)
-        a.boundary_distance[i] = static_cast<float>(options.surface->distance(ps[i].position));
+      for (std::size_t i = from; i < to; ++i) {
+        // The parent's closest triangle, if measured on this thread, starts the search.
+        const auto parent = static_cast<std::size_t>(ps[i].parent);
+        const SurfaceDistance::Closest closest = options.surface->closest(
+            ps[i].position, ps[i].parent >= 0 && parent >= from && parent < i ? nearest[parent] : SurfaceDistance::kNoHint);
+        nearest[i] = closest.triangle;
+        a.boundary_distance[i] = static_cast<float>((closest.point - ps[i].position).norm());
+      }
     };
     const auto threads = static_cast<std::size_t>(std::min<std::size_t>(static_cast<std::size_t>(options.threads), n / 4096 + 1));
     std::vector<std::thread> helpers;

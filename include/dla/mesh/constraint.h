@@ -129,8 +129,10 @@ class MeshConstraint {
   //! `--side both`, or for more than 500,000 spacings of curve.
   std::vector<Vec3> sample_intersection(const std::vector<TriangleMesh>& others, std::uint64_t rng_seed) const;
 
-  //! Distance from p to the nearest triangle (a scan of every triangle: for set-up and tests).
+  //! Distance from p to the nearest triangle.
   double distance_to_surface(const Vec3& p) const;
+  //! Closest points of the surface: what the look measures, and vessels push out to.
+  const SurfaceDistance& surface() const { return surface_; }
 
  private:
   Vec3 surface_point(Rng& rng, Vec3* normal) const;
@@ -150,11 +152,16 @@ class MeshConstraint {
   Vec3 centroid_;              // of the enclosed volume, for the radial spawn
   double gap_ = 0.0;           // how far short of the surface a clipped branch ends
   std::vector<double> area_prefix_;  // cumulative triangle areas, to sample the surface
+  std::vector<std::uint32_t> area_guide_;  // the first prefix past each slice's start
+  //! Where the j-th of area_prefix_.size() equal slices of the total area starts.
+  double slice_start(std::size_t j) const {
+    return area_prefix_.back() * (static_cast<double>(j) / static_cast<double>(area_prefix_.size()));
+  }
   InsideTest inside_;
   SurfaceIntersector hits_;
+  SurfaceDistance surface_;
   double shell_thickness_ = 0.0;
   std::unique_ptr<ShellBand> shell_;              // with a shell: where walkers may go
-  std::unique_ptr<SurfaceDistance> distance_;     // with a shell: the exact test for particles
 };
 
 //! `count` of `points`, far apart: the one nearest their mean first, then each the farthest

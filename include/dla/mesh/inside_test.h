@@ -77,11 +77,19 @@ class InsideTest {
 
  private:
   std::vector<Vec3> corners_;  // three per triangle
-  // Triangles by xy bucket (compressed rows), for winding_number().
+  // Triangles by xy bucket (compressed rows), for winding_number(): highest top first, with the
+  // height above which each cannot be crossed, and lowest bottom first, with the height below
+  // which it cannot.
+  struct ByHeight {
+    std::vector<std::uint32_t> triangles;
+    std::vector<double> heights;
+  };
   Vec3 bucket_origin_;
   double bucket_ = 1.0;
   int bucket_dims_[2] = {0, 0};
-  std::vector<std::uint32_t> bucket_start_, bucket_triangles_;
+  std::vector<std::uint32_t> bucket_start_;
+  ByHeight from_top_, from_bottom_;
+  bool closed_ = false;  // every edge used as often one way as the other
   VoxelGrid grid_;
   std::vector<Region> cells_;
 };

@@ -160,13 +160,13 @@ inline CollisionMode parse_collision_mode(std::string_view word) {
 }
 
 //! A collision object: a mesh given as a signed distance, negative inside. The distance is the
-//! exact one to the closest point of a triangle (CGAL's AABB tree); the sign is the winding
+//! exact one to the closest point of a triangle (surface_distance.h); the sign is the winding
 //! number of the repaired mesh (inside_test.h), right on open and self-intersecting meshes.
 class CollisionObject {
  public:
   //! Repairs `mesh` as a constraint inside it would (closing holes), for `spacing`.
   CollisionObject(const TriangleMesh& mesh, double spacing, CollisionMode mode)
-      : solid_(mesh, ConstraintOptions{}, spacing), surface_(solid_.mesh()), mode_(mode) {}
+      : solid_(mesh, ConstraintOptions{}, spacing), mode_(mode) {}
 
   CollisionMode mode() const { return mode_; }
   const TriangleMesh& mesh() const { return solid_.mesh(); }
@@ -175,7 +175,7 @@ class CollisionObject {
 
   //! The signed distance at p (negative inside), and the surface's closest point.
   double signed_distance(const Vec3& p, Vec3* closest = nullptr) const {
-    const Vec3 c = surface_.closest_point(p);
+    const Vec3 c = solid_.surface().closest_point(p);
     if (closest) *closest = c;
     const double d = (p - c).norm();
     return inside(p) ? -d : d;
@@ -186,11 +186,11 @@ class CollisionObject {
   //! whole `step` along the surface that way: a step into the surface would otherwise shrink to
   //! nothing, and the veins to a heap of twigs.
   Vec3 apply(const Vec3& from, const Vec3& p, double step) const {
-    if (mode_ == CollisionMode::push) return inside(p) ? surface_.closest_point(p) : p;
-    const Vec3 closest = surface_.closest_point(p);
+    if (mode_ == CollisionMode::push) return inside(p) ? solid_.surface().closest_point(p) : p;
+    const Vec3 closest = solid_.surface().closest_point(p);
     const Vec3 along = closest - from;
     if (along.squaredNorm() <= 1e-18 * step * step) return closest;
-    return surface_.closest_point(from + step * along.normalized());
+    return solid_.surface().closest_point(from + step * along.normalized());
   }
 
  private:
@@ -201,7 +201,6 @@ class CollisionObject {
   }
 
   MeshConstraint solid_;
-  SurfaceDistance surface_;
   CollisionMode mode_;
 };
 
