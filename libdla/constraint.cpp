@@ -272,8 +272,10 @@ std::string colors_used(const std::vector<Vec3>& colors) {
 
 Vec3 MeshConstraint::beside(const Vec3& s, const Vec3& normal, Rng& rng) const {
   if (!solid(options_.side)) return s + (rng.uniform() < 0.5 ? 0.5 : -0.5) * spacing_ * normal;  // either side grows
-  // The normal's orientation is not trusted: take whichever side is the growing one.
-  for (const double side : {0.5, -0.5}) {
+  // The normal's orientation is not trusted: take whichever side is the growing one, trying
+  // first the one an outward normal (repair_mesh() turns them out) says it is.
+  const double first = options_.side == Side::inside ? -0.5 : 0.5;
+  for (const double side : {first, -first}) {
     const Vec3 p = s + side * spacing_ * normal;
     if (encloses(p) == (options_.side == Side::inside)) return p;
   }

@@ -122,23 +122,30 @@ TEST(Cli, TheMainJobGrowsTwoSeedsInTheBust) {
 
 // The README's main job: the default surface spawn gets walkers into the thin horns, so the
 // roots reach their tips (the volume spawn left them three units, 8 spacings, short).
+// How near a run's particles come to a horn's tip varies from 0.4 to 2.6 between seeds; over
+// three seeds and both horns it is about 0.9 with the surface spawn, and 3.4 with `--spawn
+// inside`, whose walkers seldom find their way up a horn.
 TEST(Cli, TheMainJobReachesIntoTheBustsHorns) {
   DLA_NEED_BUST(bust);
   ScratchDir dir;
   ASSERT_EQ(dla3d(dir, "convert '" + bust + "' bust.stl").exit_code, 0);
-  const CliRun run = dla3d(dir, "--stl bust.stl --seeds 2 --formats csv -q");
-  ASSERT_EQ(run.exit_code, 0) << run.err;
-  const dla::Cluster grown = dla::read_csv(dir / "dla.csv");
-  ASSERT_EQ(grown.particles.size(), 30002u) << "the default count with a mesh, and two seeds";
   // The horns rise from the forehead (y < -6, the face side) on either side of x = 0.
   dla::Vec3 tips[2] = {dla::Vec3(0, 0, -1e9), dla::Vec3(0, 0, -1e9)};
   for (const dla::Vec3& v : dla::read_mesh(bust).vertices)
     if (v.y() < -6.0 && v.z() > tips[v.x() < 0.0].z()) tips[v.x() < 0.0] = v;
-  for (const dla::Vec3& tip : tips) {
-    double nearest = 1e9;
-    for (const dla::Particle& p : grown.particles) nearest = std::min(nearest, (p.position - tip).norm());
-    EXPECT_LT(nearest, 1.2) << "horn tip " << tip.transpose() << ": 3 spacings of 0.4";
+  double sum = 0.0;
+  for (int seed = 1; seed <= 3; ++seed) {
+    const CliRun run = dla3d(dir, "--stl bust.stl --seeds 2 --formats csv -q --rng-seed " + std::to_string(seed));
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const dla::Cluster grown = dla::read_csv(dir / "dla.csv");
+    ASSERT_EQ(grown.particles.size(), 30002u) << "the default count with a mesh, and two seeds";
+    for (const dla::Vec3& tip : tips) {
+      double nearest = 1e9;
+      for (const dla::Particle& p : grown.particles) nearest = std::min(nearest, (p.position - tip).norm());
+      sum += nearest;
+    }
   }
+  EXPECT_LT(sum / 6.0, 1.6) << "4 spacings of 0.4 from the horns' tips, on average";
 }
 
 //! `dla3d ARGS` (words split at spaces), stopped by `signal` once it catches it.
