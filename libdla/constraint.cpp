@@ -72,6 +72,12 @@ MeshConstraint::MeshConstraint(const TriangleMesh& mesh, const ConstraintOptions
       inside_(mesh_, spacing + gap_, spacing),
       hits_(mesh_),
       surface_(mesh_) {
+  if (solid(options.side)) {
+    const Region wrong = options.side == Side::inside ? Region::outside : Region::inside;
+    lost_cells_.assign((inside_.cell_count() + 63) / 64, 0);
+    for (std::size_t cell = 0; cell < inside_.cell_count(); ++cell)
+      lost_cells_[cell >> 6] |= std::uint64_t{inside_.cell_region(cell) == wrong} << (cell & 63);
+  }
   // Cumulative areas, and the volume's centroid by the divergence theorem.
   area_prefix_.reserve(mesh_.triangles.size());
   double area = 0.0, volume = 0.0;
@@ -276,8 +282,9 @@ Vec3 MeshConstraint::beside(const Vec3& s, const Vec3& normal, Rng& rng) const {
   // first the one an outward normal (repair_mesh() turns them out) says it is.
   const double first = options_.side == Side::inside ? -0.5 : 0.5;
   for (const double side : {first, -first}) {
+    // Half a spacing off the surface is always in a surface cell of the grid: no look-up.
     const Vec3 p = s + side * spacing_ * normal;
-    if (encloses(p) == (options_.side == Side::inside)) return p;
+    if (inside_.contains(p) == (options_.side == Side::inside)) return p;
   }
   return Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
 }

@@ -74,6 +74,9 @@ class InsideTest {
 
   double cell_size() const { return grid_.cell; }
   std::size_t cell_count() const { return cells_.size(); }
+  //! The grid's cell holding p, or cell_count() beyond it; and a cell's answer.
+  std::size_t cell_of(const Vec3& p) const { return grid_.index(p); }
+  Region cell_region(std::size_t cell) const { return cells_[cell]; }
 
  private:
   std::vector<Vec3> corners_;  // three per triangle
