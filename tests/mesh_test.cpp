@@ -297,8 +297,8 @@ TEST(MeshRepair, AllDegenerateIsAnError) {
 
 // The exact winding number against solid angles, and the grid against the exact test, at
 // random points around `mesh` and as many within a millionth of its surface (the surface spawn
-// asks there), on either side.
-void expect_inside_test_matches(const TriangleMesh& mesh, int samples, std::uint64_t seed) {
+// asks there), on either side. At least one in `part` of the random points falls on each side.
+void expect_inside_test_matches(const TriangleMesh& mesh, int samples, std::uint64_t seed, int part = 20) {
   const double band = 0.3;
   const InsideTest test(mesh, band, 0.25);
   const Box box = bounding_box(mesh);
@@ -329,8 +329,8 @@ void expect_inside_test_matches(const TriangleMesh& mesh, int samples, std::uint
       EXPECT_EQ(test.contains(p), region == Region::inside) << p.transpose();
     }
   }
-  EXPECT_GT(inside, samples / 20);
-  EXPECT_LT(inside, samples - samples / 20);
+  EXPECT_GT(inside, samples / part);
+  EXPECT_LT(inside, samples - samples / part);
 }
 
 TEST(InsideTest, MatchesSolidAnglesOnAClosedMesh) {
@@ -407,6 +407,23 @@ TEST(InsideTest, AnOpenMeshCountsTheCrossingsAbove) {
     counted += crossings != 0;
   }
   EXPECT_GT(counted, 100);  // below the box: inside it, the ray leaves by the hole
+}
+
+// CGAL's meshes, repaired as a constraint repairs them: three bodies in one mesh, and shapes
+// with thin limbs (an elephant's trunk, a hand's fingers, a cactus' arms).
+TEST(InsideTest, MatchesSolidAnglesOnCgalsMeshes) {
+  int checked = 0;
+  for (const char* name : {"blobby_3cc", "elephant", "hand", "cactus"}) {
+    const std::string path = std::string(CGAL_MESHES_DIR) + "/" + name + ".off";
+    if (!std::filesystem::exists(path)) continue;
+    SCOPED_TRACE(name);
+    TriangleMesh mesh = repair_mesh(read_mesh(path));
+    const Box box = bounding_box(mesh);
+    for (Vec3& v : mesh.vertices) v = (v - box.min) * (10.0 / (box.max - box.min).maxCoeff());  // 10 long
+    expect_inside_test_matches(mesh, 400, 8, 50);  // the elephant fills 4% of its box
+    ++checked;
+  }
+  if (checked == 0) GTEST_SKIP() << "CGAL's meshes are missing: install libcgal-demo and run cmake again";
 }
 
 TEST(InsideTest, MatchesSolidAnglesOnTheBust) {
