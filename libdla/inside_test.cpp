@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 
 namespace dla {
 
@@ -106,11 +107,35 @@ InsideTest::InsideTest(const TriangleMesh& mesh, double band, double cell) {
     top[t] = std::max({a, b, c}) + margin;
     bottom[t] = std::min({a, b, c}) - margin;
   }
+  // The buckets a triangle's xy shadow touches, row by row: a long slanted triangle (a fan of a
+  // CAD model's cap) would claim many more by its bounding box. Each row's span is the shadow's
+  // within the row's strip, from where the edges enter and leave it, widened by far more than
+  // rounding so that no bucket a vertical line crosses the triangle in is missed.
   const auto for_each_bucket = [&](std::uint32_t t, auto&& visit) {
+    const Vec3* corner = &corners_[3 * t];
     const auto [x0, x1] = bucket_range(t, 0);
     const auto [y0, y1] = bucket_range(t, 1);
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) visit(static_cast<std::size_t>(y) * bucket_dims_[0] + x);
+    const double widen = 1e-9 * (bucket_ + corner[0].cwiseAbs().maxCoeff() + corner[1].cwiseAbs().maxCoeff() +
+                                 corner[2].cwiseAbs().maxCoeff() + bucket_origin_.cwiseAbs().maxCoeff());
+    for (int y = y0; y <= y1; ++y) {
+      const double strip_lo = bucket_origin_.y() + y * bucket_ - widen, strip_hi = strip_lo + bucket_ + 2 * widen;
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (int e = 0; e < 3; ++e) {
+        const Vec3 &u = corner[e], &v = corner[(e + 1) % 3];
+        const double e_lo = std::max(strip_lo, std::min(u.y(), v.y())), e_hi = std::min(strip_hi, std::max(u.y(), v.y()));
+        if (e_lo > e_hi) continue;  // the edge misses the strip
+        for (const double at : {e_lo, e_hi}) {
+          const double s = u.y() == v.y() ? 0.0 : std::clamp((at - u.y()) / (v.y() - u.y()), 0.0, 1.0);
+          const double x = u.y() == v.y() ? std::min(u.x(), v.x()) : u.x() + s * (v.x() - u.x());
+          lo = std::min(lo, x);
+          hi = std::max(hi, u.y() == v.y() ? std::max(u.x(), v.x()) : x);
+        }
+      }
+      if (!(lo <= hi)) continue;
+      const int from = std::max(x0, static_cast<int>(std::floor((lo - widen - bucket_origin_.x()) / bucket_)));
+      const int to = std::min(x1, static_cast<int>(std::floor((hi + widen - bucket_origin_.x()) / bucket_)));
+      for (int x = from; x <= to; ++x) visit(static_cast<std::size_t>(y) * bucket_dims_[0] + x);
+    }
   };
   bucket_start_.assign(static_cast<std::size_t>(bucket_dims_[0]) * bucket_dims_[1] + 1, 0);
   for (std::uint32_t t = 0; t < triangles; ++t) for_each_bucket(t, [&](std::size_t b) { ++bucket_start_[b + 1]; });

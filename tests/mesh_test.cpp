@@ -409,6 +409,31 @@ TEST(InsideTest, AnOpenMeshCountsTheCrossingsAbove) {
   EXPECT_GT(counted, 100);  // below the box: inside it, the ray leaves by the hole
 }
 
+// A CAD model's cylinder: caps fanned from their centres into long, thin, slanted triangles,
+// which the buckets take by their shadows, not their bounding boxes.
+TEST(InsideTest, MatchesSolidAnglesOnFannedCaps) {
+  constexpr int segments = 200;
+  TriangleMesh can;
+  can.vertices = {Vec3(0, 0, 0), Vec3(0, 0, 4)};
+  for (int i = 0; i < segments; ++i) {
+    const double a = 2 * 3.14159265358979323846 * i / segments;
+    const Vec3 rim(5 * std::cos(a), 5 * std::sin(a), 0.0);
+    can.vertices.push_back(rim);
+    can.vertices.push_back(rim + Vec3(0, 0, 4));
+  }
+  for (int i = 0; i < segments; ++i) {
+    const auto b = static_cast<std::uint32_t>(2 + 2 * i), n = static_cast<std::uint32_t>(2 + 2 * ((i + 1) % segments));
+    can.triangles.push_back({0, n, b});
+    can.triangles.push_back({1, b + 1, n + 1});
+    can.triangles.push_back({b, n, n + 1});
+    can.triangles.push_back({b, n + 1, b + 1});
+  }
+  // Turned a little about x, so that the caps slant across the columns.
+  const Eigen::Matrix3d tilt = Eigen::AngleAxisd(0.3, Vec3::UnitX()).toRotationMatrix();
+  for (Vec3& v : can.vertices) v = tilt * v;
+  expect_inside_test_matches(can, 2000, 9);
+}
+
 // CGAL's meshes, repaired as a constraint repairs them: three bodies in one mesh, and shapes
 // with thin limbs (an elephant's trunk, a hand's fingers, a cactus' arms).
 TEST(InsideTest, MatchesSolidAnglesOnCgalsMeshes) {
