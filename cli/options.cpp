@@ -101,6 +101,8 @@ OutputWords::OutputWords(CLI::App& app, OutputOptions& f, bool& quiet, std::stri
       ->capture_default_str()->group(looks);
   app.add_option("--tips-within", f.instances.within, "tips: only points within this of the mesh's "
                                                       "surface, in spacings, >= 0")->group(looks);
+  app.add_option("--tips-every", f.instances.every, "tips: keep one point in K, in attach order (sparser leaves), "
+                                                    "1-1000000")->capture_default_str()->group(looks);
   const char* solids = "Solid (stl, 3mf, vdb, solid-glb, solid-obj)";
   app.add_option("--solid-shape", solid_shape_, "what each particle adds: branches (tapered capsules to its parent), "
                                                 "spheres (with --solid-smooth: metaballs) or cubes (lattice sites)")

@@ -246,6 +246,11 @@ void add_look(Table<Options>& t) {
   };
   t["instances"] = [=](Options& o, py::handle v, Given&) { files(o).instances.set = word("instances", v, parse_instance_set); };
   t["tips_within"] = [=](Options& o, py::handle v, Given&) { files(o).instances.within = number("tips_within", v); };
+  t["tips_every"] = [=](Options& o, py::handle v, Given&) {
+    const long long every = whole("tips_every", v);
+    if (every < 1 || every > 1'000'000) throw InvalidInput("`tips_every` " + std::to_string(every) + " is not in 1-1000000");
+    files(o).instances.every = static_cast<int>(every);
+  };
   t["up"] = [=](Options& o, py::handle v, Given&) { files(o).up = word("up", v, parse_axis); };
   t["solid_shape"] = [=](Options& o, py::handle v, Given&) { files(o).solid.shape = word("solid_shape", v, parse_solid_shape); };
   t["solid_voxel"] = [=](Options& o, py::handle v, Given&) { files(o).solid.voxel = number("solid_voxel", v); };

@@ -464,6 +464,38 @@ TEST(Instances, TheSameWhetherTheAttributesHoldTheTipsGapsOrNot) {
   expect_calls(read_file(dir / "all_tips.inc"), every);
 }
 
+TEST(Instances, EveryKthIsKeptAndGrowsIntoTheRoomLeft) {
+  const Cluster c = grown(3000);
+  const Look look = make_look(c, {});
+  const std::vector<Instance> all = instancing_points(c, look.attributes, {});
+  for (const int every : {1, 2, 3, 7, 1'000'000}) {
+    InstanceOptions thin;
+    thin.every = every;
+    const std::vector<Instance> kept = instancing_points(c, look.attributes, thin);
+    ASSERT_EQ(kept.size(), (all.size() + static_cast<std::size_t>(every) - 1) / static_cast<std::size_t>(every));
+    ASSERT_EQ(count_instances(c, look.attributes, thin), kept.size());
+    for (std::size_t k = 0; k < kept.size(); ++k) {
+      const Instance& full = all[k * static_cast<std::size_t>(every)];
+      ASSERT_EQ(kept[k].particle, full.particle) << "the first, the (every + 1)th, ... in attach order";
+      // Half the gap to the nearest point kept: no smaller than among all points.
+      ASSERT_GE(kept[k].scale, full.scale);
+      for (std::size_t j = 0; j < kept.size(); ++j) {
+        if (j == k) continue;
+        ASSERT_LE(kept[k].scale + kept[j].scale, (kept[k].position - kept[j].position).norm());
+      }
+    }
+  }
+  InstanceOptions everything;
+  everything.set = InstanceSet::all;
+  everything.every = 4;
+  EXPECT_EQ(instancing_points(c, look.attributes, everything).size(), (c.particles.size() + 3) / 4);
+  for (const int every : {0, -1, 1'000'001}) {
+    InstanceOptions bad;
+    bad.every = every;
+    EXPECT_THROW(instancing_points(c, look.attributes, bad), InvalidInput) << every;
+  }
+}
+
 TEST(Instances, NearTheBoundaryStayInsideIt) {
   const GrownInBall grown(10.0, 3000);
   const MeshConstraint& ball = grown.ball;

@@ -34,10 +34,16 @@ struct InstanceOptions {
   //! Keep only points within this distance of the mesh's surface, in spacings, >= 0
   //! (`--tips-within`: the thesis' leaves near the boundary); infinity keeps all.
   double within = std::numeric_limits<double>::infinity();
+  //! Keep one point in this many of those the set and `within` pick, in attach order: the
+  //! first, the (every + 1)th, and so on (`--tips-every`: sparser leaves), in [1, 1000000]; 1
+  //! keeps all.
+  int every = 1;
 };
 
 inline void validate(const InstanceOptions& options) {
   if (!(options.within >= 0.0)) throw InvalidInput("tips within " + detail::format_number(options.within) + " is not >= 0");
+  if (options.every < 1 || options.every > 1'000'000)
+    throw InvalidInput("tips every " + std::to_string(options.every) + " is not in 1-1000000");
 }
 
 struct Instance {
@@ -60,17 +66,27 @@ class InstanceSelection {
     validate(options);
     if (near_boundary_ && attributes.boundary_distance.empty())
       throw InvalidInput("`tips_within` measures to a constraint mesh (`stl`)");
+    if (options.every == 1) return;
+    // Thinning needs each point's rank among those picked: kept once, read from any thread.
+    thinned_.resize(cluster.particles.size());
+    std::size_t rank = 0;
+    for (std::size_t i = 0; i < thinned_.size(); ++i)
+      if (picked(i)) thinned_[i] = rank++ % static_cast<std::size_t>(options.every) == 0;
   }
-  bool operator()(std::size_t i) const {
+  bool operator()(std::size_t i) const { return thinned_.empty() ? picked(i) : static_cast<bool>(thinned_[i]); }
+
+ private:
+  //! Whether the set and `within` pick particle i, before thinning.
+  bool picked(std::size_t i) const {
     if (set_ == InstanceSet::tips && !attributes_.tip(i)) return false;
     return !near_boundary_ || attributes_.boundary_distance[i] <= within_;
   }
 
- private:
   const Attributes& attributes_;
   InstanceSet set_;
   double within_;
   bool near_boundary_;
+  std::vector<bool> thinned_;  // with `every` > 1: whether particle i is kept
 };
 
 //! The instancing point at particle i, whose half gap to the nearest other is `gap` spacings
@@ -101,7 +117,7 @@ inline const std::vector<float>& instance_gaps(const Cluster& cluster, const Att
                                                const InstanceOptions& options, const InstanceSelection& selected,
                                                std::vector<float>& measured, int threads = 1) {
   if (options.set == InstanceSet::tips && options.within == std::numeric_limits<double>::infinity() &&
-      !attributes.tip_gaps.empty())
+      options.every == 1 && !attributes.tip_gaps.empty())
     return attributes.tip_gaps;
   std::vector<bool> chosen(cluster.particles.size());
   for (std::size_t i = 0; i < chosen.size(); ++i) chosen[i] = selected(i);
