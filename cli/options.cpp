@@ -103,6 +103,11 @@ OutputWords::OutputWords(CLI::App& app, OutputOptions& f, bool& quiet, std::stri
                                                       "surface, in spacings, >= 0")->group(looks);
   app.add_option("--tips-every", f.instances.every, "tips: keep one point in K, in attach order (sparser leaves), "
                                                     "1-1000000")->capture_default_str()->group(looks);
+  exclude_paint_option_ =
+      app.add_option("--tips-exclude-paint", exclude_paint_, "tips: leave out the points whose closest point of the "
+                                                             "mesh's surface is painted this colour (a name or ff8000), "
+                                                             "within TOLERANCE per channel, [0, 1), default 0.3")
+          ->type_name("COLOR[,TOLERANCE]")->group(looks);
   const char* solids = "Solid (stl, 3mf, vdb, solid-glb, solid-obj)";
   app.add_option("--solid-shape", solid_shape_, "what each particle adds: branches (tapered capsules to its parent), "
                                                 "spheres (with --solid-smooth: metaballs) or cubes (lattice sites)")
@@ -137,6 +142,7 @@ void OutputWords::finish(OutputOptions& f) const {
   if (tip_radius_option_->count()) f.tip_radius = tip_radius_;
   f.look.color_by = parse_color_by(color_by_);
   f.instances.set = parse_instance_set(instance_set_);
+  if (exclude_paint_option_->count()) f.instances.exclude_paint = parse_paint(exclude_paint_, "tips_exclude_paint");
   f.formats = parse_formats(formats_);
   f.solid.shape = parse_solid_shape(solid_shape_);
 }

@@ -41,12 +41,14 @@ class OutputWords {
   void finish(OutputOptions& files) const;
 
  private:
-  std::string up_, radius_model_, color_by_, instance_set_, pov_style_, ply_format_, formats_, solid_shape_;
+  std::string up_, radius_model_, color_by_, instance_set_, pov_style_, ply_format_, formats_, solid_shape_,
+      exclude_paint_;
   double base_radius_ = 0.0, tip_radius_ = 0.0;
   CLI::Option* radius_ = nullptr;
   CLI::Option* base_radius_option_ = nullptr;
   CLI::Option* tip_radius_option_ = nullptr;
   CLI::Option* up_option_ = nullptr;
+  CLI::Option* exclude_paint_option_ = nullptr;
 };
 
 //! Where seeds (colonize: roots) go on the mesh: --seeds, --seed-surface, --seed-paint and

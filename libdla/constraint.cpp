@@ -293,9 +293,7 @@ std::vector<Vec3> MeshConstraint::sample_surface(std::uint64_t rng_seed, const P
   const char* option = paint ? "`seed_paint`" : "`seed_surface`";
   if (options_.side == Side::both && !shell_)
     throw InvalidInput(std::string(option) + " needs a growing side to put the seeds on: `side` inside or outside");
-  if (paint && mesh_.colors.empty())
-    throw InvalidInput("the mesh has no vertex colours for `seed_paint`: paint it, and save it as PLY, OFF or OBJ with "
-                       "its colours");
+  if (paint) require_paint(*paint, "seed_paint");
   // The triangles whose corners' colours could blend to the paint (all of them without paint),
   // by cumulative area.
   std::vector<std::uint32_t> triangles;
@@ -303,24 +301,12 @@ std::vector<Vec3> MeshConstraint::sample_surface(std::uint64_t rng_seed, const P
   double area = 0.0;
   for (std::uint32_t t = 0; t < mesh_.triangles.size(); ++t) {
     const auto& tri = mesh_.triangles[t];
-    if (paint) {
-      Vec3 low = mesh_.colors[tri[0]], high = low;
-      for (int k = 1; k < 3; ++k) {
-        low = low.cwiseMin(mesh_.colors[tri[k]]);
-        high = high.cwiseMax(mesh_.colors[tri[k]]);
-      }
-      if ((low.array() > paint->color.array() + paint->tolerance).any() ||
-          (high.array() < paint->color.array() - paint->tolerance).any())
-        continue;
-    }
+    if (paint && !paint->may_match(mesh_.colors[tri[0]], mesh_.colors[tri[1]], mesh_.colors[tri[2]])) continue;
     const Vec3 &a = mesh_.vertices[tri[0]], &b = mesh_.vertices[tri[1]], &c = mesh_.vertices[tri[2]];
     area += 0.5 * (b - a).cross(c - a).norm();
     triangles.push_back(t);
     prefix.push_back(area);
   }
-  if (triangles.empty())
-    throw InvalidInput("no part of the mesh is painted within " + detail::format_number(paint->tolerance) + " of " +
-                       hex(paint->color) + "; its colours: " + colors_used(mesh_.colors));
   require_seedable(area / (spacing_ * spacing_), "spacings² of surface", option);
   Rng rng(rng_seed, ~std::uint64_t{1});  // a stream no walker and no other seeding uses
   Darts darts(spacing_);
@@ -344,6 +330,16 @@ std::vector<Vec3> MeshConstraint::sample_surface(std::uint64_t rng_seed, const P
     throw InvalidInput("the painted part of the mesh is too small for a seed at a spacing of " +
                        detail::format_number(spacing_) + ": use a smaller spacing or a larger `seed_paint` tolerance");
   return std::move(darts.points);
+}
+
+void MeshConstraint::require_paint(const Paint& paint, const char* option) const {
+  if (mesh_.colors.empty())
+    throw InvalidInput(std::string("the mesh has no vertex colours for `") + option +
+                       "`: paint it, and save it as PLY, OFF or OBJ with its colours");
+  for (const auto& tri : mesh_.triangles)
+    if (paint.may_match(mesh_.colors[tri[0]], mesh_.colors[tri[1]], mesh_.colors[tri[2]])) return;
+  throw InvalidInput("no part of the mesh is painted within " + detail::format_number(paint.tolerance) + " of " +
+                     hex(paint.color) + " for `" + option + "`; its colours: " + colors_used(mesh_.colors));
 }
 
 std::vector<Vec3> MeshConstraint::sample_intersection(const std::vector<TriangleMesh>& others,

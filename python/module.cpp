@@ -246,6 +246,9 @@ void add_look(Table<Options>& t) {
   };
   t["instances"] = [=](Options& o, py::handle v, Given&) { files(o).instances.set = word("instances", v, parse_instance_set); };
   t["tips_within"] = [=](Options& o, py::handle v, Given&) { files(o).instances.within = number("tips_within", v); };
+  t["tips_exclude_paint"] = [=](Options& o, py::handle v, Given&) {
+    files(o).instances.exclude_paint = parse_paint(text("tips_exclude_paint", v), "tips_exclude_paint");
+  };
   t["tips_every"] = [=](Options& o, py::handle v, Given&) {
     const long long every = whole("tips_every", v);
     if (every < 1 || every > 1'000'000) throw InvalidInput("`tips_every` " + std::to_string(every) + " is not in 1-1000000");

@@ -119,6 +119,7 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--instances", {"tips", "all", "some"}},
       {"--tips-within", {"2", "0", "1e300", "-1", "nan"}},
       {"--tips-every", {"1", "3", "1000000", "0", "1000001", "x"}},
+      {"--tips-exclude-paint", {"red", "ff0000,0.2", "blue", "mauve", "red,1"}},
       {"--up", {"x", "y", "z", "w"}},
       {"--quiet", {}},
       {"--checkpoint", {"run.ck", "nofolder/run.ck"}},
@@ -584,7 +585,7 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
   // What the other models share with DLA: the Output and Look options (and help).
   const std::vector<const char*> shared = {"--output", "--ply-format", "--formats", "--png-scale", "--png-bands", "--radius", "--base-radius",
                                            "--tip-radius", "--pipe-exponent", "--color-by", "--look", "--tube-sides",
-                                           "--tube-tolerance", "--tube-min-branch", "--instances", "--tips-within", "--tips-every",
+                                           "--tube-tolerance", "--tube-min-branch", "--instances", "--tips-within", "--tips-every", "--tips-exclude-paint",
                                            "--up", "--quiet", "--help"};
   const auto flags_of = [&](const Table& table) {
     std::vector<std::string> model_flags(shared.begin(), shared.end());

@@ -496,6 +496,57 @@ TEST(Instances, EveryKthIsKeptAndGrowsIntoTheRoomLeft) {
   }
 }
 
+TEST(Instances, NoneWhoseClosestSurfacePointIsPaintedAndAllOthersKept) {
+  const GrownInBall grown(10.0, 3000);
+  const Cluster& c = grown.cluster;
+  TriangleMesh painted = grown.ball.mesh();
+  for (const Vec3& v : painted.vertices) painted.colors.push_back(v.x() > 2.0 ? Vec3(1, 0, 0) : Vec3(1, 1, 1));
+  const SurfaceDistance surface(painted);
+  const Paint red = parse_paint("red,0.3");
+  const Attributes a = compute_attributes(c, {&surface, nullptr, 2, true, &red, &painted});
+  const Attributes plain = compute_attributes(c, {&surface});
+  InstanceOptions options;
+  options.exclude_paint = red;
+  std::vector<bool> kept(c.particles.size(), false);
+  for (const Instance& leaf : instancing_points(c, a, options)) kept[static_cast<std::size_t>(leaf.particle)] = true;
+  std::size_t over_paint = 0, elsewhere = 0;
+  for (std::size_t i = 0; i < c.particles.size(); ++i) {
+    if (!a.tip(i)) {
+      ASSERT_FALSE(kept[i]);
+      continue;
+    }
+    // The closest point of every triangle, the first of the nearest, and its colour from the
+    // areas of the three triangles it cuts.
+    const Vec3& p = c.particles[i].position;
+    double best = std::numeric_limits<double>::infinity();
+    Vec3 color = Vec3::Zero();
+    for (const auto& t : painted.triangles) {
+      const Vec3 &x = painted.vertices[t[0]], &y = painted.vertices[t[1]], &z = painted.vertices[t[2]];
+      const Vec3 q = closest_point_on_triangle(p, x, y, z);
+      const double d = (q - p).norm();
+      if (!(d < best)) continue;
+      best = d;
+      const double whole = (y - x).cross(z - x).norm();
+      color = ((y - q).cross(z - q).norm() * painted.colors[t[0]] + (z - q).cross(x - q).norm() * painted.colors[t[1]] +
+               (x - q).cross(y - q).norm() * painted.colors[t[2]]) / whole;
+    }
+    const bool red_here = red.matches(color);
+    // A blend on the stroke's edge may round either way.
+    if (std::abs((color - red.color).cwiseAbs().maxCoeff() - red.tolerance) < 1e-9) continue;
+    ASSERT_EQ(kept[i], !red_here) << "tip " << i << " at " << p.transpose();
+    (red_here ? over_paint : elsewhere) += 1;
+  }
+  EXPECT_GT(over_paint, 20u);
+  EXPECT_GT(elsewhere, 20u);
+  // With no paint to read, a clear refusal; with no colours on the mesh, another.
+  EXPECT_THROW(instancing_points(c, plain, options), InvalidInput);
+  EXPECT_THROW(compute_attributes(c, {&surface, nullptr, 1, true, &red, &grown.ball.mesh()}), InvalidInput);
+  EXPECT_THROW(grown.ball.require_paint(red, "tips_exclude_paint"), InvalidInput) << "no colours";
+  const MeshConstraint colored(painted, {}, 1.0);
+  EXPECT_NO_THROW(colored.require_paint(red, "tips_exclude_paint"));
+  EXPECT_THROW(colored.require_paint(parse_paint("blue"), "tips_exclude_paint"), InvalidInput);
+}
+
 TEST(Instances, NearTheBoundaryStayInsideIt) {
   const GrownInBall grown(10.0, 3000);
   const MeshConstraint& ball = grown.ball;

@@ -94,6 +94,8 @@ void validate(const OutputOptions& f, int dimensions, bool with_mesh) {
       throw InvalidInput("`radius` boundary measures to a constraint mesh: give one with `stl`");
     if (f.instances.within != std::numeric_limits<double>::infinity())
       throw InvalidInput("`tips_within` measures to a constraint mesh: give one with `stl`");
+    if (f.instances.exclude_paint)
+      throw InvalidInput("`tips_exclude_paint` reads the paint of a constraint mesh: give one with `stl`");
   }
   if (f.output.empty()) throw InvalidInput("`output` is empty");
   if (f.output.back() == '/') throw InvalidInput("`output` '" + f.output + "' names a folder, not a file prefix");

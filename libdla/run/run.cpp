@@ -124,6 +124,9 @@ std::unique_ptr<Run> prepare_run(const RunOptions& options, const MeshReader& re
       read ? read : [](const std::string& path, std::uint64_t* hash) { return read_mesh(path, hash); };
   std::unique_ptr<Run> run = model.prepare(options, reader, resumed);
   run->model = model.name;
+  // Refused before growing, not when the files are written.
+  if (run->files.instances.exclude_paint && run->constraint)
+    run->constraint->require_paint(*run->files.instances.exclude_paint, "tips_exclude_paint");
   return run;
 }
 

@@ -121,7 +121,9 @@ FilesWritten write_files(const Cluster& cluster, const OutputOptions& files, con
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const Look look = make_look(cluster, files.look,
                               {context.constraint ? &context.constraint->surface() : nullptr, nullptr,
-                               std::max(context.threads, cores), files.formats.tips});
+                               std::max(context.threads, cores), files.formats.tips,
+                               files.instances.exclude_paint ? &*files.instances.exclude_paint : nullptr,
+                               context.constraint ? &context.constraint->mesh() : nullptr});
   // The solid's plan first: a solid that would not fit is refused before any file is written.
   const SolidPlan plan = files.formats.solid() ? plan_solid(cluster, look.radii(cluster), files.solid) : SolidPlan{};
   const WriteJob job{cluster, look, files, pov, context.scene_mesh};

@@ -149,7 +149,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::size_t triangles = 0;
     dla::for_each_tube(cluster, look.attributes, radii, files.look.tubes,
                        [&](const dla::TubePiece& piece) { triangles += piece.triangles.size(); });
-    if (files.instances.within == std::numeric_limits<double>::infinity())
+    // Without the mesh, no distance to it nor its paint: those selections are checked elsewhere.
+    if (files.instances.within == std::numeric_limits<double>::infinity() && !files.instances.exclude_paint)
       for (const dla::Instance& instance : dla::instancing_points(cluster, look.attributes, files.instances))
         if (!(instance.scale > 0.0)) std::abort();
     // The solid it asks for, in at most the fuzzer's share of memory: closed, of positive volume.

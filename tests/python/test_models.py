@@ -351,7 +351,7 @@ RANDOM_OPTIONS = {
              "radius": ["pipe", "taper", "boundary", "seed-distance", "fat"], "threads": [1, 2, 0, 300],
              "seed_at": [[(0, 0, 0), (10, 0, 0)], [(0, 0, 0), (0, 0, 0)], (1, 2, 3)], "index": ["grid", "kdtree", "x"],
              "tube_sides": [3, 8, 2, 65], "color_by": ["age", "depth", "mood"], "n": [200, -1],
-             "tips_every": [1, 3, 0, 10**7, "x"],
+             "tips_every": [1, 3, 0, 10**7, "x"], "tips_exclude_paint": ["red", "mauve", 3],
              "links": [2, (3, 2), "1.5,4", 0, -1, (2, 0), (2, 1.5), "lattice", "x", (1, 2, 3)]},
     "colonize": {"venation": ["open", "closed", "shut", 1], "influence": [6, 2.5, -1],
                  "max_nodes": [10, 400, -1, 0], "attractors": [100, 0, -5], "kill_distance": [0.5, 2, -1, 0],

@@ -7,6 +7,7 @@
 #include "dla/core/cluster.h"
 #include "dla/index/nearest_points.h"
 #include "dla/look/strands.h"
+#include "dla/mesh/paint.h"
 #include "dla/mesh/surface_distance.h"
 
 #include <algorithm>
@@ -27,10 +28,14 @@ struct AttributeOptions {
   //! POV-Ray scene's tips and PREFIX_tips.ply. Without them those measure their own, after
   //! the rest of the attributes, in more memory.
   bool tip_gaps = true;
+  //! With `surface` and its mesh's vertex colours in `mesh`: mark the particles whose closest
+  //! point of the surface is painted this colour (Attributes::on_paint).
+  const Paint* paint = nullptr;
+  const TriangleMesh* mesh = nullptr;
 };
 
 //! Per-particle values, indexed as Cluster::particles (the index is the attach order): 11 bytes
-//! a particle (15 with a mesh) and 4 a tip, beside the cluster's 32, so that 10^7 particles and
+//! a particle (15 with a mesh, 16 with its paint) and 4 a tip, beside the cluster's 32, so that 10^7 particles and
 //! their look fit in 48 bytes a particle. What is cheap to recompute is not stored: the age,
 //! the distance to the seeds, and the radii (radius_model.h).
 struct Attributes {
@@ -44,6 +49,9 @@ struct Attributes {
   //! to 0 at its tip.
   std::vector<std::uint16_t> strand_place;
   std::vector<float> boundary_distance;    //!< to the mesh's surface; empty without a mesh
+  //! 1 where the particle's closest point of the surface is painted AttributeOptions::paint;
+  //! empty without it.
+  std::vector<std::uint8_t> on_paint;
   //! For each tip, in attach order: half the distance to the nearest other tip, in spacings,
   //! rounded down (infinity for a lone tip). Unit-radius copies scaled by it never overlap:
   //! the instancing points' scale (instances.h). Empty unless AttributeOptions::tip_gaps.
@@ -173,6 +181,13 @@ inline Attributes compute_attributes(const Cluster& cluster, const AttributeOpti
     if (d > a.seed_reach && std::isfinite(d)) a.seed_reach = d;
   }
 
+  const bool painted = options.surface && options.paint;
+  if (painted) {
+    if (!options.mesh || options.mesh->colors.empty())
+      throw InvalidInput("the mesh has no vertex colours to read the paint from: paint it, and save it as PLY, OFF "
+                         "or OBJ with its colours");
+    a.on_paint.resize(n);
+  }
   if (options.surface) {
     a.boundary_distance.resize(n);
     std::vector<std::uint32_t> nearest(n);  // each particle's closest triangle
@@ -184,6 +199,7 @@ inline Attributes compute_attributes(const Cluster& cluster, const AttributeOpti
             ps[i].position, ps[i].parent >= 0 && parent >= from && parent < i ? nearest[parent] : SurfaceDistance::kNoHint);
         nearest[i] = closest.triangle;
         a.boundary_distance[i] = static_cast<float>((closest.point - ps[i].position).norm());
+        if (painted) a.on_paint[i] = options.paint->matches(paint_at(*options.mesh, closest.triangle, closest.point));
       }
     };
     const auto threads = static_cast<std::size_t>(std::min<std::size_t>(static_cast<std::size_t>(options.threads), n / 4096 + 1));

@@ -7,10 +7,12 @@
 
 #include "dla/look/attributes.h"
 #include "dla/index/nearest_points.h"
+#include "dla/mesh/paint.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -38,6 +40,9 @@ struct InstanceOptions {
   //! first, the (every + 1)th, and so on (`--tips-every`: sparser leaves), in [1, 1000000]; 1
   //! keeps all.
   int every = 1;
+  //! Leave out the points whose closest point of the mesh's surface is painted this colour
+  //! (`--tips-exclude-paint`: no flowers where the artist painted, the thesis' figure 32).
+  std::optional<Paint> exclude_paint;
 };
 
 inline void validate(const InstanceOptions& options) {
@@ -57,15 +62,19 @@ struct Instance {
 };
 
 //! Which particles become instancing points: selected(i) says whether particle i does.
-//! Throws InvalidInput for `within` without the distance to a mesh.
+//! Throws InvalidInput for `within` without the distance to a mesh, or `exclude_paint`
+//! without the paint (AttributeOptions::paint).
 class InstanceSelection {
  public:
   InstanceSelection(const Cluster& cluster, const Attributes& attributes, const InstanceOptions& options)
       : attributes_(attributes), set_(options.set), within_(options.within * cluster.spacing),
-        near_boundary_(options.within != std::numeric_limits<double>::infinity()) {
+        near_boundary_(options.within != std::numeric_limits<double>::infinity()),
+        unpainted_(options.exclude_paint.has_value()) {
     validate(options);
     if (near_boundary_ && attributes.boundary_distance.empty())
       throw InvalidInput("`tips_within` measures to a constraint mesh (`stl`)");
+    if (unpainted_ && attributes.on_paint.empty())
+      throw InvalidInput("`tips_exclude_paint` reads the paint of a constraint mesh (`stl`)");
     if (options.every == 1) return;
     // Thinning needs each point's rank among those picked: kept once, read from any thread.
     thinned_.resize(cluster.particles.size());
@@ -76,9 +85,10 @@ class InstanceSelection {
   bool operator()(std::size_t i) const { return thinned_.empty() ? picked(i) : static_cast<bool>(thinned_[i]); }
 
  private:
-  //! Whether the set and `within` pick particle i, before thinning.
+  //! Whether the set, `within` and the paint pick particle i, before thinning.
   bool picked(std::size_t i) const {
     if (set_ == InstanceSet::tips && !attributes_.tip(i)) return false;
+    if (unpainted_ && attributes_.on_paint[i]) return false;
     return !near_boundary_ || attributes_.boundary_distance[i] <= within_;
   }
 
@@ -86,6 +96,7 @@ class InstanceSelection {
   InstanceSet set_;
   double within_;
   bool near_boundary_;
+  bool unpainted_;  // whether points over the paint are left out
   std::vector<bool> thinned_;  // with `every` > 1: whether particle i is kept
 };
 
@@ -117,7 +128,7 @@ inline const std::vector<float>& instance_gaps(const Cluster& cluster, const Att
                                                const InstanceOptions& options, const InstanceSelection& selected,
                                                std::vector<float>& measured, int threads = 1) {
   if (options.set == InstanceSet::tips && options.within == std::numeric_limits<double>::infinity() &&
-      options.every == 1 && !attributes.tip_gaps.empty())
+      options.every == 1 && !options.exclude_paint && !attributes.tip_gaps.empty())
     return attributes.tip_gaps;
   std::vector<bool> chosen(cluster.particles.size());
   for (std::size_t i = 0; i < chosen.size(); ++i) chosen[i] = selected(i);

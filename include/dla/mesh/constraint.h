@@ -121,6 +121,9 @@ class MeshConstraint {
   //! same for the same `rng_seed`. Throws InvalidInput for a surface of more than 500,000
   //! spacings², with `--side both`, and for paint on a mesh without colours or not on it.
   std::vector<Vec3> sample_surface(std::uint64_t rng_seed, const Paint* paint = nullptr) const;
+  //! Throws InvalidInput, naming `option`, where the mesh has no vertex colours or no part of
+  //! it is painted within the paint's tolerance, saying what colours it has.
+  void require_paint(const Paint& paint, const char* option) const;
 
   //! Seeds where other meshes enter this one (`--seed-mesh`): along the curves where their
   //! surfaces cross this surface, and over the patches where they overlap it in a plane, half a

@@ -1,13 +1,16 @@
 #pragma once
 //! \file paint.h
 //! A colour painted on a mesh's vertices, which marks where seeds go (`--seed-paint
-//! COLOR[,TOLERANCE]`). Colours blend across each triangle, as a renderer shows them; the
+//! COLOR[,TOLERANCE]`) and where leaves do not (`--tips-exclude-paint`). Colours blend across each triangle, as a renderer shows them; the
 //! painted part is where the blend is within the tolerance of the colour. See
 //! docs/constraints.md#painted-seeds.
 
 #include "dla/core/options.h"
+#include "dla/mesh/mesh.h"
 
+#include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <exception>
 #include <string>
 #include <string_view>
@@ -22,10 +25,31 @@ struct Paint {
   double tolerance = 0.3;
 
   bool matches(const Vec3& rgb) const { return (rgb - color).cwiseAbs().maxCoeff() <= tolerance; }
+  //! Whether a blend of these three colours may match.
+  bool may_match(const Vec3& a, const Vec3& b, const Vec3& c) const {
+    const Vec3 low = a.cwiseMin(b).cwiseMin(c), high = a.cwiseMax(b).cwiseMax(c);
+    return !((low.array() > color.array() + tolerance).any() || (high.array() < color.array() - tolerance).any());
+  }
 };
 
-//! "red", "ff0000", "#ff0000", with ",TOLERANCE" after it or not. Throws InvalidInput.
-inline Paint parse_paint(std::string_view text) {
+//! The colour a renderer shows at point p of triangle t of a coloured mesh: its corners'
+//! colours blended by p's barycentric coordinates (a degenerate triangle: their mean).
+inline Vec3 paint_at(const TriangleMesh& mesh, std::uint32_t t, const Vec3& p) {
+  const auto& tri = mesh.triangles[t];
+  const Vec3 &a = mesh.vertices[tri[0]], &b = mesh.vertices[tri[1]], &c = mesh.vertices[tri[2]];
+  const Vec3 &ca = mesh.colors[tri[0]], &cb = mesh.colors[tri[1]], &cc = mesh.colors[tri[2]];
+  const Vec3 e0 = b - a, e1 = c - a, e2 = p - a;
+  const double d00 = e0.dot(e0), d01 = e0.dot(e1), d11 = e1.dot(e1), d20 = e2.dot(e0), d21 = e2.dot(e1);
+  const double denominator = d00 * d11 - d01 * d01;
+  if (!(denominator > 1e-300)) return (ca + cb + cc) / 3.0;
+  const double v = std::clamp((d11 * d20 - d01 * d21) / denominator, 0.0, 1.0);
+  const double w = std::clamp((d00 * d21 - d01 * d20) / denominator, 0.0, 1.0 - v);
+  return (1.0 - v - w) * ca + v * cb + w * cc;
+}
+
+//! "red", "ff0000", "#ff0000", with ",TOLERANCE" after it or not. Throws InvalidInput naming
+//! `option`, the option it was given for.
+inline Paint parse_paint(std::string_view text, const char* option = "seed_paint") {
   static const std::pair<const char*, Vec3> names[] = {
       {"red", {1, 0, 0}},   {"green", {0, 1, 0}},   {"blue", {0, 0, 1}},  {"yellow", {1, 1, 0}},
       {"cyan", {0, 1, 1}},  {"magenta", {1, 0, 1}}, {"white", {1, 1, 1}}, {"black", {0, 0, 0}}};
@@ -44,7 +68,7 @@ inline Paint parse_paint(std::string_view text) {
     bool hex = word.size() == 6;
     for (const char c : word) hex = hex && std::isxdigit(static_cast<unsigned char>(c));
     if (!hex)
-      throw InvalidInput("`seed_paint` '" + whole + "': the colour is not a name (red, green, blue, yellow, cyan, "
+      throw InvalidInput("`" + std::string(option) + "` '" + whole + "': the colour is not a name (red, green, blue, yellow, cyan, "
                          "magenta, white, black) nor six hex digits as ff8000");
     for (int c = 0; c < 3; ++c)
       paint.color[c] = std::stoi(std::string(word.substr(2 * static_cast<std::size_t>(c), 2)), nullptr, 16) / 255.0;
@@ -58,9 +82,9 @@ inline Paint parse_paint(std::string_view text) {
       end = 0;
     }
     if (end == 0 || end != tolerance.size())
-      throw InvalidInput("`seed_paint` '" + whole + "': the tolerance '" + tolerance + "' is not a number");
+      throw InvalidInput("`" + std::string(option) + "` '" + whole + "': the tolerance '" + tolerance + "' is not a number");
     if (!(paint.tolerance >= 0.0 && paint.tolerance < 1.0))
-      throw InvalidInput("`seed_paint`'s tolerance " + detail::format_number(paint.tolerance) +
+      throw InvalidInput("`" + std::string(option) + "`'s tolerance " + detail::format_number(paint.tolerance) +
                          " is not in [0, 1): a channel's difference, 0 to 1");
   }
   return paint;
