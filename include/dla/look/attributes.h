@@ -35,9 +35,9 @@ struct AttributeOptions {
 };
 
 //! Per-particle values, indexed as Cluster::particles (the index is the attach order): 11 bytes
-//! a particle (15 with a mesh, 16 with its paint) and 4 a tip, beside the cluster's 32, so that 10^7 particles and
-//! their look fit in 48 bytes a particle. What is cheap to recompute is not stored: the age,
-//! the distance to the seeds, and the radii (radius_model.h).
+//! a particle (15 with a mesh, 16 with its paint) and 4 a tip, beside the cluster's 32, so that
+//! 10^7 particles and their look fit in 48 bytes a particle. What is cheap to recompute is not
+//! stored: the age, the distance to the seeds, and the radii (radius_model.h).
 struct Attributes {
   std::vector<std::int32_t> depth;         //!< particles on the path to its seed (a seed: 0)
   std::vector<std::int32_t> descendants;   //!< particles in its subtree, itself not counted
@@ -199,7 +199,8 @@ inline Attributes compute_attributes(const Cluster& cluster, const AttributeOpti
             ps[i].position, ps[i].parent >= 0 && parent >= from && parent < i ? nearest[parent] : SurfaceDistance::kNoHint);
         nearest[i] = closest.triangle;
         a.boundary_distance[i] = static_cast<float>((closest.point - ps[i].position).norm());
-        if (painted) a.on_paint[i] = options.paint->matches(paint_at(*options.mesh, closest.triangle, closest.point));
+        if (painted)
+          a.on_paint[i] = options.paint->matches(paint_at(*options.mesh, closest.triangle, closest.point));
       }
     };
     const auto threads = static_cast<std::size_t>(std::min<std::size_t>(static_cast<std::size_t>(options.threads), n / 4096 + 1));

@@ -1,9 +1,9 @@
 #pragma once
 //! \file paint.h
 //! A colour painted on a mesh's vertices, which marks where seeds go (`--seed-paint
-//! COLOR[,TOLERANCE]`) and where leaves do not (`--tips-exclude-paint`). Colours blend across each triangle, as a renderer shows them; the
-//! painted part is where the blend is within the tolerance of the colour. See
-//! docs/constraints.md#painted-seeds.
+//! COLOR[,TOLERANCE]`) and where leaves do not (`--tips-exclude-paint`). Colours blend across
+//! each triangle, as a renderer shows them; the painted part is where the blend is within the
+//! tolerance of the colour. See docs/constraints.md#painted-seeds.
 
 #include "dla/core/options.h"
 #include "dla/mesh/mesh.h"
@@ -53,7 +53,7 @@ inline Paint parse_paint(std::string_view text, const char* option = "seed_paint
   static const std::pair<const char*, Vec3> names[] = {
       {"red", {1, 0, 0}},   {"green", {0, 1, 0}},   {"blue", {0, 0, 1}},  {"yellow", {1, 1, 0}},
       {"cyan", {0, 1, 1}},  {"magenta", {1, 0, 1}}, {"white", {1, 1, 1}}, {"black", {0, 0, 0}}};
-  const std::string whole(text);
+  const std::string whole(text), name = "`" + std::string(option) + "`";
   const std::size_t comma = text.find(',');
   std::string_view word = text.substr(0, comma);
   Paint paint;
@@ -68,8 +68,8 @@ inline Paint parse_paint(std::string_view text, const char* option = "seed_paint
     bool hex = word.size() == 6;
     for (const char c : word) hex = hex && std::isxdigit(static_cast<unsigned char>(c));
     if (!hex)
-      throw InvalidInput("`" + std::string(option) + "` '" + whole + "': the colour is not a name (red, green, blue, yellow, cyan, "
-                         "magenta, white, black) nor six hex digits as ff8000");
+      throw InvalidInput(name + " '" + whole + "': the colour is not a name (red, green, blue, yellow, cyan, magenta, "
+                         "white, black) nor six hex digits as ff8000");
     for (int c = 0; c < 3; ++c)
       paint.color[c] = std::stoi(std::string(word.substr(2 * static_cast<std::size_t>(c), 2)), nullptr, 16) / 255.0;
   }
@@ -82,9 +82,9 @@ inline Paint parse_paint(std::string_view text, const char* option = "seed_paint
       end = 0;
     }
     if (end == 0 || end != tolerance.size())
-      throw InvalidInput("`" + std::string(option) + "` '" + whole + "': the tolerance '" + tolerance + "' is not a number");
+      throw InvalidInput(name + " '" + whole + "': the tolerance '" + tolerance + "' is not a number");
     if (!(paint.tolerance >= 0.0 && paint.tolerance < 1.0))
-      throw InvalidInput("`" + std::string(option) + "`'s tolerance " + detail::format_number(paint.tolerance) +
+      throw InvalidInput(name + "'s tolerance " + detail::format_number(paint.tolerance) +
                          " is not in [0, 1): a channel's difference, 0 to 1");
   }
   return paint;
