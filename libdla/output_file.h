@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <deque>
@@ -17,6 +18,8 @@
 #include <thread>
 #include <utility>
 #include <vector>
+
+#include <unistd.h>
 
 namespace dla::detail {
 
@@ -167,6 +170,24 @@ class OutputFile : public Text {
     flush();
     const std::string_view text = part.view();
     if (!text.empty() && std::fwrite(text.data(), 1, text.size(), file_) != text.size()) fail();
+  }
+
+  //! Writes `bytes` at `offset` from the file's start, past or over what was written, without
+  //! moving where appends go: for a format whose parts are made together but lie apart.
+  void write_at(std::uint64_t offset, std::string_view bytes) {
+    flush();
+    if (std::fflush(file_) != 0) fail();
+    const int descriptor = fileno(file_);
+    while (!bytes.empty()) {
+      const ssize_t written = ::pwrite(descriptor, bytes.data(), bytes.size(), static_cast<off_t>(offset));
+      if (written <= 0) {
+        if (written < 0 && errno == EINTR) continue;
+        if (written == 0) errno = EIO;
+        fail();
+      }
+      bytes.remove_prefix(static_cast<std::size_t>(written));
+      offset += static_cast<std::uint64_t>(written);
+    }
   }
 
   //! Writes what is left, closes and renames the file into place.

@@ -149,9 +149,15 @@ def make_curves(result, name):
 
 
 def make_tube_mesh(result, name, sides):
-    """A mesh of the look's tubes, with the age of each vertex's particle."""
+    """A mesh of the look's tubes, with the age of each vertex's particle and a UV map: u around
+    each tube, v along the strands (docs/look.md), as the glb imports."""
     tubes = result.tubes(sides=sides)
-    return make_mesh(result, name, tubes.vertices, tubes.faces, tubes.particle)
+    obj = make_mesh(result, name, tubes.vertices, tubes.faces, tubes.particle)
+    uv = tubes.uv.astype(np.float64)
+    uv[:, 1] = 1.0 - uv[:, 1]  # Blender's v counts up from the image's foot, glTF's down from its head
+    corners = tubes.faces.ravel()
+    obj.data.uv_layers.new(name="UVMap").data.foreach_set("uv", uv[corners].ravel())
+    return obj
 
 
 def make_solid(result, name, voxel, smooth):

@@ -241,6 +241,7 @@ void add_look(Table<Options>& t) {
   t["look"] = [=](Options& o, py::handle v, Given&) { files(o).pov.style = word("look", v, parse_pov_style); };
   t["tube_sides"] = [=](Options& o, py::handle v, Given&) { files(o).look.tubes.sides = static_cast<int>(whole("tube_sides", v)); };
   t["tube_tolerance"] = [=](Options& o, py::handle v, Given&) { files(o).look.tubes.tolerance = number("tube_tolerance", v); };
+  t["uv_scale"] = [=](Options& o, py::handle v, Given&) { files(o).look.tubes.uv_scale = number("uv_scale", v); };
   t["tube_min_branch"] = [=](Options& o, py::handle v, Given&) {
     files(o).look.tubes.min_branch = static_cast<int>(whole("tube_min_branch", v));
   };
@@ -599,16 +600,17 @@ std::shared_ptr<Result> grow_run(const std::string& model, const py::dict& keywo
   return result;
 }
 
-//! Every tube of the structure as one mesh: float32 vertices and normals, uint32 triangles, and
-//! the particle each vertex belongs to.
-py::tuple tubes(Result& result, int sides, double tolerance, int min_branch) {
+//! Every tube of the structure as one mesh: float32 vertices, normals, texture coordinates and
+//! tangents, uint32 triangles, and the particle each vertex belongs to.
+py::tuple tubes(Result& result, int sides, double tolerance, int min_branch, std::optional<double> uv_scale) {
   TubeOptions options = result.run->files.look.tubes;
   options.sides = sides;
   options.tolerance = tolerance;
   options.min_branch = min_branch;
+  if (uv_scale) options.uv_scale = *uv_scale;
   validate(options);
   const Look& look = result.look();
-  std::vector<float> positions, normals;
+  std::vector<float> positions, normals, uvs, tangents;
   std::vector<std::uint32_t> triangles;
   std::vector<std::int32_t> particles;
   {
@@ -618,6 +620,8 @@ py::tuple tubes(Result& result, int sides, double tolerance, int min_branch) {
       for (std::size_t k = 0; k < piece.positions.size(); ++k) {
         positions.insert(positions.end(), piece.positions[k].data(), piece.positions[k].data() + 3);
         normals.insert(normals.end(), piece.normals[k].data(), piece.normals[k].data() + 3);
+        uvs.insert(uvs.end(), piece.uvs[k].data(), piece.uvs[k].data() + 2);
+        tangents.insert(tangents.end(), piece.tangents[k].data(), piece.tangents[k].data() + 4);
       }
       particles.insert(particles.end(), piece.particles.begin(), piece.particles.end());
       for (const auto& t : piece.triangles) triangles.insert(triangles.end(), {base + t[0], base + t[1], base + t[2]});
@@ -630,7 +634,8 @@ py::tuple tubes(Result& result, int sides, double tolerance, int min_branch) {
     if (!values.empty()) std::memcpy(out.mutable_data(), values.data(), values.size() * sizeof(T));
     return out;
   };
-  return py::make_tuple(array(positions, 3), array(normals, 3), array(triangles, 3), array(particles, 1));
+  return py::make_tuple(array(positions, 3), array(normals, 3), array(triangles, 3), array(particles, 1),
+                        array(uvs, 2), array(tangents, 4));
 }
 
 //! The strands (strands.h) as one array of particle ids and the offsets where each starts (one
@@ -789,8 +794,8 @@ PYBIND11_MODULE(_core, m) {
                std::to_string(r.cluster.seed_count) + (r.cluster.seed_count == 1 ? " seed" : " seeds") +
                (r.record.stopped_by.empty() ? "" : ", stopped by " + r.record.stopped_by) + ">";
       })
-      .def("_tubes", &tubes, py::arg("sides"), py::arg("tolerance"), py::arg("min_branch"),
-           "(vertices, normals, faces, particle): the tube mesh of the look (dla3d.Result.tubes)")
+      .def("_tubes", &tubes, py::arg("sides"), py::arg("tolerance"), py::arg("min_branch"), py::arg("uv_scale"),
+           "(vertices, normals, faces, particle, uv, tangent): the tube mesh of the look (dla3d.Result.tubes)")
       .def("_solid", &solid, py::arg("options"),
            "(vertices, faces, particle, measures): the watertight solid (dla3d.Result.solid)")
       .def("strands", &strands, "(ids, starts): particle ids of every strand, strand k at ids[starts[k]:starts[k+1]]")

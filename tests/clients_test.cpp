@@ -19,8 +19,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <set>
 #include <string>
 #include <tuple>
+#include <utility>
 
 namespace dla {
 namespace {
@@ -31,6 +33,7 @@ using testing::read_file;
 struct Imported {
   long objects = -1, vertices = -1, edges = -1, faces = -1;
   std::array<double, 3> min{}, max{};
+  std::array<double, 4> uv{};  //!< the UV map's u min, v min, u max, v max; NaN without one
   std::string attributes;
 };
 
@@ -68,13 +71,15 @@ Imported blender_import(const ScratchDir& dir, const std::string& file) {
     imported.min[a] = field(line, "min", a);
     imported.max[a] = field(line, "max", a);
   }
+  for (std::size_t k = 0; k < 4; ++k) imported.uv[k] = field(line, "uv", k);
   imported.attributes = line.substr(line.find("\"attributes\""));
   return imported;
 }
 
 struct Tubes {
-  std::size_t vertices = 0, triangles = 0;
+  std::size_t vertices = 0, triangles = 0, edges = 0;
   Eigen::Vector3f min = Eigen::Vector3f::Constant(std::numeric_limits<float>::infinity()), max = -min;
+  float v_max = 0.0f;  //!< the largest texture v
 };
 
 Tubes tubes_of(const Cluster& c, const Look& look) {
@@ -82,10 +87,16 @@ Tubes tubes_of(const Cluster& c, const Look& look) {
   for_each_tube(c, look.attributes, look.radii(c), look.options.tubes, [&](const TubePiece& piece) {
     t.vertices += piece.positions.size();
     t.triangles += piece.triangles.size();
+    std::set<std::pair<std::uint32_t, std::uint32_t>> edges;  // by index: the seam is an edge twice
+    for (const auto& triangle : piece.triangles)
+      for (std::size_t k = 0; k < 3; ++k)
+        edges.insert(std::minmax(triangle[k], triangle[(k + 1) % 3]));
+    t.edges += edges.size();
     for (const Eigen::Vector3f& p : piece.positions) {
       t.min = t.min.cwiseMin(p);
       t.max = t.max.cwiseMax(p);
     }
+    for (const Eigen::Vector2f& uv : piece.uvs) t.v_max = std::max(t.v_max, uv.y());
   });
   return t;
 }
@@ -119,11 +130,17 @@ TEST(Blender, ImportsTheTubeMeshesAndThePly) {
     EXPECT_EQ(mesh.objects, 1);
     EXPECT_EQ(mesh.vertices, static_cast<long>(t.vertices));
     EXPECT_EQ(mesh.faces, static_cast<long>(t.triangles));
-    EXPECT_EQ(mesh.edges, static_cast<long>(t.triangles * 3 / 2)) << "closed tubes share every edge";
+    EXPECT_EQ(mesh.edges, static_cast<long>(t.edges)) << "closed tubes share every edge but the seam's";
     for (std::size_t a = 0; a < 3; ++a) {
       EXPECT_NEAR(mesh.min[a], min[a], 1e-4);
       EXPECT_NEAR(mesh.max[a], max[a], 1e-4);
     }
+    // The UV map: u from 0 to 1 around; v along the strands from 0, flipped into Blender's
+    // upward v as 1 - v by both importers.
+    EXPECT_NEAR(mesh.uv[0], 0.0, 1e-6);
+    EXPECT_NEAR(mesh.uv[2], 1.0, 1e-6);
+    EXPECT_NEAR(mesh.uv[1], 1.0 - t.v_max, 1e-4);
+    EXPECT_NEAR(mesh.uv[3], 1.0, 1e-6);
   }
   const Imported glb = blender_import(dir, "tree.glb");
   EXPECT_NE(glb.attributes.find("Col"), std::string::npos) << "the vertex colours: " << glb.attributes;
@@ -144,6 +161,41 @@ TEST(Blender, ImportsTheTubeMeshesAndThePly) {
       EXPECT_NEAR(ply.max[a], hi[static_cast<int>(a)], 1e-4);
     }
   }
+}
+
+// The texture artist's check: an image on the bark through the glb's UV map, rendered by Cycles,
+// shows both of a checker's colours along the branches. Without texture coordinates every point
+// would read one texel, and the picture one colour.
+TEST(Blender, RendersAnImageTextureAlongTheBranches) {
+  DLA_NEED_BLENDER();
+  ScratchDir dir;
+  DlaOptions o;
+  o.particles = 300;
+  o.rng_seed = 5;
+  const Cluster c = grow(o);
+  LookOptions options;
+  options.radius.model = RadiusModel::pipe;
+  write_glb(c, make_look(c, options), dir / "tree.glb");
+  const std::string command = "cd '" + dir.path().string() + "' && blender -b --factory-startup --python-exit-code 1 "
+                              "--python '" TEST_CLIENTS_DIR "/blender_texture.py' -- tree.glb tree.png > blender.txt 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << read_file(dir / "blender.txt");
+  EXPECT_NE(read_file(dir / "blender.txt").find("DLA3D {\"uv_maps\": [\"UVMap\"]}"), std::string::npos);
+  const testing::Picture picture = testing::read_png(dir / "tree.png");
+  ASSERT_EQ(picture.width, 240u);
+  std::size_t orange = 0, teal = 0, touching = 0;  // the sky is grey
+  for (std::size_t y = 0; y < picture.height; ++y)
+    for (std::size_t x = 0; x < picture.width; ++x) {
+      const auto [r, g, b] = picture.at(x, y);
+      const bool is_orange = r > g + 50 && r > b + 50, is_teal = g > r + 40 && b > r + 40;
+      orange += is_orange;
+      teal += is_teal;
+      const bool border = x == 0 || y == 0 || x + 1 == picture.width || y + 1 == picture.height;
+      touching += border && (is_orange || is_teal);
+    }
+  const std::size_t pixels = picture.width * picture.height;
+  EXPECT_GT(orange, pixels / 100) << "the checker's orange";
+  EXPECT_GT(teal, pixels / 100) << "the checker's teal";
+  EXPECT_EQ(touching, 0u) << "the tree is cut by the frame";
 }
 
 TEST(GltfValidator, FindsNoErrorInTheGlb) {
@@ -188,7 +240,7 @@ TEST(Blender, ImportsTheLinksOfThePlyAndTheGlb) {
   const Imported glb = blender_import(dir, "linked.glb");
   EXPECT_EQ(glb.vertices, static_cast<long>(t.vertices));
   EXPECT_EQ(glb.faces, static_cast<long>(t.triangles));
-  EXPECT_EQ(glb.edges, static_cast<long>(t.triangles * 3 / 2)) << "each link's tube is closed";
+  EXPECT_EQ(glb.edges, static_cast<long>(t.edges)) << "each link's tube is closed but for its seam";
 }
 
 TEST(GltfValidator, FindsNoErrorInTheGlbWithLinks) {

@@ -15,6 +15,7 @@
 #include "colonization_rescan.h"
 #include "solid_check.h"
 #include "test_util.h"
+#include "tube_check.h"
 
 #include <gtest/gtest.h>
 
@@ -280,21 +281,15 @@ TEST(Links, TubesAreClosedAndJoinTheirEnds) {
   std::size_t strands = 0, pieces = 0, link_tubes = 0;
   for_each_strand(tree, [&](const Strand& strand) { strands += strand.size() >= 2; });
   for_each_tube(tree, look.attributes, radii, {}, [&](const TubePiece& piece) {
-    // Closed: every edge of every triangle once each way.
-    std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
-    for (const auto& t : piece.triangles)
-      for (int k = 0; k < 3; ++k) ++edges[{t[static_cast<std::size_t>(k)], t[static_cast<std::size_t>((k + 1) % 3)]}];
-    for (const auto& [edge, uses] : edges) {
-      ASSERT_EQ(uses, 1);
-      ASSERT_EQ(edges.count({edge.second, edge.first}), 1u);
-    }
+    dla::testing::expect_closed(piece);
+    dla::testing::expect_texture_frame(piece);
     if (++pieces <= strands) return;  // the strands' tubes come first
     ++link_tubes;
     ASSERT_EQ(piece.positions.size(), link_tube_vertices(8));
     ASSERT_EQ(piece.triangles.size(), link_tube_triangles(8));
     // Its ends are its particles': the ring about each end is that particle's radius around it.
     const Link& link = tree.links[link_tubes - 1];
-    for (std::size_t v = 8; v < 24; ++v) {
+    for (std::size_t v = 9; v < 27; ++v) {
       const auto owner = static_cast<std::size_t>(piece.particles[v]);
       ASSERT_TRUE(owner == static_cast<std::size_t>(link.earlier) || owner == static_cast<std::size_t>(link.later));
       const double d = (piece.positions[v].cast<double>() - tree.particles[owner].position).norm();

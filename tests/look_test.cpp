@@ -16,6 +16,7 @@
 #include "dla/io/svg_writer.h"
 #include "mesh_util.h"
 #include "test_util.h"
+#include "tube_check.h"
 
 #include <gtest/gtest.h>
 
@@ -281,22 +282,18 @@ TEST(RadiusModels, StayInRangeAndOrderAsTheySay) {
   EXPECT_THROW(parse_radius_model("wavy"), InvalidInput);
 }
 
-//! Every tube is a closed surface: each edge is used once in each direction.
+//! Every tube is a closed surface (its seam welded) facing outward, with a texture frame.
 void expect_closed_and_outward(const TubePiece& piece, const Vec3& inside) {
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
   double volume = 0.0;
   for (const auto& t : piece.triangles) {
-    for (int k = 0; k < 3; ++k) ++edges[{t[static_cast<std::size_t>(k)], t[static_cast<std::size_t>((k + 1) % 3)]}];
     const Vec3 a = piece.positions[t[0]].cast<double>() - inside, b = piece.positions[t[1]].cast<double>() - inside,
                c = piece.positions[t[2]].cast<double>() - inside;
     volume += a.dot(b.cross(c)) / 6.0;
   }
-  for (const auto& [edge, count] : edges) {
-    ASSERT_EQ(count, 1) << "an edge used twice the same way";
-    ASSERT_EQ(edges.count({edge.second, edge.first}), 1u) << "an open edge";
-  }
+  testing::expect_closed(piece);
   EXPECT_GT(volume, 0.0) << "faces point inwards";
   for (const Eigen::Vector3f& n : piece.normals) ASSERT_NEAR(n.norm(), 1.0f, 1e-5f);
+  testing::expect_texture_frame(piece);
 }
 
 TEST(Tubes, AreClosedOutwardAndAsWideAsTheirRadii) {
@@ -307,7 +304,7 @@ TEST(Tubes, AreClosedOutwardAndAsWideAsTheirRadii) {
   for_each_tube(c, look.attributes, radii, look.options.tubes, [&](const TubePiece& piece) {
     ++pieces;
     vertices += piece.positions.size();
-    const std::size_t rings = (piece.positions.size() - 2) / 8 - 1;
+    const std::size_t rings = (piece.positions.size() - 2) / 9 - 1;  // 8 sides and the seam
     ASSERT_EQ(piece.positions.size(), tube_vertices(rings, 8));
     ASSERT_EQ(piece.triangles.size(), tube_triangles(rings, 8));
     // The start's centre is the strand's first particle, inside the tube.
@@ -315,9 +312,9 @@ TEST(Tubes, AreClosedOutwardAndAsWideAsTheirRadii) {
     expect_closed_and_outward(piece, start);
     // Each ring's vertices lie at the radius from their particle (ring 0 may be finer).
     for (std::size_t j = 1; j < rings; ++j) {
-      const auto owner = static_cast<std::size_t>(piece.particles[j * 8]);
-      for (std::size_t s = 0; s < 8; ++s) {
-        const double d = (piece.positions[j * 8 + s].cast<double>() - c.particles[owner].position).norm();
+      const auto owner = static_cast<std::size_t>(piece.particles[j * 9]);
+      for (std::size_t s = 0; s < 9; ++s) {
+        const double d = (piece.positions[j * 9 + s].cast<double>() - c.particles[owner].position).norm();
         ASSERT_NEAR(d, radii[owner], 1e-4);
       }
     }
@@ -325,7 +322,7 @@ TEST(Tubes, AreClosedOutwardAndAsWideAsTheirRadii) {
     const auto first = static_cast<std::size_t>(piece.particles[0]);
     const std::int32_t parent = c.particles[first].parent;
     if (parent >= 0)
-      for (std::size_t s = 0; s < 8; ++s) {
+      for (std::size_t s = 0; s < 9; ++s) {
         const double d = (piece.positions[s].cast<double>() - c.particles[static_cast<std::size_t>(parent)].position).norm();
         ASSERT_LE(d, radii[static_cast<std::size_t>(parent)] + 1e-4);
       }
@@ -371,9 +368,9 @@ TEST(Tubes, DoNotTwistAndSimplifyStraightRuns) {
     ASSERT_EQ(piece.positions.size(), tube_vertices(20, 8));
     // Along a straight strand every ring is the first one moved along x: no twist.
     for (std::size_t j = 1; j < 20; ++j)
-      for (std::size_t s = 0; s < 8; ++s) {
+      for (std::size_t s = 0; s < 9; ++s) {
         const Eigen::Vector3f moved = piece.positions[s] + Eigen::Vector3f(static_cast<float>(j), 0, 0);
-        ASSERT_LT((piece.positions[j * 8 + s] - moved).norm(), 1e-4f);
+        ASSERT_LT((piece.positions[j * 9 + s] - moved).norm(), 1e-4f);
       }
   });
   TubeOptions coarse;
@@ -386,6 +383,68 @@ TEST(Tubes, DoNotTwistAndSimplifyStraightRuns) {
   bad.min_branch = 1;
   bad.sides = 2;
   EXPECT_THROW(for_each_tube(line, a, radii, bad, [](const TubePiece&) {}), InvalidInput);
+}
+
+// The texture: u once around each ring, v the path's length from the seed over the scale, a
+// branch's v going on from its parent's at the joint; measured here by walking up the parents.
+TEST(Tubes, TextureRunsAroundAndAlongFromParentToChild) {
+  const Cluster line = chain(20);
+  const Attributes a = compute_attributes(line);
+  const std::vector<float> radii(20, 0.3f);
+  for (const double scale : {0.0, 2.5}) {
+    TubeOptions options;
+    options.uv_scale = scale;
+    const double expected_scale = scale > 0 ? scale : 2 * 3.14159265358979323846 * 0.3 * line.spacing;
+    for_each_tube(line, a, radii, options, [&](const TubePiece& piece) {
+      testing::expect_texture_frame(piece);
+      for (std::size_t j = 0; j < 20; ++j)
+        for (std::size_t s = 0; s < 9; ++s) {
+          ASSERT_FLOAT_EQ(piece.uvs[j * 9 + s].x(), static_cast<float>(s) / 8.0f);
+          ASSERT_NEAR(piece.uvs[j * 9 + s].y(), static_cast<double>(j) * line.spacing / expected_scale, 1e-5);
+        }
+    });
+  }
+  for (const double bad : {-1.0, 1e-10, 2e9, std::nan("")}) {
+    TubeOptions options;
+    options.uv_scale = bad;
+    EXPECT_THROW(validate(options), InvalidInput) << bad;
+  }
+
+  const Cluster c = grown(1500);
+  const Look look = make_look(c, {});
+  const std::vector<float> r = look.radii(c);
+  const double scale = 2 * 3.14159265358979323846 * *std::max_element(r.begin(), r.end()) * c.spacing;
+  const auto v_at = [&](std::size_t i) {  // the path to the seed, step by step
+    double length = 0.0;
+    for (; c.particles[i].parent >= 0; i = static_cast<std::size_t>(c.particles[i].parent))
+      length += (c.particles[i].position - c.particles[static_cast<std::size_t>(c.particles[i].parent)].position).norm();
+    return length / scale;
+  };
+  std::map<std::int32_t, float> own_v;        // each particle's v on its own ring
+  std::vector<std::pair<std::int32_t, float>> first_v;  // each branch's joint and its first ring's v
+  std::size_t branches = 0;
+  for_each_tube(c, look.attributes, r, look.options.tubes, [&](const TubePiece& piece) {
+    const std::size_t rings = (piece.positions.size() - 2) / 9 - 1;
+    for (std::size_t j = 1; j < rings; ++j) {
+      const std::int32_t owner = piece.particles[j * 9];
+      own_v[owner] = piece.uvs[j * 9].y();
+      ASSERT_NEAR(piece.uvs[j * 9].y(), v_at(static_cast<std::size_t>(owner)), 1e-4);
+    }
+    const std::int32_t joint = c.particles[static_cast<std::size_t>(piece.particles[0])].parent;
+    if (joint < 0) {
+      EXPECT_EQ(piece.uvs[0].y(), 0.0f) << "a seed's strand starts at v = 0";
+      own_v[piece.particles[0]] = 0.0f;
+      return;
+    }
+    ++branches;
+    first_v.emplace_back(joint, piece.uvs[0].y());
+    ASSERT_NEAR(piece.uvs[0].y(), v_at(static_cast<std::size_t>(joint)), 1e-4);
+  });
+  EXPECT_GT(branches, 50u);
+  for (const auto& [joint, v] : first_v) {
+    ASSERT_EQ(own_v.count(joint), 1u) << "a joint without a ring in its parent's tube";
+    EXPECT_EQ(v, own_v[joint]) << "a branch's v does not go on from its parent's";
+  }
 }
 
 TEST(Instances, NeverOverlapAndPointAwayFromTheirParents) {
@@ -618,21 +677,24 @@ TEST(LookFiles, GlbAndObjHoldEveryTube) {
   const std::string json = glb.substr(20, head[3]);
   EXPECT_NE(json.find("\"count\":" + std::to_string(vertices) + ",\"type\":\"VEC3\",\"min\""), std::string::npos);
   EXPECT_NE(json.find("\"count\":" + std::to_string(3 * triangles) + ",\"type\":\"SCALAR\"}]"), std::string::npos);
-  EXPECT_NE(json.find("\"COLOR_0\":2,\"_AGE\":3"), std::string::npos);
-  EXPECT_EQ(glb.size(), 20 + head[3] + 8 + vertices * 52 + triangles * 12) << "52-byte vertices with colour";
+  EXPECT_NE(json.find("\"TANGENT\":2,\"TEXCOORD_0\":3,\"COLOR_0\":4,\"_AGE\":5"), std::string::npos);
+  EXPECT_EQ(glb.size(), 20 + head[3] + 8 + vertices * 76 + triangles * 12) << "76-byte vertices with colour";
 
   write_obj(c, look, dir / "a.obj");
   const std::string obj = read_file(dir / "a.obj");
-  std::size_t v = 0, vn = 0, f = 0;
+  std::size_t v = 0, vn = 0, vt = 0, f = 0;
   std::istringstream lines(obj);
   for (std::string line; std::getline(lines, line);) {
     v += line.rfind("v ", 0) == 0;
     vn += line.rfind("vn ", 0) == 0;
+    vt += line.rfind("vt ", 0) == 0;
     f += line.rfind("f ", 0) == 0;
   }
   EXPECT_EQ(v, vertices);
   EXPECT_EQ(vn, vertices);
+  EXPECT_EQ(vt, vertices);
   EXPECT_EQ(f, triangles);
+  EXPECT_NE(obj.find("\nf 1/1/1 2/2/2 "), std::string::npos) << "faces name position, texture and normal";
 
   // No branch at all: still a valid file, with an empty scene.
   Cluster lone;

@@ -32,11 +32,16 @@ _MESH_OPTIONS = {"stl", "mesh", "collide", "seed_mesh"}
 class Tubes(tuple):
     """The tube mesh of the look: unpacks as (vertices, normals, faces), float32 (V, 3), float32
     (V, 3) unit normals and uint32 (F, 3) triangles; `particle` is the particle each vertex
-    belongs to, for its age or any other attribute."""
+    belongs to, for its age or any other attribute. `uv` is float32 (V, 2) texture coordinates
+    as in the glb: u once around a tube from 0 to 1 (a ring's last vertex repeats its first at
+    u = 1), v along the strand from its seed in uv_scales, going on from the parent's at a branch
+    point. `tangent` is float32 (V, 4), the glb's TANGENT: the unit direction of rising u and 1."""
 
-    def __new__(cls, vertices, normals, faces, particle):
+    def __new__(cls, vertices, normals, faces, particle, uv, tangent):
         tubes = super().__new__(cls, (vertices, normals, faces))
         tubes.particle = particle
+        tubes.uv = uv
+        tubes.tangent = tangent
         return tubes
 
     vertices = property(lambda self: self[0])
@@ -44,10 +49,11 @@ class Tubes(tuple):
     faces = property(lambda self: self[2])
 
 
-def _tubes(result, sides=8, tolerance=0.0, min_branch=1):
-    """The tube mesh of the look, as the glTF's: see Tubes. `sides`, `tolerance` (spacings) and
-    `min_branch` are --tube-sides, --tube-tolerance and --tube-min-branch."""
-    return Tubes(*result._tubes(sides, tolerance, min_branch))
+def _tubes(result, sides=8, tolerance=0.0, min_branch=1, uv_scale=None):
+    """The tube mesh of the look, as the glTF's: see Tubes. `sides`, `tolerance` (spacings),
+    `min_branch` and `uv_scale` (scene units; 0 for the base circumference; None for the run's)
+    are --tube-sides, --tube-tolerance, --tube-min-branch and --uv-scale."""
+    return Tubes(*result._tubes(sides, tolerance, min_branch, uv_scale))
 
 
 Result.tubes = _tubes

@@ -7,10 +7,13 @@
 # writes OUT_solid.png (the glb, in its vertex colours if it has them) and OUT_volume.png, 200 x
 # 150 with 16 samples unless given (docs/solid.md's pictures are made by it too).
 import json
+import os
 import sys
 
 import bpy
-import mathutils
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cycles_render  # noqa: E402  (tests/clients/cycles_render.py; Blender has a module "cycles")
 
 args = sys.argv[sys.argv.index("--") + 1:]
 stl, glb, vdb, out = args[:4]
@@ -61,36 +64,7 @@ result["grids"] = sorted(g.name for g in volume.data.grids)
 
 
 def render(visible, path):
-    """A Cycles render of `visible` alone, framed by a camera looking at its bounding box."""
-    scene = bpy.context.scene
-    for o in scene.objects:
-        if o.type in {"MESH", "VOLUME"}:
-            o.hide_render = o is not visible
-    corners = [visible.matrix_world @ mathutils.Vector(c) for c in visible.bound_box]
-    centre = sum(corners, mathutils.Vector()) / 8
-    size = max((c - centre).length for c in corners)
-    camera = bpy.data.objects.get("camera") or bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
-    if camera.name not in scene.objects:
-        scene.collection.objects.link(camera)
-    camera.location = centre + mathutils.Vector((1.0, -1.4, 0.9)).normalized() * size * 2.8
-    camera.rotation_euler = (centre - camera.location).to_track_quat("-Z", "Y").to_euler()
-    scene.camera = camera
-    if not bpy.data.objects.get("sun"):
-        sun = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))
-        sun.data.energy = 4.0
-        sun.rotation_euler = (0.7, 0.2, 0.5)
-        scene.collection.objects.link(sun)
-    world = bpy.data.worlds.new("sky")
-    world.color = (0.05, 0.05, 0.06)
-    scene.world = world
-    scene.render.engine = "CYCLES"
-    scene.cycles.device = "CPU"
-    scene.cycles.samples = samples
-    scene.cycles.use_denoising = False  # Debian's Blender has no OpenImageDenoise
-    scene.render.resolution_x, scene.render.resolution_y = width, height
-    scene.render.resolution_percentage = 100
-    scene.render.filepath = path
-    bpy.ops.render.render(write_still=True)
+    cycles_render.render(visible, path, width, height, samples)
 
 
 # Bark, or the vertex colours (--color-by) where the glb has them.

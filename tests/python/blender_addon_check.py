@@ -63,6 +63,15 @@ assert len(tubes) == 1
 vertices, _normals, faces = expected.tubes(sides=6)
 assert len(tubes[0].data.vertices) == len(vertices) and len(tubes[0].data.polygons) == len(faces)
 assert "age" in tubes[0].data.attributes
+# Its UV map: each face corner has its vertex's texture coordinates, v turned up as Blender's.
+expected_tubes = expected.tubes(sides=6)
+uv_layer = tubes[0].data.uv_layers.active
+assert uv_layer is not None and uv_layer.name == "UVMap"
+corner_uv = np.empty(2 * len(tubes[0].data.loops))
+uv_layer.data.foreach_get("uv", corner_uv)
+want = expected_tubes.uv[expected_tubes.faces.ravel()].astype(np.float64)
+want[:, 1] = 1.0 - want[:, 1]
+assert np.isfinite(corner_uv).all() and np.allclose(corner_uv.reshape(-1, 2), want, atol=1e-5)
 # The solid: one closed mesh, with the age per vertex.
 settings.output, settings.voxel = 'SOLID', 0.1  # the tips (0.05 spacings) drawn 0.15 across
 bpy.context.view_layer.objects.active = sphere

@@ -189,6 +189,7 @@ def test_a_missing_file_is_an_os_error():
     (lambda: dla3d.grow(particles=10).write("/tmp/dla3d_py_x", formats=["gif"]), "'gif' is not one of"),
     (lambda: dla3d.grow(particles=10).write("/no/such/dir/x", formats=["csv"]), "cannot write"),
     (lambda: dla3d.grow(particles=10).tubes(sides=2), "tube sides 2 is not in 3-64"),
+    (lambda: dla3d.grow(particles=10).tubes(uv_scale=-1), "uv_scale=-1 is neither 0 (the base circumference) nor in"),
 ])
 def test_misuse_is_one_clear_line(call, message):
     with pytest.raises(ValueError) as raised:
@@ -251,9 +252,22 @@ def test_tubes_and_strands_follow_the_look(cli, tmp_path):
     # starts at, a spacing away.
     distance = np.linalg.norm(vertices - result.positions[particle], axis=1)
     assert (distance <= result.radius[particle] * 1.01 + result.spacing + 1e-4).all()
+    # Texture coordinates around and along; tangents of unit length across the normals.
+    uv, tangent = tubes.uv, tubes.tangent
+    assert uv.dtype == np.float32 and uv.shape == (len(vertices), 2) and tangent.shape == (len(vertices), 4)
+    assert uv[:, 0].min() == 0 and uv[:, 0].max() == 1 and uv[:, 1].min() == 0
+    np.testing.assert_allclose(np.linalg.norm(tangent[:, :3], axis=1), 1.0, atol=1e-5)
+    np.testing.assert_allclose(np.einsum("ij,ij->i", tangent[:, :3], normals), 0.0, atol=1e-5)
+    assert (tangent[:, 3] == 1).all()
+    # v is the length along the tree in uv_scales: half the scale, twice the v.
+    finer = result.tubes(sides=6, uv_scale=0.5)
+    coarser = result.tubes(sides=6, uv_scale=1.0)
+    np.testing.assert_allclose(finer.uv[:, 1], 2 * coarser.uv[:, 1], rtol=1e-5)
     # The OBJ the CLI writes has the same tubes.
     cli(*result.command.split()[1:], "-q", "--formats", "obj", "--tube-sides", "6", "-o", str(tmp_path / "t"))
     obj_vertices = sum(1 for line in open(tmp_path / "t.obj") if line.startswith("v "))
+    obj_uvs = [line.split()[1:] for line in open(tmp_path / "t.obj") if line.startswith("vt ")]
+    np.testing.assert_allclose(np.array(obj_uvs, dtype=float), np.c_[uv[:, 0], 1 - uv[:, 1]], atol=1e-5)
     obj_faces = sum(1 for line in open(tmp_path / "t.obj") if line.startswith("f "))
     assert (obj_vertices, obj_faces) == (len(vertices), len(faces))
     ids, starts = result.strands()
@@ -351,6 +365,7 @@ RANDOM_OPTIONS = {
              "radius": ["pipe", "taper", "boundary", "seed-distance", "fat"], "threads": [1, 2, 0, 300],
              "seed_at": [[(0, 0, 0), (10, 0, 0)], [(0, 0, 0), (0, 0, 0)], (1, 2, 3)], "index": ["grid", "kdtree", "x"],
              "tube_sides": [3, 8, 2, 65], "color_by": ["age", "depth", "mood"], "n": [200, -1],
+             "uv_scale": [0, 2.5, 1e-9, -1, 1e10, "x"],
              "tips_every": [1, 3, 0, 10**7, "x"], "tips_exclude_paint": ["red", "mauve", 3],
              "links": [2, (3, 2), "1.5,4", 0, -1, (2, 0), (2, 1.5), "lattice", "x", (1, 2, 3)]},
     "colonize": {"venation": ["open", "closed", "shut", 1], "influence": [6, 2.5, -1],

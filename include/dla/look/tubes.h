@@ -4,6 +4,7 @@
 //! strand with rotation-minimising frames so it does not twist, capped at both ends. A strand
 //! that leaves a branch point starts inside its parent's tube, so branches join without a gap.
 //! Then a tube per link (links.h), rounded at both ends inside the tubes it joins.
+//! Every vertex has texture coordinates and a tangent, for tiling textures and normal maps.
 //! The glTF and OBJ writers stream these pieces. See docs/look.md.
 
 #include "dla/look/attributes.h"
@@ -23,7 +24,10 @@ struct TubeOptions {
   double tolerance = 0.0;  //!< spacings, in [0, 10]: a strand's point is left out where the tube
                            //!< without it stays within this of its centre and radius; 0 keeps all
   int min_branch = 1;      //!< a branch (a strand and all that grows from it) of fewer
-                            //!< particles gets no tube: twigs go first, in [1, 1000]; 1 keeps all
+                           //!< particles gets no tube: twigs go first, in [1, 1000]; 1 keeps all
+  double uv_scale = 0.0;   //!< scene units of strand per unit of the texture's v: 0, or in
+                           //!< [1e-9, 1e9]; 0 takes the base circumference (2π times the thickest
+                           //!< tube's radius), so a square texture keeps its aspect on the trunk
 };
 
 inline void validate(const TubeOptions& options) {
@@ -32,27 +36,40 @@ inline void validate(const TubeOptions& options) {
   detail::require_in("tube tolerance", options.tolerance, 0.0, 10.0);
   if (options.min_branch < 1 || options.min_branch > 1000)
     throw InvalidInput("tube min branch " + std::to_string(options.min_branch) + " is not in 1-1000");
+  if (options.uv_scale != 0.0 && !(options.uv_scale >= 1e-9 && options.uv_scale <= 1e9))
+    throw InvalidInput("`uv_scale` " + detail::format_number(options.uv_scale) +
+                       " is neither 0 (the base circumference) nor in [1e-9, 1e9]");
 }
 
-//! One strand's tube: vertices with normals, each tied to the particle whose attributes it
-//! carries, and outward-facing triangles of local vertex indices.
+//! One strand's tube: vertices with normals, texture coordinates and tangents, each tied to
+//! the particle whose attributes it carries, and outward-facing triangles of local vertex
+//! indices. A ring's last vertex repeats its first at u = 1 (the seam), so the tube is closed
+//! by position; by index it is open along the seam.
 struct TubePiece {
   std::vector<Eigen::Vector3f> positions;
-  std::vector<Eigen::Vector3f> normals;       //!< unit length
+  std::vector<Eigen::Vector3f> normals;  //!< unit length
+  //! u runs once around the tube, 0 to 1 counter-clockwise seen from ahead; v runs along the
+  //! strand from its seed in `uv_scale`s, and a branch's v goes on from its parent's at the joint.
+  std::vector<Eigen::Vector2f> uvs;
+  //! glTF's: xyz the unit direction of rising u, orthogonal to the normal; w = 1, so the
+  //! normal × tangent runs the way v rises.
+  std::vector<Eigen::Vector4f> tangents;
   std::vector<std::int32_t> particles;
   std::vector<std::array<std::uint32_t, 3>> triangles;
 
   void clear() {
     positions.clear();
     normals.clear();
+    uvs.clear();
+    tangents.clear();
     particles.clear();
     triangles.clear();
   }
 };
 
-//! A tube with `rings` rings of `sides` vertices, a centre vertex closing its start and a
-//! rounded tip (one more ring and an apex).
-inline std::size_t tube_vertices(std::size_t rings, int sides) { return (rings + 1) * static_cast<std::size_t>(sides) + 2; }
+//! A tube with `rings` rings of `sides` + 1 vertices (the seam's twice), a centre vertex closing
+//! its start and a rounded tip (one more ring and an apex).
+inline std::size_t tube_vertices(std::size_t rings, int sides) { return (rings + 1) * (static_cast<std::size_t>(sides) + 1) + 2; }
 inline std::size_t tube_triangles(std::size_t rings, int sides) { return 2 * (rings + 1) * static_cast<std::size_t>(sides); }
 
 namespace detail {
@@ -92,10 +109,31 @@ inline void kept_points(const Cluster& cluster, const std::vector<float>& radii,
   }
 }
 
+//! Scene units of strand per unit of v: `uv_scale`, or for 0 the base circumference.
+inline double uv_scale_of(const Cluster& cluster, const std::vector<float>& radii, double uv_scale) {
+  if (uv_scale > 0.0) return uv_scale;
+  float thickest = 0.0f;
+  for (const float r : radii) thickest = std::max(thickest, r);
+  const double circumference = 2.0 * 3.14159265358979323846 * static_cast<double>(thickest) * cluster.spacing;
+  return circumference > 0.0 ? circumference : cluster.spacing;
+}
+
+//! The texture's v at each particle: the length of the path from its seed, over `scale`.
+inline std::vector<double> strand_lengths(const Cluster& cluster, double scale) {
+  const std::vector<Particle>& ps = cluster.particles;
+  std::vector<double> v(ps.size(), 0.0);
+  for (std::size_t i = 0; i < ps.size(); ++i)  // a parent attaches before its children
+    if (ps[i].parent >= 0) {
+      const auto parent = static_cast<std::size_t>(ps[i].parent);
+      v[i] = v[parent] + (ps[i].position - ps[parent].position).norm() / scale;
+    }
+  return v;
+}
+
 }  // namespace detail
 
 //! A link's tube: a ring about each end and a rounded cap beyond it.
-inline std::size_t link_tube_vertices(int sides) { return 4 * static_cast<std::size_t>(sides) + 2; }
+inline std::size_t link_tube_vertices(int sides) { return 4 * (static_cast<std::size_t>(sides) + 1) + 2; }
 inline std::size_t link_tube_triangles(int sides) { return 8 * static_cast<std::size_t>(sides); }
 
 //! Calls visit(const TubePiece&) for the tube of each strand of two or more particles, in
@@ -114,11 +152,39 @@ void for_each_tube(const Cluster& cluster, const Attributes& attributes, const s
     cosines[static_cast<std::size_t>(s)] = std::cos(angle);
     sines[static_cast<std::size_t>(s)] = std::sin(angle);
   }
+  const double v_per_length = 1.0 / detail::uv_scale_of(cluster, radii, options.uv_scale);
+  const std::vector<double> lengths = detail::strand_lengths(cluster, 1.0 / v_per_length);
   TubePiece piece;
   std::vector<std::size_t> kept;
   std::vector<Vec3> points, tangents;
-  std::vector<double> ring_radii;
+  std::vector<double> ring_radii, ring_v;
   std::vector<std::int32_t> owners;
+  // A ring of sides + 1 vertices about `center`, in the plane of n and b = t × n, the last at
+  // the first's place with u = 1; its normals lean along t by `lean` (a cap's slope).
+  const auto ring = [&](const Vec3& center, const Vec3& t, const Vec3& n, double radius, double lean, double v,
+                        std::int32_t owner) {
+    const Vec3 b = t.cross(n);
+    for (int s = 0; s <= sides; ++s) {
+      const auto at = static_cast<std::size_t>(s % sides);
+      const Vec3 out = cosines[at] * n + sines[at] * b;
+      piece.positions.push_back((center + radius * out).cast<float>());
+      piece.normals.push_back((out + lean * t).normalized().cast<float>());
+      piece.uvs.emplace_back(static_cast<float>(s) / static_cast<float>(sides), static_cast<float>(v));
+      const Vec3 around = cosines[at] * b - sines[at] * n;  // d out / d angle: ⟂ out and t
+      piece.tangents.emplace_back(static_cast<float>(around.x()), static_cast<float>(around.y()),
+                                  static_cast<float>(around.z()), 1.0f);
+      piece.particles.push_back(owner);
+    }
+  };
+  // A cap's centre: its normal along ±t, its tangent the frame's b (u = 0's direction).
+  const auto pole = [&](const Vec3& at, const Vec3& normal, const Vec3& b, double v, std::int32_t owner) {
+    piece.positions.push_back(at.cast<float>());
+    piece.normals.push_back(normal.cast<float>());
+    piece.uvs.emplace_back(0.5f, static_cast<float>(v));
+    piece.tangents.emplace_back(static_cast<float>(b.x()), static_cast<float>(b.y()), static_cast<float>(b.z()), 1.0f);
+    piece.particles.push_back(owner);
+  };
+  const auto k = static_cast<std::uint32_t>(sides), row = k + 1;
   const auto continues = [&](std::size_t i) { return attributes.continues_strand(i); };
   for_each_strand(cluster, continues, [&](const Strand& strand) {
     if (strand.size() < 2) return;
@@ -126,11 +192,13 @@ void for_each_tube(const Cluster& cluster, const Attributes& attributes, const s
     const std::size_t rings = kept.size();
     points.resize(rings);
     ring_radii.resize(rings);
+    ring_v.resize(rings);
     owners.resize(rings);
     for (std::size_t j = 0; j < rings; ++j) {
       const auto id = static_cast<std::size_t>(strand[kept[j]]);
       points[j] = cluster.particles[id].position;
       ring_radii[j] = radii[id] * cluster.spacing;
+      ring_v[j] = lengths[id];
       owners[j] = strand[kept[j]];
     }
     // A strand leaving a branch point starts there, no thicker than its parent's tube nor its
@@ -161,17 +229,7 @@ void for_each_tube(const Cluster& cluster, const Attributes& attributes, const s
       t.cwiseAbs().minCoeff(&axis);
       normal = t.cross(Vec3::Unit(axis)).normalized();
     }
-    const auto ring = [&](const Vec3& center, const Vec3& t, const Vec3& n, double radius, double lean,
-                          std::int32_t owner) {
-      const Vec3 b = t.cross(n);
-      for (int s = 0; s < sides; ++s) {
-        const Vec3 out = cosines[static_cast<std::size_t>(s)] * n + sines[static_cast<std::size_t>(s)] * b;
-        piece.positions.push_back((center + radius * out).cast<float>());
-        piece.normals.push_back((out + lean * t).normalized().cast<float>());
-        piece.particles.push_back(owner);
-      }
-    };
-    const auto k = static_cast<std::uint32_t>(sides);
+    const Vec3 first_b = tangents[0].cross(normal);
     for (std::size_t j = 0; j < rings; ++j) {
       if (j > 0) {
         const Vec3 v1 = points[j] - points[j - 1];
@@ -186,33 +244,30 @@ void for_each_tube(const Cluster& cluster, const Attributes& attributes, const s
         if (c2 > 1e-24) n -= (2.0 / c2) * v2.dot(n) * v2;
         normal = (n - n.dot(tangents[j]) * tangents[j]).normalized();
       }
-      ring(points[j], tangents[j], normal, ring_radii[j], 0.0, owners[j]);
+      ring(points[j], tangents[j], normal, ring_radii[j], 0.0, ring_v[j], owners[j]);
     }
-    // The rounded tip: a ring part way round, then the apex.
+    // The rounded tip: a ring part way round, then the apex; v goes on by the distance along.
     const Vec3& end = points[rings - 1];
     const Vec3& t_end = tangents[rings - 1];
-    const double r_end = ring_radii[rings - 1];
-    ring(end + 0.7 * r_end * t_end, t_end, normal, 0.7 * r_end, 1.0, owners[rings - 1]);
+    const double r_end = ring_radii[rings - 1], v_end = ring_v[rings - 1];
+    ring(end + 0.7 * r_end * t_end, t_end, normal, 0.7 * r_end, 1.0, v_end + 0.7 * r_end * v_per_length, owners[rings - 1]);
     const auto apex = static_cast<std::uint32_t>(piece.positions.size());
-    piece.positions.push_back((end + r_end * t_end).cast<float>());
-    piece.normals.push_back(t_end.cast<float>());
-    piece.particles.push_back(owners[rings - 1]);
+    pole(end + r_end * t_end, t_end, t_end.cross(normal), v_end + r_end * v_per_length, owners[rings - 1]);
     const auto start = static_cast<std::uint32_t>(piece.positions.size());
-    piece.positions.push_back(points[0].cast<float>());
-    piece.normals.push_back((-tangents[0]).cast<float>());
-    piece.particles.push_back(owners[0]);
+    pole(points[0], -tangents[0], first_b, ring_v[0], owners[0]);
     // Walls between consecutive rings (the tip's ring included), outward by the frame's
     // handedness: b = t × n turns counter-clockwise seen from ahead.
     for (std::uint32_t j = 0; j < rings; ++j)
       for (std::uint32_t s = 0; s < k; ++s) {
-        const std::uint32_t a = j * k + s, b = j * k + (s + 1) % k;
-        const std::uint32_t c = b + k, d = a + k;
+        const std::uint32_t a = j * row + s, b = a + 1;
+        const std::uint32_t c = b + row, d = a + row;
         piece.triangles.push_back({a, b, c});
         piece.triangles.push_back({a, c, d});
       }
+    const auto tip = static_cast<std::uint32_t>(rings) * row;
     for (std::uint32_t s = 0; s < k; ++s) {
-      piece.triangles.push_back({static_cast<std::uint32_t>(rings) * k + s, static_cast<std::uint32_t>(rings) * k + (s + 1) % k, apex});
-      piece.triangles.push_back({start, (s + 1) % k, s});
+      piece.triangles.push_back({tip + s, tip + s + 1, apex});
+      piece.triangles.push_back({start, s + 1, s});
     }
     visit(static_cast<const TubePiece&>(piece));
   });
@@ -221,7 +276,6 @@ void for_each_tube(const Cluster& cluster, const Attributes& attributes, const s
     while (continues(i)) i = static_cast<std::size_t>(cluster.particles[i].parent);
     return attributes.descendants[i] + 1 >= options.min_branch;
   };
-  const auto k = static_cast<std::uint32_t>(sides);
   for (const Link& link : cluster.links) {
     const auto a = static_cast<std::size_t>(link.earlier), b = static_cast<std::size_t>(link.later);
     if (options.min_branch > 1 && !(branch_kept(a) && branch_kept(b))) continue;
@@ -235,32 +289,28 @@ void for_each_tube(const Cluster& cluster, const Attributes& attributes, const s
     const double ra = radii[a] * cluster.spacing, rb = radii[b] * cluster.spacing;
     piece.clear();
     // Rings: the cap behind `from`, `from`, `to`, the cap beyond `to`; each leaning as its cap.
+    // v goes on from the earlier end's along the link, from the back cap's centre.
     const std::array<Vec3, 4> centers = {from - 0.7 * ra * t, from, to, to + 0.7 * rb * t};
     const std::array<double, 4> ring_radii = {0.7 * ra, ra, rb, 0.7 * rb}, leans = {-1.0, 0.0, 0.0, 1.0};
+    const double v_back = lengths[a], length = (to - from).norm();
+    const std::array<double, 4> ring_v = {v_back + 0.3 * ra * v_per_length, v_back + ra * v_per_length,
+                                          v_back + (ra + length) * v_per_length,
+                                          v_back + (ra + length + 0.7 * rb) * v_per_length};
     for (std::size_t j = 0; j < 4; ++j)
-      for (int s = 0; s < sides; ++s) {
-        const Vec3 out = cosines[static_cast<std::size_t>(s)] * n + sines[static_cast<std::size_t>(s)] * side;
-        piece.positions.push_back((centers[j] + ring_radii[j] * out).cast<float>());
-        piece.normals.push_back((out + leans[j] * t).normalized().cast<float>());
-        piece.particles.push_back(j < 2 ? link.earlier : link.later);
-      }
+      ring(centers[j], t, n, ring_radii[j], leans[j], ring_v[j], j < 2 ? link.earlier : link.later);
     const auto back = static_cast<std::uint32_t>(piece.positions.size());
-    piece.positions.push_back((from - ra * t).cast<float>());
-    piece.normals.push_back((-t).cast<float>());
-    piece.particles.push_back(link.earlier);
+    pole(from - ra * t, -t, side, v_back, link.earlier);
     const auto front = static_cast<std::uint32_t>(piece.positions.size());
-    piece.positions.push_back((to + rb * t).cast<float>());
-    piece.normals.push_back(t.cast<float>());
-    piece.particles.push_back(link.later);
+    pole(to + rb * t, t, side, v_back + (ra + length + rb) * v_per_length, link.later);
     for (std::uint32_t j = 0; j < 3; ++j)
       for (std::uint32_t s = 0; s < k; ++s) {
-        const std::uint32_t p = j * k + s, q = j * k + (s + 1) % k;
-        piece.triangles.push_back({p, q, q + k});
-        piece.triangles.push_back({p, q + k, p + k});
+        const std::uint32_t p = j * row + s, q = p + 1;
+        piece.triangles.push_back({p, q, q + row});
+        piece.triangles.push_back({p, q + row, p + row});
       }
     for (std::uint32_t s = 0; s < k; ++s) {
-      piece.triangles.push_back({back, (s + 1) % k, s});
-      piece.triangles.push_back({3 * k + s, 3 * k + (s + 1) % k, front});
+      piece.triangles.push_back({back, s + 1, s});
+      piece.triangles.push_back({3 * row + s, 3 * row + s + 1, front});
     }
     visit(static_cast<const TubePiece&>(piece));
   }
