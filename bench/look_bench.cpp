@@ -1,6 +1,7 @@
 // The look of a grown structure of 10^6 particles (3D DLA, grown once on two threads, not
 // timed): the attributes, the radii, the tube mesh for 6, 8 and 12 sides, and the .glb and
-// .obj written into /tmp (the page cache). Counters give triangles and .glb bytes a particle;
+// .obj written into /tmp (the page cache); and three levels of detail of 10^5 particles.
+// Counters give triangles and .glb bytes a particle;
 // tube_mesh's arguments are particles, sides, the tolerance in tenths of a spacing and the
 // smallest branch kept.
 // Run:
@@ -64,6 +65,17 @@ void glb(benchmark::State& state) {
   std::remove("/tmp/dla_look_bench.glb");
 }
 
+//! `levels` levels of detail of a tree (--lod), beside its glb: twigs dropped, tubes simplified.
+void glb_lods(benchmark::State& state) {
+  const dla::Cluster& tree = dla_tree(static_cast<std::size_t>(state.range(0)));
+  const dla::Look look = dla::make_look(tree, {});
+  std::size_t last = 0;
+  for (auto _ : state) last = dla::write_glb_lods(tree, look, static_cast<int>(state.range(1)), "/tmp/dla_look_bench").back();
+  for (int level = 1; level <= state.range(1); ++level)
+    std::remove(("/tmp/dla_look_bench_lod" + std::to_string(level) + ".glb").c_str());
+  state.counters["last_level_triangles"] = static_cast<double>(last);
+}
+
 void obj(benchmark::State& state) {
   const dla::Cluster& tree = dla_tree(static_cast<std::size_t>(state.range(0)));
   const dla::Look look = dla::make_look(tree, {});
@@ -84,5 +96,6 @@ BENCHMARK(tube_mesh)
     ->Args({1'000'000, 4, 10, 16})
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(glb)->Arg(1'000'000)->Unit(benchmark::kMillisecond);
+BENCHMARK(glb_lods)->Args({100'000, 3})->Unit(benchmark::kMillisecond);
 BENCHMARK(obj)->Arg(1'000'000)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_MAIN();

@@ -96,6 +96,9 @@ OutputWords::OutputWords(CLI::App& app, OutputOptions& f, bool& quiet, std::stri
   app.add_option("--tube-min-branch", f.look.tubes.min_branch, "glb, obj: leave out branches of fewer particles "
                                                                 "(counting all that grow from them), 1-1000")
       ->capture_default_str()->group(looks);
+  app.add_option("--lod", f.lods, "glb: levels of detail beside it, PREFIX_lod1.glb on, each with about half the "
+                                  "triangles of the one before, 0-8")
+      ->capture_default_str()->group(looks);
   app.add_option("--uv-scale", f.look.tubes.uv_scale, "glb, obj: strand length per unit of the texture's v, in "
                                                      "scene units; 0: the base circumference")
       ->capture_default_str()->group(looks);

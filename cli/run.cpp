@@ -16,6 +16,7 @@ namespace dla::cli {
 int run(const CommandLine& line, const std::vector<std::string>& args, const Resumed& resumed, const StopFlag& stop,
         const volatile std::sig_atomic_t& stop_signal) {
   const OutputOptions& asked = output_of(line.run);
+  require_glb_for_lods(asked);
   check_writable(file_names(asked).front());  // before a mesh's set-up and a long run
   const std::string& checkpoint = line.checkpoint_path;
   if (!checkpoint.empty()) check_writable(checkpoint);
@@ -102,6 +103,13 @@ int run(const CommandLine& line, const std::vector<std::string>& args, const Res
       std::fprintf(stderr, "dla3d: %s links join the branches in %s loops\n",
                    with_commas(static_cast<double>(cluster.links.size())).c_str(),
                    with_commas(static_cast<double>(cycle_count(cluster))).c_str());
+    if (!record.lod_triangles.empty()) {
+      std::string levels;
+      for (std::size_t level = 0; level < record.lod_triangles.size(); ++level)
+        levels += (level ? ", " : "") + std::string("lod") + std::to_string(level + 1) + " " +
+                  with_commas(static_cast<double>(record.lod_triangles[level]));
+      std::fprintf(stderr, "dla3d: levels of detail, in triangles: %s\n", levels.c_str());
+    }
     if (record.solid)
       std::fprintf(stderr, "dla3d: %s\n",
                    spell_options(describe(*record.solid, record.printed), OptionSpelling::cli).c_str());

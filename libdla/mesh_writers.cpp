@@ -5,6 +5,9 @@
 #include "dla/version.h"
 #include "output_file.h"
 
+#include <meshoptimizer.h>
+
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -33,6 +36,70 @@ class LookTubes {
   const Cluster& cluster_;
   const Look& look_;
   std::vector<float> radii_;
+};
+
+//! One level of detail of the look's tubes: the tubes of branches of `min_branch` particles or
+//! more, each simplified by meshoptimizer toward `keep` of its triangles with no vertex moving by
+//! more than a quarter of the tube's thinnest radius, so a trunk keeps its silhouette. The
+//! simplifier welds a seam's vertices by position and keeps the seam.
+class LodTubes {
+ public:
+  static constexpr bool textured = true;
+
+  LodTubes(const Cluster& cluster, const Look& look, const std::vector<float>& radii, int min_branch, double keep)
+      : cluster_(cluster), look_(look), radii_(radii), options_(look.options.tubes), keep_(keep) {
+    options_.min_branch = min_branch;
+  }
+
+  template <class Visit>
+  void operator()(Visit&& visit) const {
+    for_each_tube(cluster_, look_.attributes, radii_, options_, [&](const TubePiece& piece) {
+      if (keep_ >= 1.0) return visit(piece);
+      simplify(piece);
+      visit(static_cast<const TubePiece&>(simplified_));
+    });
+  }
+  float radius(std::size_t i) const { return radii_[i]; }
+
+ private:
+  void simplify(const TubePiece& piece) const {
+    const std::size_t index_count = piece.triangles.size() * 3, vertex_count = piece.positions.size();
+    const auto* indices = reinterpret_cast<const unsigned int*>(piece.triangles.data());
+    const float* positions = piece.positions.front().data();
+    float thinnest = std::numeric_limits<float>::infinity();
+    for (const std::int32_t p : piece.particles) thinnest = std::min(thinnest, radii_[static_cast<std::size_t>(p)]);
+    const float extent = meshopt_simplifyScale(positions, vertex_count, sizeof(Eigen::Vector3f));
+    const float error = extent > 0 ? 0.25f * thinnest * static_cast<float>(cluster_.spacing) / extent : 0.0f;
+    const auto target = static_cast<std::size_t>(keep_ * static_cast<double>(piece.triangles.size())) * 3;
+    kept_.resize(index_count);
+    kept_.resize(meshopt_simplify(kept_.data(), indices, index_count, positions, vertex_count, sizeof(Eigen::Vector3f),
+                                  std::max<std::size_t>(target, 3), error, 0, nullptr));
+    // The vertices the kept triangles use, in their order in the piece.
+    remap_.assign(vertex_count, kUnused);
+    for (const unsigned int v : kept_) remap_[v] = 0;
+    simplified_.clear();
+    for (std::size_t v = 0; v < vertex_count; ++v) {
+      if (remap_[v] == kUnused) continue;
+      remap_[v] = static_cast<std::uint32_t>(simplified_.positions.size());
+      simplified_.positions.push_back(piece.positions[v]);
+      simplified_.normals.push_back(piece.normals[v]);
+      simplified_.uvs.push_back(piece.uvs[v]);
+      simplified_.tangents.push_back(piece.tangents[v]);
+      simplified_.particles.push_back(piece.particles[v]);
+    }
+    for (std::size_t i = 0; i < kept_.size(); i += 3)
+      simplified_.triangles.push_back({remap_[kept_[i]], remap_[kept_[i + 1]], remap_[kept_[i + 2]]});
+  }
+
+  static constexpr std::uint32_t kUnused = ~std::uint32_t{0};
+  const Cluster& cluster_;
+  const Look& look_;
+  const std::vector<float>& radii_;
+  TubeOptions options_;
+  double keep_;
+  mutable TubePiece simplified_;
+  mutable std::vector<unsigned int> kept_;
+  mutable std::vector<std::uint32_t> remap_;
 };
 
 //! What a glTF needs before its binary chunk: counts and the positions' exact bounds.
@@ -80,9 +147,9 @@ std::string vec3(const Eigen::Vector3f& v) {
 }
 
 //! The glTF of the meshes `each_tube` walks: any source with the visitor call, radius(i) and
-//! `textured` of LookTubes, whose pieces' vertices name their particles.
+//! `textured` of LookTubes, whose pieces' vertices name their particles. Returns its counts.
 template <class Pieces>
-void glb_of(const Cluster& cluster, const Look& look, const Pieces& each_tube, const std::string& path) {
+TubeTotals glb_of(const Cluster& cluster, const Look& look, const Pieces& each_tube, const std::string& path) {
   const TubeTotals totals = tube_totals(each_tube);
   const bool colored = look.options.color_by != ColorBy::none;
   constexpr bool textured = Pieces::textured;
@@ -148,7 +215,7 @@ void glb_of(const Cluster& cluster, const Look& look, const Pieces& each_tube, c
   out.raw(static_cast<std::uint32_t>(gltf.size())).raw(std::uint32_t{0x4E4F534A}) << gltf;
   if (empty) {
     out.commit();
-    return;
+    return totals;
   }
   out.raw(static_cast<std::uint32_t>(vertex_bytes + index_bytes)).raw(std::uint32_t{0x004E4942});
   // The vertices and the indices in one walk of the tubes, each gathered and written at its
@@ -196,6 +263,7 @@ void glb_of(const Cluster& cluster, const Look& look, const Pieces& each_tube, c
   write_out(vertices, vertices_at);
   write_out(indices, indices_at);
   out.commit();
+  return totals;
 }
 
 //! OBJ's faces name a vertex's position, texture coordinates and normal by one index; its v
@@ -289,6 +357,39 @@ void write_glb(const Cluster& cluster, const Look& look, const std::string& path
 
 void write_obj(const Cluster& cluster, const Look& look, const std::string& path) {
   obj_of(cluster, look, LookTubes(cluster, look), "tube mesh", path);
+}
+
+std::vector<std::size_t> write_glb_lods(const Cluster& cluster, const Look& look, int levels, const std::string& prefix) {
+  if (levels < 0 || levels > kMaxLods)
+    throw InvalidInput("`lod` " + std::to_string(levels) + " is not in 0-" + std::to_string(kMaxLods));
+  const std::vector<float> radii = look.radii(cluster);
+  const int base_min_branch = look.options.tubes.min_branch;
+  // Each tube's triangles by the size of its branch (capped past the largest threshold): what
+  // each threshold keeps, before simplifying.
+  constexpr int kMaxMinBranch = 1000;
+  std::vector<std::size_t> by_size(kMaxMinBranch + 2, 0);
+  std::size_t full = 0;
+  LookTubes(cluster, look)([&](const TubePiece& piece) {
+    const auto first = static_cast<std::size_t>(piece.particles.front());
+    by_size[static_cast<std::size_t>(std::min(look.attributes.descendants[first] + 1, kMaxMinBranch + 1))] +=
+        piece.triangles.size();
+    full += piece.triangles.size();
+  });
+  std::vector<std::size_t> kept_from(by_size.size() + 1, 0);  // triangles of branches of m or more
+  for (std::size_t m = by_size.size(); m-- > 0;) kept_from[m] = kept_from[m + 1] + by_size[m];
+  std::vector<std::size_t> triangles;
+  int min_branch = base_min_branch;
+  for (int level = 1; level <= levels; ++level) {
+    // Half the triangles a level: twigs go first, up to two thirds of the way; the simplifier
+    // takes the rest.
+    const double target = static_cast<double>(full) / static_cast<double>(1 << level);
+    while (min_branch < kMaxMinBranch && static_cast<double>(kept_from[static_cast<std::size_t>(min_branch)]) > 1.5 * target)
+      ++min_branch;
+    const double kept = static_cast<double>(kept_from[static_cast<std::size_t>(min_branch)]);
+    const LodTubes tubes(cluster, look, radii, min_branch, kept > 0 ? std::min(1.0, target / kept) : 1.0);
+    triangles.push_back(glb_of(cluster, look, tubes, prefix + "_lod" + std::to_string(level) + ".glb").triangles);
+  }
+  return triangles;
 }
 
 void write_solid_glb(const Solid& solid, const Cluster& cluster, const Look& look, const std::string& path) {

@@ -53,6 +53,12 @@ void write_run_report(const Cluster& cluster, const ModelRecord& model, const Lo
   if (model.measures) model.measures(out);
   out.close();
 
+  if (!record.lod_triangles.empty()) {
+    std::string counts;
+    for (const std::size_t n : record.lod_triangles) counts += (counts.empty() ? "" : ", ") + std::to_string(n);
+    out.raw("lod_triangles", "[" + counts + "]");
+  }
+
   if (record.solid) {
     const SolidMeasures& m = *record.solid;
     out.open("solid")

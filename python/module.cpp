@@ -20,6 +20,7 @@
 #include <chrono>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -94,6 +95,14 @@ long long whole(const char* name, py::handle value) {
   } catch (const py::cast_error&) {
     throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is too large");
   }
+}
+
+//! A whole number for an int option: one beyond an int is refused here, not wrapped into range.
+int whole_int(const char* name, py::handle value) {
+  const long long n = whole(name, value);
+  if (n < std::numeric_limits<int>::min() || n > std::numeric_limits<int>::max())
+    throw InvalidInput(std::string("`") + name + "` " + std::to_string(n) + (n > 0 ? " is too large" : " is too small"));
+  return static_cast<int>(n);
 }
 
 std::size_t count(const char* name, py::handle value) {
@@ -232,29 +241,26 @@ void add_look(Table<Options>& t) {
   const auto files = [](Options& o) -> OutputOptions& { return o.files; };
   t["ply_format"] = [=](Options& o, py::handle v, Given&) { files(o).ply_encoding = word("ply_format", v, parse_ply_encoding); };
   t["png_scale"] = [=](Options& o, py::handle v, Given&) { files(o).png.pixels_per_spacing = number("png_scale", v); };
-  t["png_bands"] = [=](Options& o, py::handle v, Given&) { files(o).png.bands = static_cast<int>(whole("png_bands", v)); };
+  t["png_bands"] = [=](Options& o, py::handle v, Given&) { files(o).png.bands = whole_int("png_bands", v); };
   t["radius"] = [=](Options& o, py::handle v, Given&) { files(o).radius = word("radius", v, parse_radius_model); };
   t["base_radius"] = [=](Options& o, py::handle v, Given&) { files(o).base_radius = number("base_radius", v); };
   t["tip_radius"] = [=](Options& o, py::handle v, Given&) { files(o).tip_radius = number("tip_radius", v); };
   t["pipe_exponent"] = [=](Options& o, py::handle v, Given&) { files(o).look.radius.pipe_exponent = number("pipe_exponent", v); };
   t["color_by"] = [=](Options& o, py::handle v, Given&) { files(o).look.color_by = word("color_by", v, parse_color_by); };
   t["look"] = [=](Options& o, py::handle v, Given&) { files(o).pov.style = word("look", v, parse_pov_style); };
-  t["tube_sides"] = [=](Options& o, py::handle v, Given&) { files(o).look.tubes.sides = static_cast<int>(whole("tube_sides", v)); };
+  t["tube_sides"] = [=](Options& o, py::handle v, Given&) { files(o).look.tubes.sides = whole_int("tube_sides", v); };
   t["tube_tolerance"] = [=](Options& o, py::handle v, Given&) { files(o).look.tubes.tolerance = number("tube_tolerance", v); };
   t["uv_scale"] = [=](Options& o, py::handle v, Given&) { files(o).look.tubes.uv_scale = number("uv_scale", v); };
+  t["lod"] = [=](Options& o, py::handle v, Given&) { files(o).lods = whole_int("lod", v); };
   t["tube_min_branch"] = [=](Options& o, py::handle v, Given&) {
-    files(o).look.tubes.min_branch = static_cast<int>(whole("tube_min_branch", v));
+    files(o).look.tubes.min_branch = whole_int("tube_min_branch", v);
   };
   t["instances"] = [=](Options& o, py::handle v, Given&) { files(o).instances.set = word("instances", v, parse_instance_set); };
   t["tips_within"] = [=](Options& o, py::handle v, Given&) { files(o).instances.within = number("tips_within", v); };
   t["tips_exclude_paint"] = [=](Options& o, py::handle v, Given&) {
     files(o).instances.exclude_paint = parse_paint(text("tips_exclude_paint", v), "tips_exclude_paint");
   };
-  t["tips_every"] = [=](Options& o, py::handle v, Given&) {
-    const long long every = whole("tips_every", v);
-    if (every < 1 || every > 1'000'000) throw InvalidInput("`tips_every` " + std::to_string(every) + " is not in 1-1000000");
-    files(o).instances.every = static_cast<int>(every);
-  };
+  t["tips_every"] = [=](Options& o, py::handle v, Given&) { files(o).instances.every = whole_int("tips_every", v); };
   t["up"] = [=](Options& o, py::handle v, Given&) { files(o).up = word("up", v, parse_axis); };
   t["solid_shape"] = [=](Options& o, py::handle v, Given&) { files(o).solid.shape = word("solid_shape", v, parse_solid_shape); };
   t["solid_voxel"] = [=](Options& o, py::handle v, Given&) { files(o).solid.voxel = number("solid_voxel", v); };
@@ -298,13 +304,13 @@ Table<DlaRunOptions> dla_table() {
   t["particles"] = [](O& o, py::handle v, Given&) { o.particles = count("particles", v); };
   t["spacing"] = [](O& o, py::handle v, Given&) { o.spacing = number("spacing", v); };
   t["stickiness"] = [](O& o, py::handle v, Given&) { o.growth.stickiness = number("stickiness", v); };
-  t["dimensions"] = [](O& o, py::handle v, Given&) { o.growth.dimensions = static_cast<int>(whole("dimensions", v)); };
+  t["dimensions"] = [](O& o, py::handle v, Given&) { o.growth.dimensions = whole_int("dimensions", v); };
   t["seed_at"] = [](O& o, py::handle v, Given&) { o.seed_at = points("seed_at", v); };
   t["rng_seed"] = [](O& o, py::handle v, Given&) { o.growth.rng_seed = count("rng_seed", v); };
   t["min_step"] = [](O& o, py::handle v, Given&) { o.growth.min_step = number("min_step", v); };
   t["links"] = [](O& o, py::handle v, Given&) { o.links = links("links", v); };
   t["index"] = [](O& o, py::handle v, Given&) { o.growth.index = word("index", v, parse_index_kind); };
-  t["threads"] = [](O& o, py::handle v, Given&) { o.growth.threads = static_cast<int>(whole("threads", v)); };
+  t["threads"] = [](O& o, py::handle v, Given&) { o.growth.threads = whole_int("threads", v); };
   t["stl"] = [](O& o, py::handle v, Given& g) { o.stl = mesh("stl", v, g); };
   t["text"] = [](O& o, py::handle v, Given&) {
     const std::string font = o.text ? o.text->font : kDefaultFont;
@@ -353,7 +359,7 @@ Table<ColonizeRunOptions> colonize_table() {
     o.colonization.noise_scale = n[1];
   };
   t["tropism"] = [](O& o, py::handle v, Given&) { o.colonization.tropism = vec3("tropism", v); };
-  t["dimensions"] = [](O& o, py::handle v, Given&) { o.colonization.dimensions = static_cast<int>(whole("dimensions", v)); };
+  t["dimensions"] = [](O& o, py::handle v, Given&) { o.colonization.dimensions = whole_int("dimensions", v); };
   t["rng_seed"] = [](O& o, py::handle v, Given&) { o.colonization.rng_seed = count("rng_seed", v); };
   t["attractors"] = [](O& o, py::handle v, Given& g) {
     o.attractors.count = count("attractors", v);
@@ -392,7 +398,7 @@ Table<EdenRunOptions> eden_table() {
   t["sites"] = [](O& o, py::handle v, Given&) {
     if ((o.eden.sites = count("sites", v)) == 0) throw InvalidInput("`sites` 0 is not at least 1");
   };
-  t["dimensions"] = [](O&, py::handle v, Given& g) { g.eden_dimensions = static_cast<int>(whole("dimensions", v)); };
+  t["dimensions"] = [](O&, py::handle v, Given& g) { g.eden_dimensions = whole_int("dimensions", v); };
   t["lattice"] = [](O& o, py::handle v, Given& g) {
     o.eden.lattice = word("lattice", v, parse_lattice);
     g.lattice = true;
@@ -403,7 +409,7 @@ Table<EdenRunOptions> eden_table() {
     if (mask.size() == 1 && mask.find_first_of("ABCD") == 0) o.eden.mask = parse_eden_mask(mask);
     else o.mask_file = mask;
   };
-  t["mask_threshold"] = [](O& o, py::handle v, Given&) { o.eden.mask_threshold = static_cast<int>(whole("mask_threshold", v)); };
+  t["mask_threshold"] = [](O& o, py::handle v, Given&) { o.eden.mask_threshold = whole_int("mask_threshold", v); };
   t["seed_radius"] = [](O& o, py::handle v, Given&) { o.eden.seed_radius = number("seed_radius", v); };
   t["spacing"] = [](O& o, py::handle v, Given&) { o.eden.spacing = number("spacing", v); };
   t["rng_seed"] = [](O& o, py::handle v, Given&) { o.eden.rng_seed = count("rng_seed", v); };
@@ -415,7 +421,7 @@ Table<EdenRunOptions> eden_table() {
 template <class O, class Model>
 void add_seeded(Table<O>& t, Model O::*model) {
   t["particles"] = [=](O& o, py::handle v, Given&) { (o.*model).particles = count("particles", v); };
-  t["dimensions"] = [=](O& o, py::handle v, Given&) { (o.*model).dimensions = static_cast<int>(whole("dimensions", v)); };
+  t["dimensions"] = [=](O& o, py::handle v, Given&) { (o.*model).dimensions = whole_int("dimensions", v); };
   t["rng_seed"] = [=](O& o, py::handle v, Given&) { (o.*model).rng_seed = count("rng_seed", v); };
   t["n"] = t["particles"];
 }
@@ -707,6 +713,7 @@ void write(Result& result, const std::string& prefix, const std::vector<std::str
   files.output = prefix;
   files.formats = parse_formats(words);
   validate(files, result.cluster.dimensions, result.run->constraint != nullptr);
+  require_glb_for_lods(files);
   check_writable(file_names(files).front());
   RunRecord record = result.record;  // the growth's time, command and end; the writing's own time
   py::gil_scoped_release released;

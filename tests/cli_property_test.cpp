@@ -117,6 +117,7 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--tube-tolerance", {"0", "0.5", "10", "-1", "11", "nan"}},
       {"--tube-min-branch", {"1", "16", "1000", "0", "1001", "x"}},
       {"--uv-scale", {"0", "2.5", "1e-9", "-1", "1e10", "nan"}},
+      {"--lod", {"0", "2", "8", "-1", "9", "x"}},
       {"--instances", {"tips", "all", "some"}},
       {"--tips-within", {"2", "0", "1e300", "-1", "nan"}},
       {"--tips-every", {"1", "3", "1000000", "0", "1000001", "x"}},
@@ -586,7 +587,7 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
   // What the other models share with DLA: the Output and Look options (and help).
   const std::vector<const char*> shared = {"--output", "--ply-format", "--formats", "--png-scale", "--png-bands", "--radius", "--base-radius",
                                            "--tip-radius", "--pipe-exponent", "--color-by", "--look", "--tube-sides",
-                                           "--tube-tolerance", "--tube-min-branch", "--uv-scale", "--instances", "--tips-within", "--tips-every", "--tips-exclude-paint",
+                                           "--tube-tolerance", "--tube-min-branch", "--uv-scale", "--lod", "--instances", "--tips-within", "--tips-every", "--tips-exclude-paint",
                                            "--up", "--quiet", "--help"};
   const auto flags_of = [&](const Table& table) {
     std::vector<std::string> model_flags(shared.begin(), shared.end());

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
@@ -218,6 +219,31 @@ TEST(GltfValidator, FindsNoErrorInTheGlb) {
   lone.particles.push_back({Vec3::Zero(), -1, 0});
   write_glb(lone, make_look(lone, {}), dir / "empty.glb");
   EXPECT_EQ(testing::validate_glb(dir / "empty.glb"), "") << "a structure with no branch";
+}
+
+// Levels of detail: the validator passes each, and Blender imports each with the triangles
+// written, falling level by level.
+TEST(Blender, ImportsTheLevelsOfDetail) {
+  DLA_NEED_BLENDER();
+  DLA_NEED_GLTF_VALIDATOR();
+  ScratchDir dir;
+  const Cluster c = sample();
+  LookOptions options;
+  options.radius.model = RadiusModel::pipe;
+  const Look look = make_look(c, options);
+  write_glb(c, look, dir / "tree.glb");
+  const std::vector<std::size_t> triangles = write_glb_lods(c, look, 3, dir / "tree");
+  long before = blender_import(dir, "tree.glb").faces;
+  for (std::size_t level = 1; level <= 3; ++level) {
+    const std::string file = "tree_lod" + std::to_string(level) + ".glb";
+    SCOPED_TRACE(file);
+    EXPECT_EQ(testing::validate_glb(dir / file), "");
+    const Imported lod = blender_import(dir, file);
+    EXPECT_EQ(lod.faces, static_cast<long>(triangles[level - 1]));
+    EXPECT_LT(lod.faces, before);
+    EXPECT_TRUE(std::isfinite(lod.uv[0]) && lod.uv[0] >= -1e-6 && lod.uv[2] <= 1 + 1e-6) << "the UV map";
+    before = lod.faces;
+  }
 }
 
 // A structure with links: Blender reads the PLY's edges, tree and links, and the glb with a tube

@@ -21,7 +21,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <functional>
 #include <limits>
 #include <map>
@@ -702,6 +704,65 @@ TEST(LookFiles, GlbAndObjHoldEveryTube) {
   lone.particles.push_back({Vec3::Zero(), -1, 0});
   write_glb(lone, make_look(lone, {}), dir / "lone.glb");
   EXPECT_NE(read_file(dir / "lone.glb").find("\"scenes\":[{}]"), std::string::npos);
+}
+
+//! The positions' bounds a glb's JSON gives (its first accessor's min and max) and its triangles
+//! (its last accessor's count, over 3).
+struct GlbMesh {
+  Eigen::Vector3d min, max;
+  std::size_t triangles = 0;
+};
+
+GlbMesh read_glb_mesh(const std::string& path) {
+  const std::string glb = read_file(path);
+  std::uint32_t json_length = 0;
+  std::memcpy(&json_length, glb.data() + 12, 4);
+  const std::string json = glb.substr(20, json_length);
+  GlbMesh mesh;
+  const auto vector_after = [&](const std::string& key) {
+    Eigen::Vector3d v;
+    std::sscanf(json.c_str() + json.find(key) + key.size(), "[%lf,%lf,%lf]", &v.x(), &v.y(), &v.z());
+    return v;
+  };
+  mesh.min = vector_after("\"min\":");
+  mesh.max = vector_after("\"max\":");
+  const std::size_t last = json.rfind("\"count\":");
+  mesh.triangles = std::stoul(json.substr(last + 8)) / 3;
+  return mesh;
+}
+
+// Levels of detail: each about half the one before, twigs first, within the full mesh's bounds
+// and no more than a few per cent inside them; their counts are the files'.
+TEST(LookFiles, LevelsOfDetailHalveTheTrianglesAndKeepTheShape) {
+  ScratchDir dir;
+  const Cluster c = grown(5000);
+  LookOptions options;
+  options.radius.model = RadiusModel::pipe;
+  const Look look = make_look(c, options);
+  write_glb(c, look, dir / "tree.glb");
+  const std::vector<std::size_t> triangles = write_glb_lods(c, look, 3, dir / "tree");
+  ASSERT_EQ(triangles.size(), 3u);
+  const GlbMesh full = read_glb_mesh(dir / "tree.glb");
+  const double diagonal = (full.max - full.min).norm();
+  std::size_t before = full.triangles;
+  for (std::size_t level = 1; level <= 3; ++level) {
+    SCOPED_TRACE(level);
+    const GlbMesh lod = read_glb_mesh(dir / ("tree_lod" + std::to_string(level) + ".glb"));
+    EXPECT_EQ(lod.triangles, triangles[level - 1]);
+    EXPECT_LT(lod.triangles, before * 3 / 4) << "not about half the level before";
+    EXPECT_GT(lod.triangles, before / 4);
+    before = lod.triangles;
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_GE(lod.min[a], full.min[a] - 1e-6) << "outside the full mesh";
+      EXPECT_LE(lod.max[a], full.max[a] + 1e-6) << "outside the full mesh";
+      EXPECT_LT(lod.min[a] - full.min[a], 0.05 * diagonal) << "shrunk";
+      EXPECT_LT(full.max[a] - lod.max[a], 0.05 * diagonal) << "shrunk";
+    }
+  }
+  EXPECT_TRUE(write_glb_lods(c, look, 0, dir / "none").empty());
+  EXPECT_FALSE(std::filesystem::exists(dir / "none_lod1.glb"));
+  EXPECT_THROW(write_glb_lods(c, look, kMaxLods + 1, dir / "many"), InvalidInput);
+  EXPECT_THROW(write_glb_lods(c, look, -1, dir / "few"), InvalidInput);
 }
 
 TEST(LookFiles, SvgDrawsEveryBranchOf2DGrowth) {

@@ -3,6 +3,7 @@
 #include "dla/run/output.h"
 
 #include "dla/io/html_writer.h"
+#include "dla/io/mesh_writers.h"
 
 #include <cerrno>
 #include <cstdio>
@@ -68,11 +69,19 @@ Formats parse_formats(std::string_view words) {
   return formats;
 }
 
+void require_glb_for_lods(const OutputOptions& output) {
+  if (output.lods > 0 && !output.formats.glb)
+    throw InvalidInput("`lod` " + std::to_string(output.lods) + " writes levels of the glb: add glb to `formats`");
+}
+
 std::vector<std::string> file_names(const OutputOptions& output) {
   std::vector<std::string> names;
   for (const FormatEntry& e : format_table())
-    if (output.formats.*(e.flag))
+    if (output.formats.*(e.flag)) {
       for (const char* suffix : e.suffixes) names.push_back(output.output + suffix);
+      if (e.flag == &Formats::glb)
+        for (int level = 1; level <= output.lods; ++level) names.push_back(output.output + "_lod" + std::to_string(level) + ".glb");
+    }
   return names;
 }
 
@@ -89,6 +98,8 @@ void validate(const OutputOptions& f, int dimensions, bool with_mesh) {
     throw InvalidInput("`formats` png draws 2D growth: add `dimensions` 2, or leave png out");
   validate(f.png);
   validate(f.solid);
+  if (f.lods < 0 || f.lods > kMaxLods)
+    throw InvalidInput("`lod` " + std::to_string(f.lods) + " is not in 0-" + std::to_string(kMaxLods));
   if (!with_mesh) {
     if (look.radius.model == RadiusModel::boundary)
       throw InvalidInput("`radius` boundary measures to a constraint mesh: give one with `stl`");

@@ -33,6 +33,7 @@ struct WriteJob {
   const OutputOptions& files;
   const PovOptions& pov;
   const TriangleMesh* scene_mesh;
+  std::vector<std::size_t>& lod_triangles;  //!< the glb's writer counts its levels' triangles here
 };
 
 using Writer = void (*)(const WriteJob& job, const std::string& path);
@@ -48,7 +49,11 @@ const WriterEntry kWriters[] = {
     {&Formats::csv, ".csv", [](const WriteJob& j, const std::string& path) { write_csv(j.cluster, j.look, path); }},
     {&Formats::ply, ".ply",
      [](const WriteJob& j, const std::string& path) { write_ply(j.cluster, j.look, path, j.files.ply_encoding); }},
-    {&Formats::glb, ".glb", [](const WriteJob& j, const std::string& path) { write_glb(j.cluster, j.look, path); }},
+    {&Formats::glb, ".glb",
+     [](const WriteJob& j, const std::string& path) {
+       write_glb(j.cluster, j.look, path);
+       j.lod_triangles = write_glb_lods(j.cluster, j.look, j.files.lods, j.files.output);
+     }},
     {&Formats::obj, ".obj", [](const WriteJob& j, const std::string& path) { write_obj(j.cluster, j.look, path); }},
     {&Formats::tips, "_tips.ply",
      [](const WriteJob& j, const std::string& path) {
@@ -126,7 +131,8 @@ FilesWritten write_files(const Cluster& cluster, const OutputOptions& files, con
                                context.constraint ? &context.constraint->mesh() : nullptr});
   // The solid's plan first: a solid that would not fit is refused before any file is written.
   const SolidPlan plan = files.formats.solid() ? plan_solid(cluster, look.radii(cluster), files.solid) : SolidPlan{};
-  const WriteJob job{cluster, look, files, pov, context.scene_mesh};
+  FilesWritten written;
+  const WriteJob job{cluster, look, files, pov, context.scene_mesh, written.lod_triangles};
   std::vector<std::future<void>> writers;
   const WriterEntry* scene = nullptr;
   for (const WriterEntry& writer : kWriters) {
@@ -138,7 +144,6 @@ FilesWritten write_files(const Cluster& cluster, const OutputOptions& files, con
     const std::string path = files.output + writer.suffix;
     writers.push_back(std::async(std::launch::async, [&job, &writer, path] { writer.write(job, path); }));
   }
-  FilesWritten written;
   std::future<SolidMeasures> solid;
   if (files.formats.solid())
     solid = std::async(std::launch::async, [&] { return write_solid(plan, job, context); });
@@ -175,8 +180,10 @@ void write_run(const Run& run, const Cluster& cluster, const OutputOptions& file
   // a solid refused before any file was written.
   std::exception_ptr failure;
   try {
-    record.solid =
-        write_files(cluster, files, {run.threads, run.constraint, run.scene_mesh, record.command, stop, solid_progress}).solid;
+    FilesWritten written =
+        write_files(cluster, files, {run.threads, run.constraint, run.scene_mesh, record.command, stop, solid_progress});
+    record.solid = written.solid;
+    record.lod_triangles = std::move(written.lod_triangles);
   } catch (const InvalidInput&) {
     throw;
   } catch (...) {

@@ -189,6 +189,9 @@ def test_a_missing_file_is_an_os_error():
     (lambda: dla3d.grow(particles=10).write("/tmp/dla3d_py_x", formats=["gif"]), "'gif' is not one of"),
     (lambda: dla3d.grow(particles=10).write("/no/such/dir/x", formats=["csv"]), "cannot write"),
     (lambda: dla3d.grow(particles=10).tubes(sides=2), "tube sides 2 is not in 3-64"),
+    (lambda: dla3d.grow(particles=10, tube_sides=2**32 + 8), "tube_sides=4294967304 is too large"),
+    (lambda: dla3d.grow(particles=10, lod=2).write("/tmp/dla3d_py_x", formats=["csv"]),
+     "lod=2 writes levels of the glb: add glb to formats"),
     (lambda: dla3d.grow(particles=10).tubes(uv_scale=-1), "uv_scale=-1 is neither 0 (the base circumference) nor in"),
 ])
 def test_misuse_is_one_clear_line(call, message):
@@ -365,7 +368,7 @@ RANDOM_OPTIONS = {
              "radius": ["pipe", "taper", "boundary", "seed-distance", "fat"], "threads": [1, 2, 0, 300],
              "seed_at": [[(0, 0, 0), (10, 0, 0)], [(0, 0, 0), (0, 0, 0)], (1, 2, 3)], "index": ["grid", "kdtree", "x"],
              "tube_sides": [3, 8, 2, 65], "color_by": ["age", "depth", "mood"], "n": [200, -1],
-             "uv_scale": [0, 2.5, 1e-9, -1, 1e10, "x"],
+             "uv_scale": [0, 2.5, 1e-9, -1, 1e10, "x"], "lod": [0, 2, 9, -1, 2**32 + 2],
              "tips_every": [1, 3, 0, 10**7, "x"], "tips_exclude_paint": ["red", "mauve", 3],
              "links": [2, (3, 2), "1.5,4", 0, -1, (2, 0), (2, 1.5), "lattice", "x", (1, 2, 3)]},
     "colonize": {"venation": ["open", "closed", "shut", 1], "influence": [6, 2.5, -1],

@@ -28,6 +28,7 @@ struct RunRecord {
   std::string stopped_by;  //!< why growth ended before the count (a signal, an error), if it did
   std::optional<SolidMeasures> solid;  //!< what the solid measures, when one was written
   bool printed = false;                //!< the solid was sized for print: its units are mm
+  std::vector<std::size_t> lod_triangles;  //!< each level of detail's triangles (`lod`), from level 1
 };
 
 //! The solid's measures in a line, for a summary: volume, area, shells, thinnest wall.

@@ -46,6 +46,7 @@ struct OutputOptions {
   InstanceOptions instances;                       //!< tips: which particles, how near the mesh
   PovOptions pov;                                  //!< the scene: style, up axis
   SolidOptions solid;                              //!< the solid's files: voxel, smoothing, print size
+  int lods = 0;  //!< glb: levels of detail beside it, PREFIX_lod1.glb on, in [0, kMaxLods] (mesh_writers.h)
   //! Defaults a mesh changes when they are not given: the up axis (the mesh's longest side's),
   //! and for DLA in a mesh the radius model (pipe) and range (3 to 0.05 spacings). Unset, the
   //! values in `pov` and `look` hold.
@@ -53,6 +54,10 @@ struct OutputOptions {
   std::optional<RadiusModel> radius;
   std::optional<double> base_radius, tip_radius;
 };
+
+//! Throws InvalidInput for levels of detail without the glb they are levels of: checked where
+//! the formats are final (before growth on the command line, at write() in Python).
+void require_glb_for_lods(const OutputOptions& output);
 
 //! The files `output` writes, in `formats` order, for a summary.
 std::vector<std::string> file_names(const OutputOptions& output);
@@ -74,6 +79,7 @@ struct WriteContext {
 //! What writing measured: the solid's measures, when a solid format was asked for.
 struct FilesWritten {
   std::optional<SolidMeasures> solid;
+  std::vector<std::size_t> lod_triangles;  //!< each level of detail's triangles, from level 1
 };
 
 //! Makes the look and writes every file `files.formats` asks for but the JSON record (which
