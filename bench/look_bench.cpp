@@ -55,7 +55,8 @@ void tube_mesh(benchmark::State& state) {
   const double n = static_cast<double>(tree.particles.size());
   state.counters["triangles_per_particle"] = static_cast<double>(triangles) / n;
   // .glb without colour: 72 bytes a vertex (with its tangent and texture coordinates), 12 a triangle.
-  state.counters["glb_bytes_per_particle"] = (72.0 * static_cast<double>(vertices) + 12.0 * static_cast<double>(triangles)) / n;
+  state.counters["glb_bytes_per_particle"] =
+      (72.0 * static_cast<double>(vertices) + 12.0 * static_cast<double>(triangles)) / n;
 }
 
 void glb(benchmark::State& state) {
@@ -70,8 +71,9 @@ void glb_lods(benchmark::State& state) {
   const dla::Cluster& tree = dla_tree(static_cast<std::size_t>(state.range(0)));
   const dla::Look look = dla::make_look(tree, {});
   std::size_t last = 0;
-  for (auto _ : state) last = dla::write_glb_lods(tree, look, static_cast<int>(state.range(1)), "/tmp/dla_look_bench").back();
-  for (int level = 1; level <= state.range(1); ++level)
+  const int levels = static_cast<int>(state.range(1));
+  for (auto _ : state) last = dla::write_glb_lods(tree, look, levels, "/tmp/dla_look_bench").back();
+  for (int level = 1; level <= levels; ++level)
     std::remove(("/tmp/dla_look_bench_lod" + std::to_string(level) + ".glb").c_str());
   state.counters["last_level_triangles"] = static_cast<double>(last);
 }

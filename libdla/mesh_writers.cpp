@@ -302,7 +302,8 @@ void obj_of(const Cluster& cluster, const Look& look, const Pieces& each_tube, s
       for (const std::uint32_t v : t) {
         // The index once in digits, then as position/texture/normal (position//normal).
         char digits[24];
-        const std::string_view index(digits, static_cast<std::size_t>(std::to_chars(digits, digits + 24, base + v).ptr - digits));
+        const char* const end = std::to_chars(digits, digits + 24, base + v).ptr;
+        const std::string_view index(digits, static_cast<std::size_t>(end - digits));
         out << ' ' << index << (Pieces::textured ? "/" : "//");
         if (Pieces::textured) out << index << '/';
         out << index;
@@ -359,7 +360,8 @@ void write_obj(const Cluster& cluster, const Look& look, const std::string& path
   obj_of(cluster, look, LookTubes(cluster, look), "tube mesh", path);
 }
 
-std::vector<std::size_t> write_glb_lods(const Cluster& cluster, const Look& look, int levels, const std::string& prefix) {
+std::vector<std::size_t> write_glb_lods(const Cluster& cluster, const Look& look, int levels,
+                                        const std::string& prefix) {
   if (levels < 0 || levels > kMaxLods)
     throw InvalidInput("`lod` " + std::to_string(levels) + " is not in 0-" + std::to_string(kMaxLods));
   const std::vector<float> radii = look.radii(cluster);
@@ -380,12 +382,12 @@ std::vector<std::size_t> write_glb_lods(const Cluster& cluster, const Look& look
   std::vector<std::size_t> triangles;
   int min_branch = base_min_branch;
   for (int level = 1; level <= levels; ++level) {
-    // Half the triangles a level: twigs go first, up to two thirds of the way; the simplifier
-    // takes the rest.
+    // Half the triangles a level: twigs go first, down to 1.5 times the level's target; the
+    // simplifier takes the rest.
     const double target = static_cast<double>(full) / static_cast<double>(1 << level);
-    while (min_branch < kMaxMinBranch && static_cast<double>(kept_from[static_cast<std::size_t>(min_branch)]) > 1.5 * target)
-      ++min_branch;
-    const double kept = static_cast<double>(kept_from[static_cast<std::size_t>(min_branch)]);
+    const auto kept_at = [&](int m) { return static_cast<double>(kept_from[static_cast<std::size_t>(m)]); };
+    while (min_branch < kMaxMinBranch && kept_at(min_branch) > 1.5 * target) ++min_branch;
+    const double kept = kept_at(min_branch);
     const LodTubes tubes(cluster, look, radii, min_branch, kept > 0 ? std::min(1.0, target / kept) : 1.0);
     triangles.push_back(glb_of(cluster, look, tubes, prefix + "_lod" + std::to_string(level) + ".glb").triangles);
   }

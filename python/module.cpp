@@ -101,7 +101,8 @@ long long whole(const char* name, py::handle value) {
 int whole_int(const char* name, py::handle value) {
   const long long n = whole(name, value);
   if (n < std::numeric_limits<int>::min() || n > std::numeric_limits<int>::max())
-    throw InvalidInput(std::string("`") + name + "` " + std::to_string(n) + (n > 0 ? " is too large" : " is too small"));
+    throw InvalidInput(std::string("`") + name + "` " + std::to_string(n) +
+                       (n > 0 ? " is too large" : " is too small"));
   return static_cast<int>(n);
 }
 

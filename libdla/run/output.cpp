@@ -80,7 +80,8 @@ std::vector<std::string> file_names(const OutputOptions& output) {
     if (output.formats.*(e.flag)) {
       for (const char* suffix : e.suffixes) names.push_back(output.output + suffix);
       if (e.flag == &Formats::glb)
-        for (int level = 1; level <= output.lods; ++level) names.push_back(output.output + "_lod" + std::to_string(level) + ".glb");
+        for (int level = 1; level <= output.lods; ++level)
+          names.push_back(output.output + "_lod" + std::to_string(level) + ".glb");
     }
   return names;
 }

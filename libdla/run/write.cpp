@@ -180,8 +180,8 @@ void write_run(const Run& run, const Cluster& cluster, const OutputOptions& file
   // a solid refused before any file was written.
   std::exception_ptr failure;
   try {
-    FilesWritten written =
-        write_files(cluster, files, {run.threads, run.constraint, run.scene_mesh, record.command, stop, solid_progress});
+    FilesWritten written = write_files(
+        cluster, files, {run.threads, run.constraint, run.scene_mesh, record.command, stop, solid_progress});
     record.solid = written.solid;
     record.lod_triangles = std::move(written.lod_triangles);
   } catch (const InvalidInput&) {

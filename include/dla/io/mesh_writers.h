@@ -25,7 +25,8 @@ inline constexpr int kMaxLods = 8;
 //! than a threshold that grows with the level left out (twigs first), then each tube simplified
 //! by meshoptimizer within a quarter of its thinnest radius. Returns each level's triangles.
 //! Throws InvalidInput for a count out of range, IOError.
-std::vector<std::size_t> write_glb_lods(const Cluster& cluster, const Look& look, int levels, const std::string& prefix);
+std::vector<std::size_t> write_glb_lods(const Cluster& cluster, const Look& look, int levels,
+                                        const std::string& prefix);
 
 //! Writes PATH as OBJ: `v x y z [r g b]`, `vn`, `vt u 1-v`, and `f v/vt/vn` triangles, one object. Throws
 //! IOError.

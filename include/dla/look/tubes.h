@@ -69,7 +69,9 @@ struct TubePiece {
 
 //! A tube with `rings` rings of `sides` + 1 vertices (the seam's twice), a centre vertex closing
 //! its start and a rounded tip (one more ring and an apex).
-inline std::size_t tube_vertices(std::size_t rings, int sides) { return (rings + 1) * (static_cast<std::size_t>(sides) + 1) + 2; }
+inline std::size_t tube_vertices(std::size_t rings, int sides) {
+  return (rings + 1) * (static_cast<std::size_t>(sides) + 1) + 2;
+}
 inline std::size_t tube_triangles(std::size_t rings, int sides) { return 2 * (rings + 1) * static_cast<std::size_t>(sides); }
 
 namespace detail {
@@ -250,7 +252,8 @@ void for_each_tube(const Cluster& cluster, const Attributes& attributes, const s
     const Vec3& end = points[rings - 1];
     const Vec3& t_end = tangents[rings - 1];
     const double r_end = ring_radii[rings - 1], v_end = ring_v[rings - 1];
-    ring(end + 0.7 * r_end * t_end, t_end, normal, 0.7 * r_end, 1.0, v_end + 0.7 * r_end * v_per_length, owners[rings - 1]);
+    ring(end + 0.7 * r_end * t_end, t_end, normal, 0.7 * r_end, 1.0, v_end + 0.7 * r_end * v_per_length,
+         owners[rings - 1]);
     const auto apex = static_cast<std::uint32_t>(piece.positions.size());
     pole(end + r_end * t_end, t_end, t_end.cross(normal), v_end + r_end * v_per_length, owners[rings - 1]);
     const auto start = static_cast<std::uint32_t>(piece.positions.size());
