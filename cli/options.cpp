@@ -99,6 +99,9 @@ OutputWords::OutputWords(CLI::App& app, OutputOptions& f, bool& quiet, std::stri
   app.add_option("--lod", f.lods, "glb: levels of detail beside it, PREFIX_lod1.glb on, each with about half the "
                                   "triangles of the one before, 0-8")
       ->capture_default_str()->group(looks);
+  app.add_option("--leaf", f.leaf, "glb: a binary glTF whose mesh goes at each instancing point (as tips picks "
+                                  "them), along its direction and scaled by its pscale; its +Y is the leaf's stem")
+      ->type_name("FILE.glb")->group(looks);
   app.add_option("--uv-scale", f.look.tubes.uv_scale, "glb, obj: strand length per unit of the texture's v, in "
                                                      "scene units; 0: the base circumference")
       ->capture_default_str()->group(looks);

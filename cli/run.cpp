@@ -16,7 +16,7 @@ namespace dla::cli {
 int run(const CommandLine& line, const std::vector<std::string>& args, const Resumed& resumed, const StopFlag& stop,
         const volatile std::sig_atomic_t& stop_signal) {
   const OutputOptions& asked = output_of(line.run);
-  require_glb_for_lods(asked);
+  check_glb_options(asked);
   check_writable(file_names(asked).front());  // before a mesh's set-up and a long run
   const std::string& checkpoint = line.checkpoint_path;
   if (!checkpoint.empty()) check_writable(checkpoint);

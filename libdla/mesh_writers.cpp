@@ -3,6 +3,7 @@
 
 #include "dla/io/json.h"
 #include "dla/version.h"
+#include "leaf_parts.h"
 #include "output_file.h"
 
 #include <meshoptimizer.h>
@@ -19,23 +20,28 @@ namespace dla {
 
 namespace {
 
-//! The look's tubes, walked once a pass, with the radii computed once.
+//! The look's tubes, walked once a pass, with the radii and the texture worked out once.
 class LookTubes {
  public:
   static constexpr bool textured = true;  //!< its pieces have uvs and tangents
 
-  LookTubes(const Cluster& cluster, const Look& look) : cluster_(cluster), look_(look), radii_(look.radii(cluster)) {}
+  LookTubes(const Cluster& cluster, const Look& look)
+      : cluster_(cluster), look_(look), radii_(look.radii(cluster)),
+        texture_(tube_texture(cluster, radii_, look.options.tubes.uv_scale)) {}
 
   template <class Visit>
   void operator()(Visit&& visit) const {
-    for_each_tube(cluster_, look_.attributes, radii_, look_.options.tubes, std::forward<Visit>(visit));
+    for_each_tube(cluster_, look_.attributes, radii_, texture_, look_.options.tubes, std::forward<Visit>(visit));
   }
   float radius(std::size_t i) const { return radii_[i]; }
+  const std::vector<float>& radii() const { return radii_; }
+  const TubeTexture& texture() const { return texture_; }
 
  private:
   const Cluster& cluster_;
   const Look& look_;
   std::vector<float> radii_;
+  TubeTexture texture_;
 };
 
 //! One level of detail of the look's tubes: the tubes of branches of `min_branch` particles or
@@ -46,20 +52,20 @@ class LodTubes {
  public:
   static constexpr bool textured = true;
 
-  LodTubes(const Cluster& cluster, const Look& look, const std::vector<float>& radii, int min_branch, double keep)
-      : cluster_(cluster), look_(look), radii_(radii), options_(look.options.tubes), keep_(keep) {
+  LodTubes(const Cluster& cluster, const Look& look, const LookTubes& full, int min_branch, double keep)
+      : cluster_(cluster), look_(look), full_(full), options_(look.options.tubes), keep_(keep) {
     options_.min_branch = min_branch;
   }
 
   template <class Visit>
   void operator()(Visit&& visit) const {
-    for_each_tube(cluster_, look_.attributes, radii_, options_, [&](const TubePiece& piece) {
+    for_each_tube(cluster_, look_.attributes, full_.radii(), full_.texture(), options_, [&](const TubePiece& piece) {
       if (keep_ >= 1.0) return visit(piece);
       simplify(piece);
       visit(static_cast<const TubePiece&>(simplified_));
     });
   }
-  float radius(std::size_t i) const { return radii_[i]; }
+  float radius(std::size_t i) const { return full_.radius(i); }
 
  private:
   void simplify(const TubePiece& piece) const {
@@ -67,7 +73,7 @@ class LodTubes {
     const auto* indices = reinterpret_cast<const unsigned int*>(piece.triangles.data());
     const float* positions = piece.positions.front().data();
     float thinnest = std::numeric_limits<float>::infinity();
-    for (const std::int32_t p : piece.particles) thinnest = std::min(thinnest, radii_[static_cast<std::size_t>(p)]);
+    for (const std::int32_t p : piece.particles) thinnest = std::min(thinnest, full_.radius(static_cast<std::size_t>(p)));
     const float extent = meshopt_simplifyScale(positions, vertex_count, sizeof(Eigen::Vector3f));
     const float error = extent > 0 ? 0.25f * thinnest * static_cast<float>(cluster_.spacing) / extent : 0.0f;
     const auto target = static_cast<std::size_t>(keep_ * static_cast<double>(piece.triangles.size())) * 3;
@@ -94,7 +100,7 @@ class LodTubes {
   static constexpr std::uint32_t kUnused = ~std::uint32_t{0};
   const Cluster& cluster_;
   const Look& look_;
-  const std::vector<float>& radii_;
+  const LookTubes& full_;
   TubeOptions options_;
   double keep_;
   mutable TubePiece simplified_;
@@ -146,10 +152,63 @@ std::string vec3(const Eigen::Vector3f& v) {
   return "[" + json::number(v.x()) + "," + json::number(v.y()) + "," + json::number(v.z()) + "]";
 }
 
+//! A float's shortest text that reads back to it.
+std::string float_text(float value) {
+  if (!std::isfinite(value)) return "null";
+  char text[24];
+  return std::string(text, std::to_chars(text, text + sizeof text, value).ptr);
+}
+
+template <class Vector>
+std::string float_list(const Vector& v) {
+  std::string text = "[";
+  for (Eigen::Index i = 0; i < v.size(); ++i) text += (i ? "," : "") + float_text(static_cast<float>(v[i]));
+  return text + "]";
+}
+
+//! The leaf and the points it goes to.
+struct PlacedLeaves {
+  const Leaf& leaf;
+  std::vector<Instance> points;
+};
+
+//! One node a point: the leaf's +Y (after its own node's transform) along the point's direction,
+//! scaled by the point's scale, as translation, rotation and scale.
+std::string leaf_nodes(const PlacedLeaves& leaves, const detail::LeafParts& parts) {
+  std::string nodes;
+  for (const Instance& point : leaves.points) {
+    const Eigen::Affine3d placed = Eigen::Translation3d(point.position) *
+                                   Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitY(), point.direction) *
+                                   Eigen::Scaling(point.scale) * parts.transform;
+    const Eigen::Matrix3d linear = placed.linear();
+    Eigen::Vector3d scale = linear.colwise().norm().transpose();
+    Eigen::Matrix3d rotation = linear;
+    for (int c = 0; c < 3; ++c)
+      rotation.col(c) = scale[c] > 0 ? (linear.col(c) / scale[c]).eval() : Eigen::Vector3d::Unit(c).eval();
+    if (rotation.determinant() < 0) {  // a leaf mirrored in its own file: a negative scale
+      scale.x() = -scale.x();
+      rotation.col(0) = -rotation.col(0);
+    }
+    const Eigen::Quaterniond q = Eigen::Quaterniond(rotation).normalized();
+    nodes += ",{\"name\":\"leaf " + std::to_string(point.particle) + "\",\"mesh\":" + std::to_string(parts.mesh) +
+             ",\"translation\":" + float_list(placed.translation()) + ",\"rotation\":" + float_list(q.coeffs()) +
+             ",\"scale\":" + float_list(scale) + "}";
+  }
+  return nodes;
+}
+
+std::string names_list(const std::vector<std::string>& names) {
+  std::string text = "[";
+  for (const std::string& name : names) text += (text.size() > 1 ? "," : "") + json::string(name);
+  return text + "]";
+}
+
 //! The glTF of the meshes `each_tube` walks: any source with the visitor call, radius(i) and
-//! `textured` of LookTubes, whose pieces' vertices name their particles. Returns its counts.
+//! `textured` of LookTubes, whose pieces' vertices name their particles; and the leaves, if any
+//! and if there are tubes. Returns its counts.
 template <class Pieces>
-TubeTotals glb_of(const Cluster& cluster, const Look& look, const Pieces& each_tube, const std::string& path) {
+TubeTotals glb_of(const Cluster& cluster, const Look& look, const Pieces& each_tube, const std::string& path,
+                  const PlacedLeaves* leaves = nullptr) {
   const TubeTotals totals = tube_totals(each_tube);
   const bool colored = look.options.color_by != ColorBy::none;
   constexpr bool textured = Pieces::textured;
@@ -159,6 +218,9 @@ TubeTotals glb_of(const Cluster& cluster, const Look& look, const Pieces& each_t
   const std::size_t vertex_bytes = totals.vertices * stride;
   const std::size_t index_bytes = totals.triangles * 3 * 4;
   const bool empty = totals.triangles == 0;
+  const bool has_leaves = !empty && leaves && !leaves->points.empty();
+  const std::size_t buffer_bytes = vertex_bytes + index_bytes + (has_leaves ? leaves->leaf.binary.size() : 0);
+  detail::LeafParts parts;
 
   std::string gltf = "{\"asset\":{\"version\":\"2.0\",\"generator\":" + json::string(std::string("dla3d ") + version) +
                      "},\"scene\":0,";
@@ -193,31 +255,49 @@ TubeTotals glb_of(const Cluster& cluster, const Look& look, const Pieces& each_t
     }
     accessors += ",{\"bufferView\":1,\"byteOffset\":0,\"componentType\":5125,\"count\":" +
                  std::to_string(totals.triangles * 3) + ",\"type\":\"SCALAR\"}";
-    gltf += "\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0,\"name\":\"dla\"}],"
+    std::string nodes = "{\"mesh\":0,\"name\":\"dla\"}", scene_nodes = "0", meshes, materials, buffer_views, more;
+    if (has_leaves) {
+      parts = detail::leaf_parts(leaves->leaf, {accessor + 1, 2, 1, 1, vertex_bytes + index_bytes});
+      nodes += ",{\"name\":\"leaves\",\"children\":[";
+      for (std::size_t n = 0; n < leaves->points.size(); ++n) nodes += (n ? "," : "") + std::to_string(n + 2);
+      nodes += "]}" + leaf_nodes(*leaves, parts);
+      scene_nodes += ",1";
+      accessors += "," + parts.accessors;
+      meshes = "," + parts.meshes;
+      if (!parts.materials.empty()) materials = "," + parts.materials;
+      if (!parts.buffer_views.empty()) buffer_views = "," + parts.buffer_views;
+      for (const auto& [name, list] : {std::pair{"textures", &parts.textures}, std::pair{"images", &parts.images},
+                                       std::pair{"samplers", &parts.samplers}})
+        if (!list->empty()) more += ",\"" + std::string(name) + "\":[" + *list + "]";
+      if (!parts.extensions_used.empty()) more += ",\"extensionsUsed\":" + names_list(parts.extensions_used);
+      if (!parts.extensions_required.empty())
+        more += ",\"extensionsRequired\":" + names_list(parts.extensions_required);
+    }
+    gltf += "\"scenes\":[{\"nodes\":[" + scene_nodes + "]}],\"nodes\":[" + nodes + "],"
             "\"meshes\":[{\"name\":\"dla\",\"primitives\":[{\"attributes\":{" + attributes +
             "},\"indices\":" + std::to_string(accessor) +
-            ",\"material\":0,\"mode\":4}]}],"
+            ",\"material\":0,\"mode\":4}]}" + meshes + "],"
             "\"materials\":[{\"name\":\"dla\",\"pbrMetallicRoughness\":{\"baseColorFactor\":" +
             std::string(colored ? "[1,1,1,1]" : "[0.79,0.6,0.36,1]") +
-            ",\"metallicFactor\":0,\"roughnessFactor\":0.55}}],"
-            "\"buffers\":[{\"byteLength\":" + std::to_string(vertex_bytes + index_bytes) + "}],"
+            ",\"metallicFactor\":0,\"roughnessFactor\":0.55}}" + materials + "],"
+            "\"buffers\":[{\"byteLength\":" + std::to_string(buffer_bytes) + "}],"
             "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":" + std::to_string(vertex_bytes) +
             ",\"byteStride\":" + std::to_string(stride) + ",\"target\":34962},"
             "{\"buffer\":0,\"byteOffset\":" + std::to_string(vertex_bytes) + ",\"byteLength\":" +
-            std::to_string(index_bytes) + ",\"target\":34963}],"
-            "\"accessors\":[" + accessors + "]}";
+            std::to_string(index_bytes) + ",\"target\":34963}" + buffer_views + "],"
+            "\"accessors\":[" + accessors + "]" + more + "}";
   }
   gltf.resize((gltf.size() + 3) / 4 * 4, ' ');  // chunks are 4-byte aligned: JSON pads with spaces
 
   detail::OutputFile out(path);
-  const std::size_t length = 12 + 8 + gltf.size() + (empty ? 0 : 8 + vertex_bytes + index_bytes);
+  const std::size_t length = 12 + 8 + gltf.size() + (empty ? 0 : 8 + buffer_bytes);
   out.raw(std::uint32_t{0x46546C67}).raw(std::uint32_t{2}).raw(static_cast<std::uint32_t>(length));
   out.raw(static_cast<std::uint32_t>(gltf.size())).raw(std::uint32_t{0x4E4F534A}) << gltf;
   if (empty) {
     out.commit();
     return totals;
   }
-  out.raw(static_cast<std::uint32_t>(vertex_bytes + index_bytes)).raw(std::uint32_t{0x004E4942});
+  out.raw(static_cast<std::uint32_t>(buffer_bytes)).raw(std::uint32_t{0x004E4942});
   // The vertices and the indices in one walk of the tubes, each gathered and written at its
   // own place in the binary chunk: a second walk took a quarter of the time.
   const ColorScale scale(cluster, look.attributes, look.options.color_by);
@@ -262,6 +342,7 @@ TubeTotals glb_of(const Cluster& cluster, const Look& look, const Pieces& each_t
   });
   write_out(vertices, vertices_at);
   write_out(indices, indices_at);
+  if (has_leaves) out.write_at(indices_at, leaves->leaf.binary);
   out.commit();
   return totals;
 }
@@ -352,26 +433,27 @@ class SolidPieces {
 
 }  // namespace
 
-void write_glb(const Cluster& cluster, const Look& look, const std::string& path) {
-  glb_of(cluster, look, LookTubes(cluster, look), path);
-}
-
-void write_obj(const Cluster& cluster, const Look& look, const std::string& path) {
-  obj_of(cluster, look, LookTubes(cluster, look), "tube mesh", path);
-}
-
-std::vector<std::size_t> write_glb_lods(const Cluster& cluster, const Look& look, int levels,
-                                        const std::string& prefix) {
+std::vector<std::size_t> write_glb(const Cluster& cluster, const Look& look, const std::string& path,
+                                   const GlbOptions& options) {
+  const int levels = options.lods;
   if (levels < 0 || levels > kMaxLods)
     throw InvalidInput("`lod` " + std::to_string(levels) + " is not in 0-" + std::to_string(kMaxLods));
-  const std::vector<float> radii = look.radii(cluster);
-  const int base_min_branch = look.options.tubes.min_branch;
+  const LookTubes tubes(cluster, look);
+  if (options.leaf) {
+    const PlacedLeaves leaves{*options.leaf, instancing_points(cluster, look.attributes, options.instances)};
+    glb_of(cluster, look, tubes, path, &leaves);
+  } else {
+    glb_of(cluster, look, tubes, path);
+  }
+  if (levels == 0) return {};
+  const std::string prefix =
+      path.size() > 4 && path.compare(path.size() - 4, 4, ".glb") == 0 ? path.substr(0, path.size() - 4) : path;
   // Each tube's triangles by the size of its branch (capped past the largest threshold): what
   // each threshold keeps, before simplifying.
   constexpr int kMaxMinBranch = 1000;
   std::vector<std::size_t> by_size(kMaxMinBranch + 2, 0);
   std::size_t full = 0;
-  LookTubes(cluster, look)([&](const TubePiece& piece) {
+  tubes([&](const TubePiece& piece) {
     const auto first = static_cast<std::size_t>(piece.particles.front());
     by_size[static_cast<std::size_t>(std::min(look.attributes.descendants[first] + 1, kMaxMinBranch + 1))] +=
         piece.triangles.size();
@@ -380,7 +462,7 @@ std::vector<std::size_t> write_glb_lods(const Cluster& cluster, const Look& look
   std::vector<std::size_t> kept_from(by_size.size() + 1, 0);  // triangles of branches of m or more
   for (std::size_t m = by_size.size(); m-- > 0;) kept_from[m] = kept_from[m + 1] + by_size[m];
   std::vector<std::size_t> triangles;
-  int min_branch = base_min_branch;
+  int min_branch = look.options.tubes.min_branch;
   for (int level = 1; level <= levels; ++level) {
     // Half the triangles a level: twigs go first, down to 1.5 times the level's target; the
     // simplifier takes the rest.
@@ -388,10 +470,14 @@ std::vector<std::size_t> write_glb_lods(const Cluster& cluster, const Look& look
     const auto kept_at = [&](int m) { return static_cast<double>(kept_from[static_cast<std::size_t>(m)]); };
     while (min_branch < kMaxMinBranch && kept_at(min_branch) > 1.5 * target) ++min_branch;
     const double kept = kept_at(min_branch);
-    const LodTubes tubes(cluster, look, radii, min_branch, kept > 0 ? std::min(1.0, target / kept) : 1.0);
-    triangles.push_back(glb_of(cluster, look, tubes, prefix + "_lod" + std::to_string(level) + ".glb").triangles);
+    const LodTubes level_tubes(cluster, look, tubes, min_branch, kept > 0 ? std::min(1.0, target / kept) : 1.0);
+    triangles.push_back(glb_of(cluster, look, level_tubes, prefix + "_lod" + std::to_string(level) + ".glb").triangles);
   }
   return triangles;
+}
+
+void write_obj(const Cluster& cluster, const Look& look, const std::string& path) {
+  obj_of(cluster, look, LookTubes(cluster, look), "tube mesh", path);
 }
 
 void write_solid_glb(const Solid& solid, const Cluster& cluster, const Look& look, const std::string& path) {

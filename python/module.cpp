@@ -117,6 +117,12 @@ std::string text(const char* name, py::handle value) {
   return value.cast<std::string>();
 }
 
+//! A file's path: a string or a pathlib path.
+std::string path_text(const char* name, py::handle value) {
+  if (!py::isinstance<py::str>(value) && py::hasattr(value, "__fspath__")) return text(name, value.attr("__fspath__")());
+  return text(name, value);
+}
+
 bool flag(const char* name, py::handle value) {
   if (!py::isinstance<py::bool_>(value)) throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is not True or False");
   return value.cast<bool>();
@@ -253,6 +259,7 @@ void add_look(Table<Options>& t) {
   t["tube_tolerance"] = [=](Options& o, py::handle v, Given&) { files(o).look.tubes.tolerance = number("tube_tolerance", v); };
   t["uv_scale"] = [=](Options& o, py::handle v, Given&) { files(o).look.tubes.uv_scale = number("uv_scale", v); };
   t["lod"] = [=](Options& o, py::handle v, Given&) { files(o).lods = whole_int("lod", v); };
+  t["leaf"] = [=](Options& o, py::handle v, Given&) { files(o).leaf = path_text("leaf", v); };
   t["tube_min_branch"] = [=](Options& o, py::handle v, Given&) {
     files(o).look.tubes.min_branch = whole_int("tube_min_branch", v);
   };
@@ -714,7 +721,7 @@ void write(Result& result, const std::string& prefix, const std::vector<std::str
   files.output = prefix;
   files.formats = parse_formats(words);
   validate(files, result.cluster.dimensions, result.run->constraint != nullptr);
-  require_glb_for_lods(files);
+  check_glb_options(files);
   check_writable(file_names(files).front());
   RunRecord record = result.record;  // the growth's time, command and end; the writing's own time
   py::gil_scoped_release released;

@@ -118,6 +118,7 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--tube-min-branch", {"1", "16", "1000", "0", "1001", "x"}},
       {"--uv-scale", {"0", "2.5", "1e-9", "-1", "1e10", "nan"}},
       {"--lod", {"0", "2", "8", "-1", "9", "x"}},
+      {"--leaf", {"leaf.glb", "leaf.glb", "nested/leaf.glb", "noise.stl", "missing.glb", "''"}},
       {"--instances", {"tips", "all", "some"}},
       {"--tips-within", {"2", "0", "1e300", "-1", "nan"}},
       {"--tips-every", {"1", "3", "1000000", "0", "1000001", "x"}},
@@ -259,8 +260,8 @@ std::set<std::string> options_of_help(const ScratchDir& dir, const std::string& 
   return names;
 }
 
-//! Inputs the command lines name: meshes (one painted), a file of noise, point files, a checkpoint
-//! to resume.
+//! Inputs the command lines name: meshes (one painted), a file of noise, point files, a leaf, a
+//! checkpoint to resume.
 void make_inputs(const ScratchDir& dir) {
   write_stl(make_sphere(Vec3::Zero(), 12.0, 10, 20), dir / "ball.stl");
   std::filesystem::copy_file(TEST_DATA_DIR "/open_box.off", dir / "box.off");
@@ -271,6 +272,7 @@ void make_inputs(const ScratchDir& dir) {
   std::string noise;
   for (int i = 0; i < 500; ++i) noise += static_cast<char>((i * 7919 + 13) % 251);
   std::ofstream(dir / "noise.stl", std::ios::binary) << noise;
+  std::filesystem::copy_file(DLA_EXAMPLES_DIR "/leaf.glb", dir / "leaf.glb");
   std::ofstream(dir / "out.csv") << "id,x,y,z,parent,seed\n0,0,0,0,-1,0\n";
   std::ofstream(dir / "points.csv") << "1,2,3\n-4,5,0\n6,-7,8\n0,-9,0\n3,3,3\n";
   std::ofstream(dir / "mask.txt") << "; the 3x3 block\nxxx\nxox\nxxx\n";
@@ -587,7 +589,7 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
   // What the other models share with DLA: the Output and Look options (and help).
   const std::vector<const char*> shared = {"--output", "--ply-format", "--formats", "--png-scale", "--png-bands", "--radius", "--base-radius",
                                            "--tip-radius", "--pipe-exponent", "--color-by", "--look", "--tube-sides",
-                                           "--tube-tolerance", "--tube-min-branch", "--uv-scale", "--lod", "--instances", "--tips-within", "--tips-every", "--tips-exclude-paint",
+                                           "--tube-tolerance", "--tube-min-branch", "--uv-scale", "--lod", "--leaf", "--instances", "--tips-within", "--tips-every", "--tips-exclude-paint",
                                            "--up", "--quiet", "--help"};
   const auto flags_of = [&](const Table& table) {
     std::vector<std::string> model_flags(shared.begin(), shared.end());
@@ -642,7 +644,7 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
     make_inputs(dir);
     std::filesystem::create_directory(dir.path() / "dir");
     const std::set<std::string> inputs = {"ball.stl",   "box.off",  "noise.stl", "out.csv",  "points.csv", "paint.ply",
-                                          "points.ply", "saved.ck", "mask.txt",  "rod.stl", "dir",  "grown.csv"};
+                                          "points.ply", "saved.ck", "mask.txt",  "rod.stl", "dir",  "grown.csv", "leaf.glb"};
     // The bound: far above what any of these takes (under the sanitizers too); `timeout`
     // kills a hang with 137 and the assertion below names the command.
     const testing::CliRun result = testing::dla3d(dir, command, "timeout -s KILL 120");

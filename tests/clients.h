@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <sstream>
 #include <string>
+#include <utility>
 
 namespace dla::testing {
 
@@ -32,14 +33,21 @@ inline std::string gltf_validator() {
   return script;
 }
 
-//! Runs the validator on a .glb: "" if it finds no error, else its report.
-inline std::string validate_glb(const std::string& glb) {
+//! Runs the validator on a .glb: its exit status and its report, whose first line counts
+//! `errors=N warnings=N infos=N`.
+inline std::pair<int, std::string> validator_report(const std::string& glb) {
   const std::string log = glb + ".validator.txt";
   const std::string command = "node '" + gltf_validator() + "' '" + glb + "' > '" + log + "' 2>&1";
   const int status = std::system(command.c_str());
-  const std::string report = read_file(log);
+  std::string report = read_file(log);
   std::filesystem::remove(log);
-  return status == 0 ? "" : report.empty() ? "the validator did not run" : report;
+  return {status, report.empty() ? "the validator did not run" : report};
+}
+
+//! Runs the validator on a .glb: "" if it finds no error, else its report.
+inline std::string validate_glb(const std::string& glb) {
+  auto [status, report] = validator_report(glb);
+  return status == 0 ? "" : report;
 }
 
 //! The web viewer's runner (Playwright driving Debian's Chromium), or "" if node, the npm

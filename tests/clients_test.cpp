@@ -9,10 +9,12 @@
 #include "dla/mesh/shapes.h"
 #include "dla/models/dla.h"
 #include "dla/models/links.h"
+#include "dla/io/leaf.h"
 #include "dla/io/mesh_writers.h"
 #include "dla/io/ply_writer.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <array>
@@ -20,6 +22,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <map>
 #include <set>
 #include <string>
 #include <tuple>
@@ -221,6 +224,50 @@ TEST(GltfValidator, FindsNoErrorInTheGlb) {
   EXPECT_EQ(testing::validate_glb(dir / "empty.glb"), "") << "a structure with no branch";
 }
 
+// Leaves (--leaf): the validator finds no error nor warning, and Blender makes an object a
+// point, all of them sharing the leaf's mesh under the `leaves` empty, each at its point with its
+// stem along the point's direction and its scale. Blender turns glTF's Y up to Z up: glTF's
+// (x, y, z) is Blender's (x, -z, y).
+TEST(Blender, ImportsTheLeavesAtTheInstancingPoints) {
+  DLA_NEED_BLENDER();
+  DLA_NEED_GLTF_VALIDATOR();
+  ScratchDir dir;
+  const Cluster c = sample();
+  const Look look = make_look(c, {});
+  const Leaf leaf = read_leaf(DLA_EXAMPLES_DIR "/leaf.glb");
+  write_glb(c, look, dir / "leafy.glb", {0, &leaf, {}});
+  const auto [status, report] = testing::validator_report(dir / "leafy.glb");
+  EXPECT_EQ(status, 0) << report;
+  EXPECT_EQ(report.rfind("errors=0 warnings=0 ", 0), 0u) << report;
+
+  const std::string command = "cd '" + dir.path().string() + "' && blender -b --factory-startup --python-exit-code 1 "
+                              "--python '" TEST_CLIENTS_DIR "/blender_leaves.py' -- leafy.glb > blender.txt 2>&1";
+  EXPECT_EQ(std::system(command.c_str()), 0);
+  const std::string log = read_file(dir / "blender.txt");
+  const std::size_t at = log.find("DLA3D ");
+  ASSERT_NE(at, std::string::npos) << log;
+  const nlohmann::json found = nlohmann::json::parse(log.substr(at + 6, log.find('\n', at) - at - 6));
+  std::map<std::int32_t, Instance> points;
+  for (const Instance& point : instancing_points(c, look.attributes, {})) points.emplace(point.particle, point);
+  ASSERT_EQ(found["leaves"].size(), points.size());
+  EXPECT_EQ(found["meshes"], 1) << "every leaf object shares one mesh";
+  EXPECT_EQ(found["parent"], "leaves");
+  const auto gltf_of = [](const nlohmann::json& row, std::size_t from) {
+    return Vec3(row[from].get<double>(), row[from + 2].get<double>(), -row[from + 1].get<double>());
+  };
+  for (const nlohmann::json& row : found["leaves"]) {
+    SCOPED_TRACE(row.dump());
+    const std::string name = row[0];
+    ASSERT_EQ(name.rfind("leaf ", 0), 0u);
+    const auto point = points.find(std::stoi(name.substr(5)));
+    ASSERT_NE(point, points.end());
+    const Instance& p = point->second;
+    EXPECT_LT((gltf_of(row, 1) - p.position).norm(), 1e-5 * (1.0 + p.position.norm())) << "at its point";
+    EXPECT_GT(gltf_of(row, 4).dot(p.direction), 1.0 - 1e-5) << "the stem along the point's direction";
+    EXPECT_NEAR(row[7].get<double>(), p.scale, 1e-5 * p.scale) << "the point's scale";
+  }
+}
+
 // Levels of detail: the validator passes each, and Blender imports each with the triangles
 // written, falling level by level.
 TEST(Blender, ImportsTheLevelsOfDetail) {
@@ -231,8 +278,7 @@ TEST(Blender, ImportsTheLevelsOfDetail) {
   LookOptions options;
   options.radius.model = RadiusModel::pipe;
   const Look look = make_look(c, options);
-  write_glb(c, look, dir / "tree.glb");
-  const std::vector<std::size_t> triangles = write_glb_lods(c, look, 3, dir / "tree");
+  const std::vector<std::size_t> triangles = write_glb(c, look, dir / "tree.glb", {3});
   long before = blender_import(dir, "tree.glb").faces;
   for (std::size_t level = 1; level <= 3; ++level) {
     const std::string file = "tree_lod" + std::to_string(level) + ".glb";

@@ -739,8 +739,7 @@ TEST(LookFiles, LevelsOfDetailHalveTheTrianglesAndKeepTheShape) {
   LookOptions options;
   options.radius.model = RadiusModel::pipe;
   const Look look = make_look(c, options);
-  write_glb(c, look, dir / "tree.glb");
-  const std::vector<std::size_t> triangles = write_glb_lods(c, look, 3, dir / "tree");
+  const std::vector<std::size_t> triangles = write_glb(c, look, dir / "tree.glb", {3});
   ASSERT_EQ(triangles.size(), 3u);
   const GlbMesh full = read_glb_mesh(dir / "tree.glb");
   const double diagonal = (full.max - full.min).norm();
@@ -759,10 +758,11 @@ TEST(LookFiles, LevelsOfDetailHalveTheTrianglesAndKeepTheShape) {
       EXPECT_LT(full.max[a] - lod.max[a], 0.05 * diagonal) << "shrunk";
     }
   }
-  EXPECT_TRUE(write_glb_lods(c, look, 0, dir / "none").empty());
+  EXPECT_TRUE(write_glb(c, look, dir / "none.glb").empty());
   EXPECT_FALSE(std::filesystem::exists(dir / "none_lod1.glb"));
-  EXPECT_THROW(write_glb_lods(c, look, kMaxLods + 1, dir / "many"), InvalidInput);
-  EXPECT_THROW(write_glb_lods(c, look, -1, dir / "few"), InvalidInput);
+  EXPECT_THROW(write_glb(c, look, dir / "many.glb", {kMaxLods + 1}), InvalidInput);
+  EXPECT_THROW(write_glb(c, look, dir / "few.glb", {-1}), InvalidInput);
+  EXPECT_FALSE(std::filesystem::exists(dir / "many.glb")) << "refused before writing";
 }
 
 TEST(LookFiles, SvgDrawsEveryBranchOf2DGrowth) {

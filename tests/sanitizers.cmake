@@ -1,9 +1,9 @@
 # The sanitizer pass (ctest's `sanitizers` test): builds the project with AddressSanitizer and
 # UndefinedBehaviorSanitizer in its own folder and runs the unit tests there; builds the unit
 # tests with ThreadSanitizer in another and runs those of the threaded growth; then fuzzes
-# every mesh reader, the command line and analyze's CSV reader for FUZZ_SECONDS each from the
-# seed corpus. With clang the fuzzers are built too;
-# without it the pass says so and fuzzes nothing.
+# every mesh reader, the command line, analyze's CSV reader and the leaf reader for
+# FUZZ_SECONDS each from the seed corpus. With clang the fuzzers are built too; without it the
+# pass says so and fuzzes nothing.
 #   cmake -DSOURCE_DIR=... -DWORK_DIR=... -DFUZZ_SECONDS=15 -P tests/sanitizers.cmake
 find_program(CLANGXX NAMES clang++ clang++-14)
 set(compiler)
@@ -37,7 +37,7 @@ step(${CMAKE_COMMAND} -E env TSAN_OPTIONS=halt_on_error=1
      ${tsan_dir}/tests/dla_tests --gtest_filter=Threads.*:Constraint.SameResultOnEveryThreadCount)
 
 if(CLANGXX)
-  foreach(format stl off obj ply points cli csv)
+  foreach(format stl off obj ply points cli csv leaf)
     set(corpus ${WORK_DIR}/fuzz_corpus/${format})
     file(MAKE_DIRECTORY ${corpus})
     step(${WORK_DIR}/tests/fuzz/fuzz_${format} -max_total_time=${FUZZ_SECONDS} -rss_limit_mb=2048 -timeout=10

@@ -69,9 +69,12 @@ Formats parse_formats(std::string_view words) {
   return formats;
 }
 
-void require_glb_for_lods(const OutputOptions& output) {
+void check_glb_options(const OutputOptions& output) {
   if (output.lods > 0 && !output.formats.glb)
     throw InvalidInput("`lod` " + std::to_string(output.lods) + " writes levels of the glb: add glb to `formats`");
+  if (output.leaf.empty()) return;
+  if (!output.formats.glb) throw InvalidInput("`leaf` places leaves in the glb: add glb to `formats`");
+  read_leaf(output.leaf);
 }
 
 std::vector<std::string> file_names(const OutputOptions& output) {

@@ -19,6 +19,7 @@
 #include <chrono>
 #include <future>
 #include <memory>
+#include <optional>
 #include <thread>
 
 namespace dla {
@@ -51,8 +52,9 @@ const WriterEntry kWriters[] = {
      [](const WriteJob& j, const std::string& path) { write_ply(j.cluster, j.look, path, j.files.ply_encoding); }},
     {&Formats::glb, ".glb",
      [](const WriteJob& j, const std::string& path) {
-       write_glb(j.cluster, j.look, path);
-       j.lod_triangles = write_glb_lods(j.cluster, j.look, j.files.lods, j.files.output);
+       std::optional<Leaf> leaf;
+       if (!j.files.leaf.empty()) leaf = read_leaf(j.files.leaf);
+       j.lod_triangles = write_glb(j.cluster, j.look, path, {j.files.lods, leaf ? &*leaf : nullptr, j.files.instances});
      }},
     {&Formats::obj, ".obj", [](const WriteJob& j, const std::string& path) { write_obj(j.cluster, j.look, path); }},
     {&Formats::tips, "_tips.ply",
@@ -126,7 +128,7 @@ FilesWritten write_files(const Cluster& cluster, const OutputOptions& files, con
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const Look look = make_look(cluster, files.look,
                               {context.constraint ? &context.constraint->surface() : nullptr, nullptr,
-                               std::max(context.threads, cores), files.formats.tips,
+                               std::max(context.threads, cores), files.formats.tips || !files.leaf.empty(),
                                files.instances.exclude_paint ? &*files.instances.exclude_paint : nullptr,
                                context.constraint ? &context.constraint->mesh() : nullptr});
   // The solid's plan first: a solid that would not fit is refused before any file is written.

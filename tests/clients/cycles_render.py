@@ -4,13 +4,15 @@ import bpy
 import mathutils
 
 
-def render(visible, path, width, height, samples, view=(1.0, -1.4, 0.9), distance=2.8, sky=(0.05, 0.05, 0.06)):
-    """A Cycles render of `visible` alone, framed by a camera looking at its bounding box from
-    `view`, `distance` times the box's half diagonal away."""
+def render(visible, path, width, height, samples, view=(1.0, -1.4, 0.9), distance=2.8, sky=(0.05, 0.05, 0.06),
+           also=()):
+    """A Cycles render of `visible` alone (and the objects `also` names), framed by a camera
+    looking at its bounding box from `view`, `distance` times the box's half diagonal away."""
     scene = bpy.context.scene
+    shown = {visible.name} | {o.name for o in also}
     for o in scene.objects:
         if o.type in {"MESH", "VOLUME"}:
-            o.hide_render = o is not visible
+            o.hide_render = o.name not in shown
     corners = [visible.matrix_world @ mathutils.Vector(c) for c in visible.bound_box]
     centre = sum(corners, mathutils.Vector()) / 8
     size = max((c - centre).length for c in corners)

@@ -14,6 +14,8 @@ import pytest
 
 import dla3d
 
+LEAF = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "examples", "leaf.glb")
+
 # Every model, small, and what the CLI calls its count.
 MODELS = [
     ("grow", {"particles": 3000, "rng_seed": 5}),
@@ -192,6 +194,11 @@ def test_a_missing_file_is_an_os_error():
     (lambda: dla3d.grow(particles=10, tube_sides=2**32 + 8), "tube_sides=4294967304 is too large"),
     (lambda: dla3d.grow(particles=10, lod=2).write("/tmp/dla3d_py_x", formats=["csv"]),
      "lod=2 writes levels of the glb: add glb to formats"),
+    (lambda: dla3d.grow(particles=10, leaf=LEAF).write("/tmp/dla3d_py_x", formats=["csv"]),
+     "leaf places leaves in the glb: add glb to formats"),
+    (lambda: dla3d.grow(particles=10, leaf=__file__).write("/tmp/dla3d_py_x", formats=["glb"]),
+     "is not a binary glTF (.glb)"),
+    (lambda: dla3d.grow(particles=10, leaf=3), "leaf=3 is not a string"),
     (lambda: dla3d.grow(particles=10).tubes(uv_scale=-1), "uv_scale=-1 is neither 0 (the base circumference) nor in"),
 ])
 def test_misuse_is_one_clear_line(call, message):
@@ -369,7 +376,7 @@ RANDOM_OPTIONS = {
              "seed_at": [[(0, 0, 0), (10, 0, 0)], [(0, 0, 0), (0, 0, 0)], (1, 2, 3)], "index": ["grid", "kdtree", "x"],
              "tube_sides": [3, 8, 2, 65], "color_by": ["age", "depth", "mood"], "n": [200, -1],
              "uv_scale": [0, 2.5, 1e-9, -1, 1e10, "x"], "lod": [0, 2, 9, -1, 2**32 + 2],
-             "tips_every": [1, 3, 0, 10**7, "x"], "tips_exclude_paint": ["red", "mauve", 3],
+             "tips_every": [1, 3, 0, 10**7, "x"], "leaf": [LEAF, "missing.glb", 3], "tips_exclude_paint": ["red", "mauve", 3],
              "links": [2, (3, 2), "1.5,4", 0, -1, (2, 0), (2, 1.5), "lattice", "x", (1, 2, 3)]},
     "colonize": {"venation": ["open", "closed", "shut", 1], "influence": [6, 2.5, -1],
                  "max_nodes": [10, 400, -1, 0], "attractors": [100, 0, -5], "kill_distance": [0.5, 2, -1, 0],
@@ -383,6 +390,20 @@ RANDOM_OPTIONS = {
              "mode": ["perimeter", "site", "growth", "x"], "dimensions": [2, 3], "rng_seed": [9],
              "mask_threshold": [0.5, 2], "links": ["lattice", 1.5, "grid"]},
 }
+
+
+def test_leaves_go_in_the_glb_one_node_a_tip(tmp_path):
+    import pathlib
+    result = dla3d.grow(particles=600, rng_seed=2, leaf=pathlib.Path(LEAF), tips_every=2)
+    result.write(str(tmp_path / "tree"), formats=["glb", "tips"])
+    glb = (tmp_path / "tree.glb").read_bytes()
+    length = int.from_bytes(glb[12:16], "little")
+    gltf = json.loads(glb[20:20 + length])
+    tips = (tmp_path / "tree_tips.ply").read_bytes()
+    count = int(tips[tips.index(b"element vertex ") + 15:].split(b"\n")[0])
+    assert count > 10
+    assert len(gltf["nodes"]) == 2 + count and gltf["nodes"][1]["name"] == "leaves"
+    assert all(node["mesh"] == 1 for node in gltf["nodes"][2:])
 
 
 def test_random_keyword_sets_grow_or_refuse_in_one_line():

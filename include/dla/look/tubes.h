@@ -12,9 +12,11 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace dla {
@@ -111,28 +113,35 @@ inline void kept_points(const Cluster& cluster, const std::vector<float>& radii,
   }
 }
 
-//! Scene units of strand per unit of v: `uv_scale`, or for 0 the base circumference.
-inline double uv_scale_of(const Cluster& cluster, const std::vector<float>& radii, double uv_scale) {
-  if (uv_scale > 0.0) return uv_scale;
-  float thickest = 0.0f;
-  for (const float r : radii) thickest = std::max(thickest, r);
-  const double circumference = 2.0 * 3.14159265358979323846 * static_cast<double>(thickest) * cluster.spacing;
-  return circumference > 0.0 ? circumference : cluster.spacing;
-}
+}  // namespace detail
 
-//! The texture's v at each particle: the length of the path from its seed, over `scale`.
-inline std::vector<double> strand_lengths(const Cluster& cluster, double scale) {
+//! The texture's v along the strands, worked out once for any number of walks of the tubes.
+struct TubeTexture {
+  double scale = 1.0;     //!< scene units of strand per unit of v
+  std::vector<double> v;  //!< v at each particle: the length of its path from its seed, over `scale`
+};
+
+//! The texture of the tubes with branch radii `radii` (spacings) and TubeOptions::uv_scale
+//! `uv_scale`: for 0, `scale` is the base circumference (2π times the thickest radius).
+inline TubeTexture tube_texture(const Cluster& cluster, const std::vector<float>& radii, double uv_scale) {
+  TubeTexture texture;
+  if (uv_scale > 0.0) {
+    texture.scale = uv_scale;
+  } else {
+    float thickest = 0.0f;
+    for (const float r : radii) thickest = std::max(thickest, r);
+    const double circumference = 2.0 * 3.14159265358979323846 * static_cast<double>(thickest) * cluster.spacing;
+    texture.scale = circumference > 0.0 ? circumference : cluster.spacing;
+  }
   const std::vector<Particle>& ps = cluster.particles;
-  std::vector<double> v(ps.size(), 0.0);
+  texture.v.assign(ps.size(), 0.0);
   for (std::size_t i = 0; i < ps.size(); ++i)  // a parent attaches before its children
     if (ps[i].parent >= 0) {
       const auto parent = static_cast<std::size_t>(ps[i].parent);
-      v[i] = v[parent] + (ps[i].position - ps[parent].position).norm() / scale;
+      texture.v[i] = texture.v[parent] + (ps[i].position - ps[parent].position).norm() / texture.scale;
     }
-  return v;
+  return texture;
 }
-
-}  // namespace detail
 
 //! A link's tube: a ring about each end and a rounded cap beyond it.
 inline std::size_t link_tube_vertices(int sides) { return 4 * (static_cast<std::size_t>(sides) + 1) + 2; }
@@ -140,11 +149,12 @@ inline std::size_t link_tube_triangles(int sides) { return 8 * static_cast<std::
 
 //! Calls visit(const TubePiece&) for the tube of each strand of two or more particles, in
 //! strand order (strands.h, from the attributes' links), then for each link's tube; `radii` are
-//! the branch radii (Look::radii) in spacings. A seed with no child has no tube, and a link to a
+//! the branch radii (Look::radii) in spacings, `texture` the tube_texture of them (whose
+//! scale overrides `options.uv_scale`). A seed with no child has no tube, and a link to a
 //! branch `min_branch` prunes has none.
 template <class Visit>
 void for_each_tube(const Cluster& cluster, const Attributes& attributes, const std::vector<float>& radii,
-                   const TubeOptions& options, Visit&& visit) {
+                   const TubeTexture& texture, const TubeOptions& options, Visit&& visit) {
   validate(options);
   const int sides = options.sides;
   const double tolerance = options.tolerance * cluster.spacing;
@@ -154,8 +164,8 @@ void for_each_tube(const Cluster& cluster, const Attributes& attributes, const s
     cosines[static_cast<std::size_t>(s)] = std::cos(angle);
     sines[static_cast<std::size_t>(s)] = std::sin(angle);
   }
-  const double v_per_length = 1.0 / detail::uv_scale_of(cluster, radii, options.uv_scale);
-  const std::vector<double> lengths = detail::strand_lengths(cluster, 1.0 / v_per_length);
+  const double v_per_length = 1.0 / texture.scale;
+  const std::vector<double>& lengths = texture.v;
   TubePiece piece;
   std::vector<std::size_t> kept;
   std::vector<Vec3> points, tangents;
@@ -317,6 +327,15 @@ void for_each_tube(const Cluster& cluster, const Attributes& attributes, const s
     }
     visit(static_cast<const TubePiece&>(piece));
   }
+}
+
+//! for_each_tube with the texture of `options.uv_scale`.
+template <class Visit>
+void for_each_tube(const Cluster& cluster, const Attributes& attributes, const std::vector<float>& radii,
+                   const TubeOptions& options, Visit&& visit) {
+  validate(options);
+  for_each_tube(cluster, attributes, radii, tube_texture(cluster, radii, options.uv_scale), options,
+                std::forward<Visit>(visit));
 }
 
 }  // namespace dla

@@ -47,6 +47,9 @@ struct OutputOptions {
   PovOptions pov;                                  //!< the scene: style, up axis
   SolidOptions solid;                              //!< the solid's files: voxel, smoothing, print size
   int lods = 0;  //!< glb: levels of detail beside it, PREFIX_lod1.glb on, in [0, kMaxLods] (mesh_writers.h)
+  //! glb: a binary glTF whose leaf (leaf.h) goes at each instancing point `instances` picks;
+  //! empty for none.
+  std::string leaf;
   //! Defaults a mesh changes when they are not given: the up axis (the mesh's longest side's),
   //! and for DLA in a mesh the radius model (pipe) and range (3 to 0.05 spacings). Unset, the
   //! values in `pov` and `look` hold.
@@ -55,9 +58,10 @@ struct OutputOptions {
   std::optional<double> base_radius, tip_radius;
 };
 
-//! Throws InvalidInput for levels of detail without the glb they are levels of: checked where
-//! the formats are final (before growth on the command line, at write() in Python).
-void require_glb_for_lods(const OutputOptions& output);
+//! Throws InvalidInput for levels of detail or a leaf without the glb they belong to, and for a
+//! leaf file read_leaf refuses (IOError for one it cannot read): checked where the formats are
+//! final, before growth on the command line and at write() in Python.
+void check_glb_options(const OutputOptions& output);
 
 //! The files `output` writes, in `formats` order, for a summary.
 std::vector<std::string> file_names(const OutputOptions& output);
