@@ -17,6 +17,7 @@ bl_info = {
 }
 
 import bpy
+import mathutils
 import numpy as np
 
 # Models that grow in or around a mesh; ballistic and Eden grow free, at the object's origin.
@@ -57,6 +58,13 @@ class DLA3DSettings(bpy.types.PropertyGroup):
                                                "thinnest branch (fine, and slow for fine tips)")
     smooth: bpy.props.FloatProperty(name="Smooth", default=0.0, min=0.0, max=100.0,
                                     description="Solid: round inner corners to this radius, in spacings")
+    leaf: bpy.props.PointerProperty(
+        name="Leaf", type=bpy.types.Object, poll=lambda self, obj: obj.type == 'MESH',
+        description="A mesh object placed at the tips as linked duplicates: its stem at its origin, "
+                    "pointing along its local Z, within a unit sphere; each copy points along its branch, "
+                    "scaled to the room around it")
+    leaf_every: bpy.props.IntProperty(name="Every", default=1, min=1, max=1000000,
+                                      description="A leaf at one tip in this many, in the order they grew")
     links: bpy.props.FloatProperty(name="Links", default=0.0, min=0.0, max=100.0,
                                    description="Join branches into loops: link each particle to an earlier one "
                                                "within this many spacings (Eden: its lattice neighbours; "
@@ -90,6 +98,8 @@ def grow_options(settings, obj, depsgraph):
             options.update(venation="closed", influence=8.0)
         else:
             options["links"] = "lattice" if model == "eden" else settings.links
+    if settings.leaf is not None:
+        options["tips_every"] = settings.leaf_every
     uses_mesh = model in MESH_MODELS and obj is not None and obj.type == 'MESH'
     arrays = mesh_arrays(obj, depsgraph) if uses_mesh else None
     if model == "grow":
@@ -160,6 +170,22 @@ def make_tube_mesh(result, name, sides):
     return obj
 
 
+def make_leaves(result, name, leaf):
+    """Linked duplicates of `leaf` at the tips (Result.instances()), under an empty: each with
+    its local Z along the branch and scaled by the tip's scale, as the glb's leaves."""
+    parent = bpy.data.objects.new(name, None)
+    bpy.context.scene.collection.objects.link(parent)
+    positions, directions, scales = result.instances()
+    up = mathutils.Vector((0.0, 0.0, 1.0))
+    for position, direction, scale in zip(positions, directions, scales):
+        copy = bpy.data.objects.new(leaf.name, leaf.data)  # sharing the leaf's mesh: edit one, all change
+        turn = up.rotation_difference(mathutils.Vector(direction)).to_matrix().to_4x4()
+        copy.matrix_world = mathutils.Matrix.Translation(position) @ turn @ mathutils.Matrix.Scale(scale, 4)
+        copy.parent = parent
+        bpy.context.scene.collection.objects.link(copy)
+    return parent
+
+
 def make_solid(result, name, voxel, smooth):
     """The structure's watertight solid (docs/solid.md), with the age of each vertex's nearest
     particle."""
@@ -221,8 +247,10 @@ class DLA3D_OT_grow(bpy.types.Operator):
         except ValueError as error:  # a solid too large for the memory it may take
             self.report({'ERROR'}, str(error))
             return {'CANCELLED'}
+        leaves = make_leaves(result, name + " leaves", settings.leaf) if settings.leaf is not None else None
         if settings.model not in MESH_MODELS and obj is not None:
-            made.location = obj.matrix_world.translation
+            for placed in (made, leaves) if leaves is not None else (made,):
+                placed.location = obj.matrix_world.translation
         self.report({'INFO'}, f"grew {len(result)} particles" + ("" if result.complete else " (stopped)"))
         return {'FINISHED'}
 
@@ -251,6 +279,9 @@ class DLA3D_PT_panel(bpy.types.Panel):
         if settings.output == 'SOLID':
             layout.prop(settings, "voxel")
             layout.prop(settings, "smooth")
+        layout.prop(settings, "leaf")
+        if settings.leaf is not None:
+            layout.prop(settings, "leaf_every")
         layout.operator(DLA3D_OT_grow.bl_idname)
 
 

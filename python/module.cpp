@@ -616,11 +616,12 @@ std::shared_ptr<Result> grow_run(const std::string& model, const py::dict& keywo
 
 //! Every tube of the structure as one mesh: float32 vertices, normals, texture coordinates and
 //! tangents, uint32 triangles, and the particle each vertex belongs to.
-py::tuple tubes(Result& result, int sides, double tolerance, int min_branch, std::optional<double> uv_scale) {
-  TubeOptions options = result.run->files.look.tubes;
-  options.sides = sides;
-  options.tolerance = tolerance;
-  options.min_branch = min_branch;
+py::tuple tubes(Result& result, std::optional<int> sides, std::optional<double> tolerance,
+                std::optional<int> min_branch, std::optional<double> uv_scale) {
+  TubeOptions options = result.run->files.look.tubes;  // the run's, where not given
+  if (sides) options.sides = *sides;
+  if (tolerance) options.tolerance = *tolerance;
+  if (min_branch) options.min_branch = *min_branch;
   if (uv_scale) options.uv_scale = *uv_scale;
   validate(options);
   const Look& look = result.look();
@@ -650,6 +651,35 @@ py::tuple tubes(Result& result, int sides, double tolerance, int min_branch, std
   };
   return py::make_tuple(array(positions, 3), array(normals, 3), array(triangles, 3), array(particles, 1),
                         array(uvs, 2), array(tangents, 4));
+}
+
+//! The instancing points of the run's options, as PREFIX_tips.ply and the glb's leaves have
+//! them: float64 positions and unit directions, scales, and the particles.
+py::tuple instances(Result& result) {
+  const Run& run = *result.run;
+  const OutputOptions& files = run.files;
+  std::vector<Instance> points;
+  {
+    py::gil_scoped_release released;
+    const Look look = make_look(result.cluster, files.look,
+                                {run.constraint ? &run.constraint->surface() : nullptr, nullptr, run.threads, true,
+                                 files.instances.exclude_paint ? &*files.instances.exclude_paint : nullptr,
+                                 run.constraint ? &run.constraint->mesh() : nullptr});
+    points = instancing_points(result.cluster, look.attributes, files.instances);
+  }
+  const auto rows = static_cast<py::ssize_t>(points.size());
+  py::array_t<double> positions({rows, py::ssize_t{3}}), directions({rows, py::ssize_t{3}}), scales(rows);
+  py::array_t<std::int32_t> particles(rows);
+  for (py::ssize_t k = 0; k < rows; ++k) {
+    const Instance& point = points[static_cast<std::size_t>(k)];
+    for (py::ssize_t a = 0; a < 3; ++a) {
+      positions.mutable_at(k, a) = point.position[a];
+      directions.mutable_at(k, a) = point.direction[a];
+    }
+    scales.mutable_at(k) = point.scale;
+    particles.mutable_at(k) = point.particle;
+  }
+  return py::make_tuple(positions, directions, scales, particles);
 }
 
 //! The strands (strands.h) as one array of particle ids and the offsets where each starts (one
@@ -811,6 +841,7 @@ PYBIND11_MODULE(_core, m) {
       })
       .def("_tubes", &tubes, py::arg("sides"), py::arg("tolerance"), py::arg("min_branch"), py::arg("uv_scale"),
            "(vertices, normals, faces, particle, uv, tangent): the tube mesh of the look (dla3d.Result.tubes)")
+      .def("_instances", &instances, "(positions, directions, scale, particle): the instancing points")
       .def("_solid", &solid, py::arg("options"),
            "(vertices, faces, particle, measures): the watertight solid (dla3d.Result.solid)")
       .def("strands", &strands, "(ids, starts): particle ids of every strand, strand k at ids[starts[k]:starts[k+1]]")

@@ -49,14 +49,35 @@ class Tubes(tuple):
     faces = property(lambda self: self[2])
 
 
-def _tubes(result, sides=8, tolerance=0.0, min_branch=1, uv_scale=None):
+def _tubes(result, sides=None, tolerance=None, min_branch=None, uv_scale=None):
     """The tube mesh of the look, as the glTF's: see Tubes. `sides`, `tolerance` (spacings),
-    `min_branch` and `uv_scale` (scene units; 0 for the base circumference; None for the run's)
-    are --tube-sides, --tube-tolerance, --tube-min-branch and --uv-scale."""
+    `min_branch` and `uv_scale` (scene units; 0 for the base circumference) are --tube-sides,
+    --tube-tolerance, --tube-min-branch and --uv-scale; None takes the run's."""
     return Tubes(*result._tubes(sides, tolerance, min_branch, uv_scale))
 
 
 Result.tubes = _tubes
+
+
+class Instances(tuple):
+    """The instancing points of the run's options (instances, tips_within, tips_every,
+    tips_exclude_paint), as PREFIX_tips.ply and the glb's leaves have them: unpacks as
+    (positions, directions, scale), float64 (N, 3), (N, 3) unit directions from each parent and
+    (N,) scales (half the gap to the nearest other point, at most the distance to the mesh);
+    `particle` is each point's particle."""
+
+    def __new__(cls, positions, directions, scale, particle):
+        points = super().__new__(cls, (positions, directions, scale))
+        points.particle = particle
+        return points
+
+    positions = property(lambda self: self[0])
+    directions = property(lambda self: self[1])
+    scale = property(lambda self: self[2])
+
+
+Result.instances = lambda result: Instances(*result._instances())
+Result.instances.__doc__ = Instances.__doc__
 
 
 class Solid(tuple):

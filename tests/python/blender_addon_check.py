@@ -1,5 +1,6 @@
 """Run inside Blender (test_blender.py): install and enable the add-on, grow in an icosphere
-with its operator, and check the curves (with links too), the tube mesh and the solid it makes.
+with its operator, and check the curves (with links too), the tube mesh, the solid and the
+leaves it makes.
 
     blender -b --factory-startup --python blender_addon_check.py -- ADDON PYTHONPATH [RENDER.png]
 """
@@ -7,6 +8,7 @@ with its operator, and check the curves (with links too), the tube mesh and the 
 import sys
 
 import bpy
+import mathutils
 import numpy as np
 
 addon, module_path = sys.argv[sys.argv.index("--") + 1:][:2]
@@ -91,11 +93,39 @@ assert all(edge.is_manifold for edge in closed.edges), "the solid has an open or
 closed.free()
 solids[0].hide_render = True
 
+# Leaves: linked duplicates of a leaf object at every second tip, along the branch, as large as
+# the room around it.
+bpy.ops.mesh.primitive_plane_add(size=0.5, location=(30, 0, 0))
+leaf = bpy.context.active_object
+settings.output, settings.leaf, settings.leaf_every = 'CURVES', leaf, 2
+bpy.context.view_layer.objects.active = sphere
+assert bpy.ops.dla3d.grow() == {'FINISHED'}
+bpy.context.view_layer.objects.active = sphere
+leafy = dla3d.grow(**grow_options(settings, sphere, bpy.context.evaluated_depsgraph_get()))
+points = leafy.instances()
+assert len(points.positions) > 20 and len(points.positions) == len(points.particle)
+assert len(points.positions) < (leafy.tip.sum() + 1) // 2 + 1
+copies = [o for o in bpy.context.scene.objects if o.data is leaf.data and o is not leaf]
+assert len(copies) == len(points.positions), (len(copies), len(points.positions))
+assert all(copy.parent is not None and copy.parent.name.endswith("leaves") for copy in copies)
+by_place = sorted(copies, key=lambda o: tuple(o.matrix_world.translation))
+order = np.lexsort(points.positions.T[::-1])
+for copy, k in zip(by_place, order):
+    matrix = copy.matrix_world
+    np.testing.assert_allclose(matrix.translation, points.positions[k], atol=1e-4)
+    stem = matrix.to_3x3() @ mathutils.Vector((0, 0, 1))
+    assert abs(stem.length - points.scale[k]) < 1e-4 * points.scale[k] + 1e-6, (stem.length, points.scale[k])
+    assert stem.normalized().dot(mathutils.Vector(points.directions[k])) > 1 - 1e-5
+settings.leaf = None
+for placed in copies + [leaf] + [o for o in bpy.context.scene.objects if o.name.endswith("leaves")]:
+    placed.hide_render = True
+[o for o in bpy.context.scene.objects if o.type == 'CURVES' and o is not curves[0]][0].hide_render = True
+
 # Links: a curve of two points each after the strands.
 settings.output, settings.links = 'CURVES', 2.0
 bpy.context.view_layer.objects.active = sphere
 assert bpy.ops.dla3d.grow() == {'FINISHED'}
-looped = [o for o in bpy.context.scene.objects if o.type == 'CURVES' and o is not curves[0]]
+looped = [o for o in bpy.context.scene.objects if o.type == 'CURVES' and o is not curves[0] and not o.hide_render]
 assert len(looped) == 1
 bpy.context.view_layer.objects.active = sphere
 linked = dla3d.grow(**grow_options(settings, sphere, bpy.context.evaluated_depsgraph_get()))

@@ -404,6 +404,13 @@ def test_leaves_go_in_the_glb_one_node_a_tip(tmp_path):
     assert count > 10
     assert len(gltf["nodes"]) == 2 + count and gltf["nodes"][1]["name"] == "leaves"
     assert all(node["mesh"] == 1 for node in gltf["nodes"][2:])
+    # Result.instances(): the same points, in the same order.
+    points = result.instances()
+    assert len(points.positions) == count and points.positions.shape == points.directions.shape == (count, 3)
+    placed = np.array([node["translation"] for node in gltf["nodes"][2:]])
+    assert np.allclose(placed, points.positions, atol=1e-4)
+    assert [node["name"] for node in gltf["nodes"][2:]] == [f"leaf {p}" for p in points.particle]
+    assert np.allclose(np.linalg.norm(points.directions, axis=1), 1) and (points.scale > 0).all()
 
 
 def test_random_keyword_sets_grow_or_refuse_in_one_line():
