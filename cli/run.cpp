@@ -110,6 +110,8 @@ int run(const CommandLine& line, const std::vector<std::string>& args, const Res
                   with_commas(static_cast<double>(record.lod_triangles[level]));
       std::fprintf(stderr, "dla3d: levels of detail, in triangles: %s\n", levels.c_str());
     }
+    if (record.leaves)
+      std::fprintf(stderr, "dla3d: %s leaves in the glb\n", with_commas(static_cast<double>(*record.leaves)).c_str());
     if (record.solid)
       std::fprintf(stderr, "dla3d: %s\n",
                    spell_options(describe(*record.solid, record.printed), OptionSpelling::cli).c_str());

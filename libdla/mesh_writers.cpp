@@ -433,19 +433,19 @@ class SolidPieces {
 
 }  // namespace
 
-std::vector<std::size_t> write_glb(const Cluster& cluster, const Look& look, const std::string& path,
-                                   const GlbOptions& options) {
+GlbWritten write_glb(const Cluster& cluster, const Look& look, const std::string& path, const GlbOptions& options) {
   const int levels = options.lods;
   if (levels < 0 || levels > kMaxLods)
     throw InvalidInput("`lod` " + std::to_string(levels) + " is not in 0-" + std::to_string(kMaxLods));
   const LookTubes tubes(cluster, look);
+  GlbWritten written;
   if (options.leaf) {
     const PlacedLeaves leaves{*options.leaf, instancing_points(cluster, look.attributes, options.instances)};
-    glb_of(cluster, look, tubes, path, &leaves);
+    if (glb_of(cluster, look, tubes, path, &leaves).triangles > 0) written.leaves = leaves.points.size();
   } else {
     glb_of(cluster, look, tubes, path);
   }
-  if (levels == 0) return {};
+  if (levels == 0) return written;
   const std::string prefix =
       path.size() > 4 && path.compare(path.size() - 4, 4, ".glb") == 0 ? path.substr(0, path.size() - 4) : path;
   // Each tube's triangles by the size of its branch (capped past the largest threshold): what
@@ -461,7 +461,6 @@ std::vector<std::size_t> write_glb(const Cluster& cluster, const Look& look, con
   });
   std::vector<std::size_t> kept_from(by_size.size() + 1, 0);  // triangles of branches of m or more
   for (std::size_t m = by_size.size(); m-- > 0;) kept_from[m] = kept_from[m + 1] + by_size[m];
-  std::vector<std::size_t> triangles;
   int min_branch = look.options.tubes.min_branch;
   for (int level = 1; level <= levels; ++level) {
     // Half the triangles a level: twigs go first, down to 1.5 times the level's target; the
@@ -471,9 +470,10 @@ std::vector<std::size_t> write_glb(const Cluster& cluster, const Look& look, con
     while (min_branch < kMaxMinBranch && kept_at(min_branch) > 1.5 * target) ++min_branch;
     const double kept = kept_at(min_branch);
     const LodTubes level_tubes(cluster, look, tubes, min_branch, kept > 0 ? std::min(1.0, target / kept) : 1.0);
-    triangles.push_back(glb_of(cluster, look, level_tubes, prefix + "_lod" + std::to_string(level) + ".glb").triangles);
+    written.lod_triangles.push_back(
+        glb_of(cluster, look, level_tubes, prefix + "_lod" + std::to_string(level) + ".glb").triangles);
   }
-  return triangles;
+  return written;
 }
 
 void write_obj(const Cluster& cluster, const Look& look, const std::string& path) {

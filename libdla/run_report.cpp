@@ -58,6 +58,7 @@ void write_run_report(const Cluster& cluster, const ModelRecord& model, const Lo
     for (const std::size_t n : record.lod_triangles) counts += (counts.empty() ? "" : ", ") + std::to_string(n);
     out.raw("lod_triangles", "[" + counts + "]");
   }
+  if (record.leaves) out.number("leaves", static_cast<double>(*record.leaves));
 
   if (record.solid) {
     const SolidMeasures& m = *record.solid;

@@ -81,9 +81,10 @@ TEST(Leaves, OneNodeAtEachInstancingPointAlongItsDirectionAndScale) {
   const Look look = make_look(c, {});
   const Leaf leaf = read_leaf(kLeaf);
   write_glb(c, look, dir / "bare.glb");
-  write_glb(c, look, dir / "leafy.glb", {0, &leaf, {}});
+  const GlbWritten written = write_glb(c, look, dir / "leafy.glb", {0, &leaf, {}});
   const std::vector<Instance> points = instancing_points(c, look.attributes, {});
   ASSERT_GT(points.size(), 100u);
+  EXPECT_EQ(written.leaves, points.size());
   const GlbFile bare = read_glb(dir / "bare.glb"), leafy = read_glb(dir / "leafy.glb"), source = read_glb(kLeaf);
 
   const json& nodes = leafy.gltf["nodes"];
@@ -250,13 +251,16 @@ TEST(Leaves, TheCommandLineChecksTheLeafBeforeGrowing) {
   run = testing::dla3d(dir, "-n 400 --formats csv --leaf leaf.glb -o bad");
   EXPECT_NE(run.exit_code, 0);
   EXPECT_NE(run.err.find("add glb to --formats"), std::string::npos) << run.err;
-  run = testing::dla3d(dir, "-n 400 --formats glb,tips --tips-every 2 --leaf leaf.glb -o good");
+  run = testing::dla3d(dir, "-n 400 --formats glb,tips,json --tips-every 2 --leaf leaf.glb -o good");
   ASSERT_EQ(run.exit_code, 0) << run.err;
+  const json record = json::parse(read_file(dir / "good.json"));
   const std::string tips = read_file(dir / "good_tips.ply");
   const std::size_t at = tips.find("element vertex ") + 15;
   const std::size_t count = std::stoul(tips.substr(at));
   EXPECT_GT(count, 20u);
   EXPECT_EQ(read_glb(dir / "good.glb").gltf["nodes"].size(), 2 + count);
+  EXPECT_EQ(record["leaves"], count);
+  EXPECT_NE(run.err.find(std::to_string(count) + " leaves in the glb"), std::string::npos) << run.err;
 }
 
 }  // namespace

@@ -34,7 +34,7 @@ struct WriteJob {
   const OutputOptions& files;
   const PovOptions& pov;
   const TriangleMesh* scene_mesh;
-  std::vector<std::size_t>& lod_triangles;  //!< the glb's writer counts its levels' triangles here
+  GlbWritten& glb;  //!< the glb's writer counts its levels' triangles and its leaves here
 };
 
 using Writer = void (*)(const WriteJob& job, const std::string& path);
@@ -54,7 +54,7 @@ const WriterEntry kWriters[] = {
      [](const WriteJob& j, const std::string& path) {
        std::optional<Leaf> leaf;
        if (!j.files.leaf.empty()) leaf = read_leaf(j.files.leaf);
-       j.lod_triangles = write_glb(j.cluster, j.look, path, {j.files.lods, leaf ? &*leaf : nullptr, j.files.instances});
+       j.glb = write_glb(j.cluster, j.look, path, {j.files.lods, leaf ? &*leaf : nullptr, j.files.instances});
      }},
     {&Formats::obj, ".obj", [](const WriteJob& j, const std::string& path) { write_obj(j.cluster, j.look, path); }},
     {&Formats::tips, "_tips.ply",
@@ -134,7 +134,7 @@ FilesWritten write_files(const Cluster& cluster, const OutputOptions& files, con
   // The solid's plan first: a solid that would not fit is refused before any file is written.
   const SolidPlan plan = files.formats.solid() ? plan_solid(cluster, look.radii(cluster), files.solid) : SolidPlan{};
   FilesWritten written;
-  const WriteJob job{cluster, look, files, pov, context.scene_mesh, written.lod_triangles};
+  const WriteJob job{cluster, look, files, pov, context.scene_mesh, written.glb};
   std::vector<std::future<void>> writers;
   const WriterEntry* scene = nullptr;
   for (const WriterEntry& writer : kWriters) {
@@ -185,7 +185,8 @@ void write_run(const Run& run, const Cluster& cluster, const OutputOptions& file
     FilesWritten written = write_files(
         cluster, files, {run.threads, run.constraint, run.scene_mesh, record.command, stop, solid_progress});
     record.solid = written.solid;
-    record.lod_triangles = std::move(written.lod_triangles);
+    record.lod_triangles = std::move(written.glb.lod_triangles);
+    if (!files.leaf.empty() && files.formats.glb) record.leaves = written.glb.leaves;
   } catch (const InvalidInput&) {
     throw;
   } catch (...) {

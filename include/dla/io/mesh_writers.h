@@ -30,14 +30,19 @@ struct GlbOptions {
   InstanceOptions instances;
 };
 
+//! What write_glb wrote besides the tubes.
+struct GlbWritten {
+  std::vector<std::size_t> lod_triangles;  //!< each level of detail's triangles, from level 1
+  std::size_t leaves = 0;                  //!< leaf nodes: one an instancing point, with a leaf
+};
+
 //! Writes PATH as binary glTF 2.0: one mesh of one triangle primitive with POSITION, NORMAL,
 //! TANGENT, TEXCOORD_0, COLOR_0 (with a colour attribute) and the attributes as `_AGE`,
 //! `_DEPTH`, `_DESCENDANTS`, `_ORDER` (Strahler), `_SEED` and `_RADIUS` (floats, the vertex's
 //! particle's); with a leaf, the leaves. A structure with no branch gives a valid file with an
-//! empty scene. Returns the triangles of each level of detail. Throws InvalidInput for levels
-//! out of range and for instancing points the look cannot give (InstanceSelection), IOError.
-std::vector<std::size_t> write_glb(const Cluster& cluster, const Look& look, const std::string& path,
-                                   const GlbOptions& options = {});
+//! empty scene. Throws InvalidInput for levels out of range and for instancing points the look
+//! cannot give (InstanceSelection), IOError.
+GlbWritten write_glb(const Cluster& cluster, const Look& look, const std::string& path, const GlbOptions& options = {});
 
 //! Writes PATH as OBJ: `v x y z [r g b]`, `vn`, `vt u 1-v`, and `f v/vt/vn` triangles, one
 //! object. Throws IOError.

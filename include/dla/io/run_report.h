@@ -29,6 +29,7 @@ struct RunRecord {
   std::optional<SolidMeasures> solid;  //!< what the solid measures, when one was written
   bool printed = false;                //!< the solid was sized for print: its units are mm
   std::vector<std::size_t> lod_triangles;  //!< each level of detail's triangles (`lod`), from level 1
+  std::optional<std::size_t> leaves;       //!< the glb's leaf nodes, when a leaf (`leaf`) was given
 };
 
 //! The solid's measures in a line, for a summary: volume, area, shells, thinnest wall.

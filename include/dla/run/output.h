@@ -3,6 +3,7 @@
 //! What a run of any model writes and how it looks: the files under one prefix, the look they
 //! share, the POV-Ray scene's settings and the instancing points. See docs/formats.md.
 
+#include "dla/io/mesh_writers.h"
 #include "dla/io/ply_writer.h"
 #include "dla/io/png_writer.h"
 #include "dla/io/pov_writer.h"
@@ -83,7 +84,7 @@ struct WriteContext {
 //! What writing measured: the solid's measures, when a solid format was asked for.
 struct FilesWritten {
   std::optional<SolidMeasures> solid;
-  std::vector<std::size_t> lod_triangles;  //!< each level of detail's triangles, from level 1
+  GlbWritten glb;  //!< the glb's levels of detail and leaves
 };
 
 //! Makes the look and writes every file `files.formats` asks for but the JSON record (which
