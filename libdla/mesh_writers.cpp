@@ -73,7 +73,8 @@ class LodTubes {
     const auto* indices = reinterpret_cast<const unsigned int*>(piece.triangles.data());
     const float* positions = piece.positions.front().data();
     float thinnest = std::numeric_limits<float>::infinity();
-    for (const std::int32_t p : piece.particles) thinnest = std::min(thinnest, full_.radius(static_cast<std::size_t>(p)));
+    for (const std::int32_t p : piece.particles)
+      thinnest = std::min(thinnest, full_.radius(static_cast<std::size_t>(p)));
     const float extent = meshopt_simplifyScale(positions, vertex_count, sizeof(Eigen::Vector3f));
     const float error = extent > 0 ? 0.25f * thinnest * static_cast<float>(cluster_.spacing) / extent : 0.0f;
     const auto target = static_cast<std::size_t>(keep_ * static_cast<double>(piece.triangles.size())) * 3;
@@ -220,7 +221,6 @@ TubeTotals glb_of(const Cluster& cluster, const Look& look, const Pieces& each_t
   const bool empty = totals.triangles == 0;
   const bool has_leaves = !empty && leaves && !leaves->points.empty();
   const std::size_t buffer_bytes = vertex_bytes + index_bytes + (has_leaves ? leaves->leaf.binary.size() : 0);
-  detail::LeafParts parts;
 
   std::string gltf = "{\"asset\":{\"version\":\"2.0\",\"generator\":" + json::string(std::string("dla3d ") + version) +
                      "},\"scene\":0,";
@@ -257,7 +257,8 @@ TubeTotals glb_of(const Cluster& cluster, const Look& look, const Pieces& each_t
                  std::to_string(totals.triangles * 3) + ",\"type\":\"SCALAR\"}";
     std::string nodes = "{\"mesh\":0,\"name\":\"dla\"}", scene_nodes = "0", meshes, materials, buffer_views, more;
     if (has_leaves) {
-      parts = detail::leaf_parts(leaves->leaf, {accessor + 1, 2, 1, 1, vertex_bytes + index_bytes});
+      const detail::LeafParts parts =
+          detail::leaf_parts(leaves->leaf, {accessor + 1, 2, 1, 1, vertex_bytes + index_bytes});
       nodes += ",{\"name\":\"leaves\",\"children\":[";
       for (std::size_t n = 0; n < leaves->points.size(); ++n) nodes += (n ? "," : "") + std::to_string(n + 2);
       nodes += "]}" + leaf_nodes(*leaves, parts);

@@ -119,7 +119,8 @@ std::string text(const char* name, py::handle value) {
 
 //! A file's path: a string or a pathlib path.
 std::string path_text(const char* name, py::handle value) {
-  if (!py::isinstance<py::str>(value) && py::hasattr(value, "__fspath__")) return text(name, value.attr("__fspath__")());
+  if (!py::isinstance<py::str>(value) && py::hasattr(value, "__fspath__"))
+    return text(name, value.attr("__fspath__")());
   return text(name, value);
 }
 

@@ -587,10 +587,11 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
     EXPECT_TRUE(frames_table().count(name) || option_table().count(name))
         << name << " is in dla3d frames --help but not in the property test's tables";
   // What the other models share with DLA: the Output and Look options (and help).
-  const std::vector<const char*> shared = {"--output", "--ply-format", "--formats", "--png-scale", "--png-bands", "--radius", "--base-radius",
-                                           "--tip-radius", "--pipe-exponent", "--color-by", "--look", "--tube-sides",
-                                           "--tube-tolerance", "--tube-min-branch", "--uv-scale", "--lod", "--leaf", "--instances", "--tips-within", "--tips-every", "--tips-exclude-paint",
-                                           "--up", "--quiet", "--help"};
+  const std::vector<const char*> shared = {
+      "--output", "--ply-format", "--formats", "--png-scale", "--png-bands", "--radius", "--base-radius",
+      "--tip-radius", "--pipe-exponent", "--color-by", "--look", "--tube-sides", "--tube-tolerance",
+      "--tube-min-branch", "--uv-scale", "--lod", "--leaf", "--instances", "--tips-within", "--tips-every",
+      "--tips-exclude-paint", "--up", "--quiet", "--help"};
   const auto flags_of = [&](const Table& table) {
     std::vector<std::string> model_flags(shared.begin(), shared.end());
     for (const auto& [flag, values] : table) model_flags.push_back(flag);
@@ -643,8 +644,9 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
     ScratchDir dir;
     make_inputs(dir);
     std::filesystem::create_directory(dir.path() / "dir");
-    const std::set<std::string> inputs = {"ball.stl",   "box.off",  "noise.stl", "out.csv",  "points.csv", "paint.ply",
-                                          "points.ply", "saved.ck", "mask.txt",  "rod.stl", "dir",  "grown.csv", "leaf.glb"};
+    const std::set<std::string> inputs = {"ball.stl",   "box.off",  "noise.stl", "out.csv", "points.csv", "paint.ply",
+                                          "points.ply", "saved.ck", "mask.txt",  "rod.stl", "dir",        "grown.csv",
+                                          "leaf.glb"};
     // The bound: far above what any of these takes (under the sanitizers too); `timeout`
     // kills a hang with 137 and the assertion below names the command.
     const testing::CliRun result = testing::dla3d(dir, command, "timeout -s KILL 120");
