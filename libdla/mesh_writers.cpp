@@ -289,9 +289,15 @@ TubeTotals glb_of(const Cluster& cluster, const Look& look, const Pieces& each_t
             "\"accessors\":[" + accessors + "]" + more + "}";
   }
   gltf.resize((gltf.size() + 3) / 4 * 4, ' ');  // chunks are 4-byte aligned: JSON pads with spaces
+  const std::size_t length = 12 + 8 + gltf.size() + (empty ? 0 : 8 + buffer_bytes);
+  // A glb's lengths are 32-bit: a larger file would give a wrong length that no reader opens.
+  if (length > std::numeric_limits<std::uint32_t>::max())
+    throw InvalidInput("`formats` glb: the tubes would take " +
+                       detail::format_number(std::ceil(static_cast<double>(length) / 1e8) / 10.0) +
+                       " GB, past a glb's 4.29 GB: fewer `tube_sides`, a `tube_tolerance` or a `tube_min_branch` "
+                       "makes them smaller");
 
   detail::OutputFile out(path);
-  const std::size_t length = 12 + 8 + gltf.size() + (empty ? 0 : 8 + buffer_bytes);
   out.raw(std::uint32_t{0x46546C67}).raw(std::uint32_t{2}).raw(static_cast<std::uint32_t>(length));
   out.raw(static_cast<std::uint32_t>(gltf.size())).raw(std::uint32_t{0x4E4F534A}) << gltf;
   if (empty) {

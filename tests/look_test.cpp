@@ -765,6 +765,33 @@ TEST(LookFiles, LevelsOfDetailHalveTheTrianglesAndKeepTheShape) {
   EXPECT_FALSE(std::filesystem::exists(dir / "many.glb")) << "refused before writing";
 }
 
+// A glb's lengths are 32-bit: tubes past 4.29 GB are refused in one line before the file is
+// made, not written with a length that wraps. A comb of 240,000 teeth at 64 sides is 4.5 GB.
+TEST(LookFiles, AGlbPastItsFourGigabytesIsRefusedBeforeItIsWritten) {
+  ScratchDir dir;
+  Cluster comb;
+  comb.seed_count = 1;
+  constexpr int kSpine = 1000;
+  for (int i = 0; i < kSpine; ++i) comb.particles.push_back({Vec3(i, 0, 0), i - 1, 0});
+  for (int tooth = 0; tooth < 240000; ++tooth) {
+    const int root = tooth % kSpine;
+    const double angle = 0.001 * tooth;
+    comb.particles.push_back({Vec3(root, std::cos(angle), std::sin(angle)), root, 0});
+  }
+  LookOptions options;
+  options.tubes.sides = 64;
+  const Look look = make_look(comb, options);
+  try {
+    write_glb(comb, look, dir / "huge.glb");
+    ADD_FAILURE() << "a glb past 4.29 GB was written";
+  } catch (const InvalidInput& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("`formats` glb: the tubes would take 4."), std::string::npos) << message;
+    EXPECT_NE(message.find("past a glb's 4.29 GB"), std::string::npos) << message;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "huge.glb"));
+}
+
 TEST(LookFiles, SvgDrawsEveryBranchOf2DGrowth) {
   ScratchDir dir;
   const Cluster flat = grown(600, 2);
