@@ -73,7 +73,8 @@ void glb_lods(benchmark::State& state) {
   const dla::Look look = dla::make_look(tree, {});
   std::size_t last = 0;
   const int levels = static_cast<int>(state.range(1));
-  for (auto _ : state) last = dla::write_glb(tree, look, "/tmp/dla_look_bench.glb", {levels}).lod_triangles.back();
+  const dla::GlbOptions options{levels, nullptr, {}};
+  for (auto _ : state) last = dla::write_glb(tree, look, "/tmp/dla_look_bench.glb", options).lod_triangles.back();
   std::remove("/tmp/dla_look_bench.glb");
   for (int level = 1; level <= levels; ++level)
     std::remove(("/tmp/dla_look_bench_lod" + std::to_string(level) + ".glb").c_str());

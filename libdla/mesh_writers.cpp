@@ -3,6 +3,7 @@
 
 #include "dla/io/json.h"
 #include "dla/version.h"
+#include "glb_limit.h"
 #include "leaf_parts.h"
 #include "output_file.h"
 
@@ -24,6 +25,7 @@ namespace {
 class LookTubes {
  public:
   static constexpr bool textured = true;  //!< its pieces have uvs and tangents
+  static constexpr detail::GlbContent content = detail::GlbContent::tubes;
 
   LookTubes(const Cluster& cluster, const Look& look)
       : cluster_(cluster), look_(look), radii_(look.radii(cluster)),
@@ -51,6 +53,7 @@ class LookTubes {
 class LodTubes {
  public:
   static constexpr bool textured = true;
+  static constexpr detail::GlbContent content = detail::GlbContent::tubes;
 
   LodTubes(const Cluster& cluster, const Look& look, const LookTubes& full, int min_branch, double keep)
       : cluster_(cluster), look_(look), full_(full), options_(look.options.tubes), keep_(keep) {
@@ -204,9 +207,9 @@ std::string names_list(const std::vector<std::string>& names) {
   return text + "]";
 }
 
-//! The glTF of the meshes `each_tube` walks: any source with the visitor call, radius(i) and
-//! `textured` of LookTubes, whose pieces' vertices name their particles; and the leaves, if any
-//! and if there are tubes. Returns its counts.
+//! The glTF of the meshes `each_tube` walks: any source with the visitor call, radius(i),
+//! `textured` and `content` of LookTubes, whose pieces' vertices name their particles; and the
+//! leaves, if any and if there are tubes. Returns its counts.
 template <class Pieces>
 TubeTotals glb_of(const Cluster& cluster, const Look& look, const Pieces& each_tube, const std::string& path,
                   const PlacedLeaves* leaves = nullptr) {
@@ -290,12 +293,7 @@ TubeTotals glb_of(const Cluster& cluster, const Look& look, const Pieces& each_t
   }
   gltf.resize((gltf.size() + 3) / 4 * 4, ' ');  // chunks are 4-byte aligned: JSON pads with spaces
   const std::size_t length = 12 + 8 + gltf.size() + (empty ? 0 : 8 + buffer_bytes);
-  // A glb's lengths are 32-bit: a larger file would give a wrong length that no reader opens.
-  if (length > std::numeric_limits<std::uint32_t>::max())
-    throw InvalidInput("`formats` glb: the tubes would take " +
-                       detail::format_number(std::ceil(static_cast<double>(length) / 1e8) / 10.0) +
-                       " GB, past a glb's 4.29 GB: fewer `tube_sides`, a `tube_tolerance` or a `tube_min_branch` "
-                       "makes them smaller");
+  detail::require_glb_fits(length, Pieces::content);
 
   detail::OutputFile out(path);
   out.raw(std::uint32_t{0x46546C67}).raw(std::uint32_t{2}).raw(static_cast<std::uint32_t>(length));
@@ -408,6 +406,7 @@ void obj_of(const Cluster& cluster, const Look& look, const Pieces& each_tube, s
 class SolidPieces {
  public:
   static constexpr bool textured = false;
+  static constexpr detail::GlbContent content = detail::GlbContent::solid;
 
   SolidPieces(const Solid& solid, const Cluster& cluster, const Look& look) : radii_(look.radii(cluster)) {
     const SolidMesh& mesh = solid.mesh;
@@ -439,6 +438,16 @@ class SolidPieces {
 };
 
 }  // namespace
+
+void detail::require_glb_fits(std::uint64_t bytes, GlbContent content) {
+  if (bytes <= std::numeric_limits<std::uint32_t>::max()) return;
+  const bool solid = content == GlbContent::solid;
+  throw InvalidInput(std::string(solid ? "`formats` solid-glb: the solid" : "`formats` glb: the tubes") +
+                     " would take " + detail::format_number(std::ceil(static_cast<double>(bytes) / 1e8) / 10.0) +
+                     " GB, past a glb's 4.29 GB: " +
+                     (solid ? "a larger `solid_voxel` or some `solid_adaptivity` makes it smaller"
+                            : "fewer `tube_sides`, a `tube_tolerance` or a `tube_min_branch` makes them smaller"));
+}
 
 GlbWritten write_glb(const Cluster& cluster, const Look& look, const std::string& path, const GlbOptions& options) {
   const int levels = options.lods;

@@ -278,7 +278,7 @@ TEST(Blender, ImportsTheLevelsOfDetail) {
   LookOptions options;
   options.radius.model = RadiusModel::pipe;
   const Look look = make_look(c, options);
-  const std::vector<std::size_t> triangles = write_glb(c, look, dir / "tree.glb", {3}).lod_triangles;
+  const std::vector<std::size_t> triangles = write_glb(c, look, dir / "tree.glb", {3, nullptr, {}}).lod_triangles;
   long before = blender_import(dir, "tree.glb").faces;
   for (std::size_t level = 1; level <= 3; ++level) {
     const std::string file = "tree_lod" + std::to_string(level) + ".glb";

@@ -14,6 +14,7 @@
 #include "dla/mesh/shapes.h"
 #include "dla/mesh/surface_distance.h"
 #include "dla/io/svg_writer.h"
+#include "glb_limit.h"
 #include "mesh_util.h"
 #include "test_util.h"
 #include "tube_check.h"
@@ -739,7 +740,7 @@ TEST(LookFiles, LevelsOfDetailHalveTheTrianglesAndKeepTheShape) {
   LookOptions options;
   options.radius.model = RadiusModel::pipe;
   const Look look = make_look(c, options);
-  const std::vector<std::size_t> triangles = write_glb(c, look, dir / "tree.glb", {3}).lod_triangles;
+  const std::vector<std::size_t> triangles = write_glb(c, look, dir / "tree.glb", {3, nullptr, {}}).lod_triangles;
   ASSERT_EQ(triangles.size(), 3u);
   const GlbMesh full = read_glb_mesh(dir / "tree.glb");
   const double diagonal = (full.max - full.min).norm();
@@ -760,8 +761,8 @@ TEST(LookFiles, LevelsOfDetailHalveTheTrianglesAndKeepTheShape) {
   }
   EXPECT_TRUE(write_glb(c, look, dir / "none.glb").lod_triangles.empty());
   EXPECT_FALSE(std::filesystem::exists(dir / "none_lod1.glb"));
-  EXPECT_THROW(write_glb(c, look, dir / "many.glb", {kMaxLods + 1}), InvalidInput);
-  EXPECT_THROW(write_glb(c, look, dir / "few.glb", {-1}), InvalidInput);
+  EXPECT_THROW(write_glb(c, look, dir / "many.glb", {kMaxLods + 1, nullptr, {}}), InvalidInput);
+  EXPECT_THROW(write_glb(c, look, dir / "few.glb", {-1, nullptr, {}}), InvalidInput);
   EXPECT_FALSE(std::filesystem::exists(dir / "many.glb")) << "refused before writing";
 }
 
@@ -790,6 +791,26 @@ TEST(LookFiles, AGlbPastItsFourGigabytesIsRefusedBeforeItIsWritten) {
     EXPECT_NE(message.find("past a glb's 4.29 GB"), std::string::npos) << message;
   }
   EXPECT_FALSE(std::filesystem::exists(dir / "huge.glb"));
+}
+
+// The solid's glb shares the check, and its message names the solid's options, not the tubes'.
+TEST(LookFiles, AGlbTooLargeNamesTheOptionsOfWhatItHolds) {
+  EXPECT_NO_THROW(detail::require_glb_fits(std::numeric_limits<std::uint32_t>::max(), detail::GlbContent::solid));
+  const auto message = [](detail::GlbContent content) {
+    try {
+      detail::require_glb_fits(std::uint64_t{5'000'000'000}, content);
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    ADD_FAILURE() << "5 GB passed";
+    return std::string();
+  };
+  const std::string solid = message(detail::GlbContent::solid), tubes = message(detail::GlbContent::tubes);
+  EXPECT_EQ(solid.rfind("`formats` solid-glb: the solid would take 5 GB, past a glb's 4.29 GB", 0), 0u) << solid;
+  EXPECT_NE(solid.find("`solid_voxel`"), std::string::npos) << solid;
+  EXPECT_EQ(solid.find("tube"), std::string::npos) << solid;
+  EXPECT_EQ(tubes.rfind("`formats` glb: the tubes would take 5 GB", 0), 0u) << tubes;
+  EXPECT_NE(tubes.find("`tube_sides`"), std::string::npos) << tubes;
 }
 
 TEST(LookFiles, SvgDrawsEveryBranchOf2DGrowth) {
