@@ -4,6 +4,7 @@
 //   build/bench/dla_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 // (medians in docs/performance.md).
 
+#include "dla/core/huge_pages.h"
 #include "dla/index/grid_index.h"
 #include "dla/models/dla.h"
 #include "dla/index/kdtree_index.h"
@@ -17,10 +18,11 @@
 
 namespace {
 
-// Bytes the heap has handed out and not taken back (glibc), mmapped blocks included.
+// Bytes the heap has handed out and not taken back (glibc), mmapped blocks included, and the
+// index's arrays in huge pages, which have mappings of their own.
 double heap_in_use() {
   const struct mallinfo2 info = mallinfo2();
-  return static_cast<double>(info.uordblks + info.hblkhd);
+  return static_cast<double>(info.uordblks + info.hblkhd + dla::huge_page_bytes());
 }
 
 template <class Index>

@@ -1,6 +1,7 @@
 // Every index against brute force: probes never overshoot the nearest distance and are exact
 // when they name a particle; radius visits find exactly the particles within the radius.
 
+#include "dla/core/huge_pages.h"
 #include "dla/index/grid_index.h"
 #include "dla/index/kdtree_index.h"
 #include "dla/core/random.h"
@@ -10,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <set>
 #include <vector>
 
@@ -84,6 +86,31 @@ TEST(GridIndex, MatchesBruteForce3D) { dla::check_against_brute_force<dla::GridI
 TEST(GridIndex, MatchesBruteForce2D) { dla::check_against_brute_force<dla::GridIndex>(2); }
 TEST(KdTreeIndex, MatchesBruteForce3D) { dla::check_against_brute_force<dla::KdTreeIndex>(3); }
 TEST(KdTreeIndex, MatchesBruteForce2D) { dla::check_against_brute_force<dla::KdTreeIndex>(2); }
+
+// The grid's large arrays: from 2 MiB on, a mapping of their own on a 2 MiB boundary, counted
+// while held; below that, the heap. Growing through both keeps every value.
+TEST(HugePageAllocator, LargeArraysStartOnAHugePageAndKeepTheirValues) {
+  const std::size_t before = dla::huge_page_bytes();
+  {
+    dla::HugePageVector<std::uint32_t> values;
+    for (std::uint32_t i = 0; i < 3'000'000; ++i) {
+      values.push_back(i * 2654435761u);
+      if (values.size() != values.capacity()) continue;  // just reallocated, or about to
+      const std::size_t bytes = values.capacity() * sizeof(std::uint32_t);
+      if (bytes >= dla::kHugePageBytes) {
+        EXPECT_EQ(reinterpret_cast<std::uintptr_t>(values.data()) % dla::kHugePageBytes, 0u) << bytes << " bytes";
+        EXPECT_EQ(dla::huge_page_bytes(), before + bytes);  // capacities double: whole pages
+      } else {
+        EXPECT_EQ(dla::huge_page_bytes(), before) << bytes << " bytes";
+      }
+    }
+    for (std::uint32_t i = 0; i < values.size(); ++i) ASSERT_EQ(values[i], i * 2654435761u) << i;
+    const dla::HugePageVector<std::uint32_t> copy = values;
+    EXPECT_EQ(copy, values);
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(copy.data()) % dla::kHugePageBytes, 0u);
+  }
+  EXPECT_EQ(dla::huge_page_bytes(), before) << "every mapping given back";
+}
 
 TEST(GridIndex, EmptyIndexKnowsNothing) {
   std::vector<dla::Particle> store;

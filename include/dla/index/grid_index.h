@@ -16,6 +16,7 @@
 //! layout and the measurements that chose it.
 
 #include "dla/core/errors.h"
+#include "dla/core/huge_pages.h"
 #include "dla/index/spatial_index.h"
 
 #include <algorithm>
@@ -306,7 +307,7 @@ class GridIndex {
   //! One bit per cell of a box of cells, x fastest.
   struct BitGrid {
     Cell dims{0, 0, 0};
-    std::vector<std::uint64_t> words;
+    HugePageVector<std::uint64_t> words;
 
     void reset(const Cell& size) {
       dims = size;
@@ -356,6 +357,28 @@ class GridIndex {
           for (int x = std::max(c[0] - 1, 0); x <= std::min(c[0] + 1, near.dims[0] - 1); ++x)
             near.set({x, y, z});
       held.set(c);
+    }
+  };
+
+  //! Blocks carved from slabs filled ahead with a block's empty value. The slabs double from
+  //! 16 blocks to 2 MiB, which HugePageAllocator puts in one huge page: a run's blocks lie in
+  //! a few pages rather than scattered over the heap. A block never moves once carved.
+  template <class T>
+  struct Slabs {
+    explicit Slabs(T empty_value) : empty(empty_value) {}
+
+    T empty;
+    std::vector<HugePageVector<T>> slabs;
+    std::size_t used = 0;  // of the last slab
+
+    T* carve(std::size_t block) {
+      if (slabs.empty() || used + block > slabs.back().size()) {
+        const std::size_t size = slabs.empty() ? 16 * block : 2 * slabs.back().size();
+        slabs.emplace_back(std::min(size, kHugePageBytes / sizeof(T)), empty);
+        used = 0;
+      }
+      used += block;
+      return slabs.back().data() + used - block;
     }
   };
 
@@ -478,8 +501,8 @@ class GridIndex {
       throw GrowthError("the structure reaches beyond " + std::to_string(cells_ / 2) + " grid cells (" +
                         std::to_string(4 * (cells_ / 2)) + " spacings) from the seeds' centre, more than the "
                         "grid index holds; use the kdtree index");
-    const std::vector<std::int32_t*> old_heads = std::move(heads_of_);
-    const std::vector<std::uint8_t*> old_gaps = std::move(gaps_of_);
+    const HugePageVector<std::int32_t*> old_heads = std::move(heads_of_);
+    const HugePageVector<std::uint8_t*> old_gaps = std::move(gaps_of_);
     const Cell old_dims = block_dims_;
     const int shift = (cells_ / 2) >> kBlockShift;  // blocks the corner moves by, per axis
     cells_ *= 2;
@@ -572,9 +595,7 @@ class GridIndex {
   std::int32_t* heads_at(const Cell& c) {
     std::int32_t*& heads = heads_of_[block_of(c)];
     if (!heads) {
-      head_blocks_.emplace_back(new std::int32_t[static_cast<std::size_t>(block_cells())]);
-      std::fill_n(head_blocks_.back().get(), block_cells(), -1);
-      store_release(heads, head_blocks_.back().get());
+      store_release(heads, head_blocks_.carve(static_cast<std::size_t>(block_cells())));
     }
     return heads;
   }
@@ -583,9 +604,7 @@ class GridIndex {
   std::uint8_t* gaps_at(const Cell& c) {
     std::uint8_t*& gaps = gaps_of_[block_of(c)];
     if (!gaps) {
-      gap_blocks_.emplace_back(new std::uint8_t[static_cast<std::size_t>(block_cells())]);
-      std::fill_n(gap_blocks_.back().get(), block_cells(), static_cast<std::uint8_t>(kFarGap));
-      store_release(gaps, gap_blocks_.back().get());
+      store_release(gaps, gap_blocks_.carve(static_cast<std::size_t>(block_cells())));
     }
     return gaps;
   }
@@ -796,17 +815,17 @@ class GridIndex {
   Cell block_dims_{0, 0, 0};
   // Blocks never move once allocated, so probes on other threads may follow a table's pointer
   // while the writer allocates more (the tables themselves change only with the domain).
-  std::vector<std::int32_t*> heads_of_;  // block table: per cell of the block, its first
+  HugePageVector<std::int32_t*> heads_of_;  // block table: per cell of the block, its first
                                          // particle or -1; null while the block is empty
-  std::vector<std::uint8_t*> gaps_of_;   // block table: per cell of the block, its distance to
+  HugePageVector<std::uint8_t*> gaps_of_;   // block table: per cell of the block, its distance to
                                          // the nearest particle, rounded down, in cell widths /
                                          // kGapUnits; null while beyond reach
-  std::vector<std::unique_ptr<std::int32_t[]>> head_blocks_;
-  std::vector<std::unique_ptr<std::uint8_t[]>> gap_blocks_;
-  std::vector<std::int32_t> next_;       // per particle: next particle in its cell, or -1
+  Slabs<std::int32_t> head_blocks_{-1};
+  Slabs<std::uint8_t> gap_blocks_{static_cast<std::uint8_t>(kFarGap)};
+  HugePageVector<std::int32_t> next_;       // per particle: next particle in its cell, or -1
   BitGrid occupied_;                    // per cell: holds a particle
   Cell node_dims_{0, 0, 0};
-  std::vector<std::uint8_t> nodes_;     // per node (every 4th cell corner, x fastest): distance
+  HugePageVector<std::uint8_t> nodes_;     // per node (every 4th cell corner, x fastest): distance
                                         // to the nearest occupied cell's box, rounded down, in
                                         // cell widths / kNodeUnits; kNodeCap beyond reach
   std::vector<Level> levels_;           // finest first

@@ -4,6 +4,7 @@
 //! continuous space until they touch the structure and stick. See docs/dla.md.
 
 #include "dla/core/cluster.h"
+#include "dla/core/huge_pages.h"
 #include "dla/mesh/constraint.h"
 #include "dla/core/options.h"
 #include "dla/core/random.h"
@@ -145,6 +146,7 @@ class Aggregation {
     cluster_.particles.clear();
     // Walkers on other threads read particles while one is appended: the store never moves.
     cluster_.particles.reserve(options.seeds.size() + options.particles);
+    advise_huge_pages(cluster_.particles.data(), cluster_.particles.capacity() * sizeof(Particle));
     if (options.threads > 1) opened_.reserve(options.seeds.size() + options.particles);
     index_.reserve(options.seeds.size() + options.particles);
     if (constraint && options.fill > 0.0)
@@ -579,7 +581,7 @@ class Aggregation {
   const double drift_scale_;  // keeps a drifted jump inside its free ball
   const double radians_per_walker_;  // Bourke's rotation of the spawn and the drift
   alignas(64) Cluster cluster_;  // written at every attachment: apart from what walkers read
-  std::vector<std::uint8_t> opened_;  // per particle, with threads: whether it opened a cell
+  HugePageVector<std::uint8_t> opened_;  // per particle, with threads: whether it opened a cell
   std::unique_ptr<FillGauge> fill_;   // with DlaOptions::fill and a mesh: the volume covered
   alignas(64) Index index_;
   std::deque<Sight> sights_;                     // every sight so far: walkers may hold any
