@@ -95,7 +95,7 @@ TEST(HugePageAllocator, LargeArraysStartOnAHugePageAndKeepTheirValues) {
     dla::HugePageVector<std::uint32_t> values;
     for (std::uint32_t i = 0; i < 3'000'000; ++i) {
       values.push_back(i * 2654435761u);
-      if (values.size() != values.capacity()) continue;  // just reallocated, or about to
+      if (values.size() != values.capacity()) continue;  // full: the next push reallocates
       const std::size_t bytes = values.capacity() * sizeof(std::uint32_t);
       if (bytes >= dla::kHugePageBytes) {
         EXPECT_EQ(reinterpret_cast<std::uintptr_t>(values.data()) % dla::kHugePageBytes, 0u) << bytes << " bytes";

@@ -1,9 +1,9 @@
 #pragma once
 //! \file huge_pages.h
 //! Growth's large arrays in 2 MiB pages. At 10^7 particles nearly every read that misses the
-//! caches also misses the TLB (4 KiB pages); Linux's transparent huge pages are commonly in
-//! `madvise` mode, so an array is in huge pages only when asked, and only where a whole
-//! 2 MiB-aligned page lies within it. docs/dev/performance-notes.md has the measurements.
+//! caches also misses the TLB (4 KiB pages). Where Linux's transparent huge pages are in
+//! `madvise` mode an array is in huge pages only when asked, and in any mode only where a
+//! whole 2 MiB-aligned page lies within it. docs/dev/performance-notes.md has the measurements.
 
 #include <atomic>
 #include <cstddef>

@@ -816,19 +816,20 @@ class GridIndex {
   // Blocks never move once allocated, so probes on other threads may follow a table's pointer
   // while the writer allocates more (the tables themselves change only with the domain).
   HugePageVector<std::int32_t*> heads_of_;  // block table: per cell of the block, its first
-                                         // particle or -1; null while the block is empty
-  HugePageVector<std::uint8_t*> gaps_of_;   // block table: per cell of the block, its distance to
-                                         // the nearest particle, rounded down, in cell widths /
-                                         // kGapUnits; null while beyond reach
+                                            // particle or -1; null while the block is empty
+  HugePageVector<std::uint8_t*> gaps_of_;   // block table: per cell of the block, its distance
+                                            // to the nearest particle, rounded down, in cell
+                                            // widths / kGapUnits; null while beyond reach
   Slabs<std::int32_t> head_blocks_{-1};
   Slabs<std::uint8_t> gap_blocks_{static_cast<std::uint8_t>(kFarGap)};
   HugePageVector<std::int32_t> next_;       // per particle: next particle in its cell, or -1
-  BitGrid occupied_;                    // per cell: holds a particle
+  BitGrid occupied_;                        // per cell: holds a particle
   Cell node_dims_{0, 0, 0};
-  HugePageVector<std::uint8_t> nodes_;     // per node (every 4th cell corner, x fastest): distance
-                                        // to the nearest occupied cell's box, rounded down, in
-                                        // cell widths / kNodeUnits; kNodeCap beyond reach
-  std::vector<Level> levels_;           // finest first
+  HugePageVector<std::uint8_t> nodes_;      // per node (every 4th cell corner, x fastest):
+                                            // distance to the nearest occupied cell's box,
+                                            // rounded down, in cell widths / kNodeUnits;
+                                            // kNodeCap beyond reach
+  std::vector<Level> levels_;               // finest first
 };
 
 }  // namespace dla
