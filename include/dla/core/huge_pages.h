@@ -78,8 +78,9 @@ struct HugePageAllocator {
     const std::size_t bytes = n * sizeof(T);
     if (bytes < kHugePageBytes) return std::allocator<T>().deallocate(p, n);
 #if defined(__linux__)
-    munmap(p, mapped_bytes(bytes));
-    huge_page_bytes() -= mapped_bytes(bytes);
+    const std::size_t mapped = mapped_bytes(bytes);
+    munmap(p, mapped);
+    huge_page_bytes() -= mapped;
 #else
     std::allocator<T>().deallocate(p, n);
 #endif
