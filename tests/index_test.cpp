@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <set>
@@ -86,6 +87,47 @@ TEST(GridIndex, MatchesBruteForce3D) { dla::check_against_brute_force<dla::GridI
 TEST(GridIndex, MatchesBruteForce2D) { dla::check_against_brute_force<dla::GridIndex>(2); }
 TEST(KdTreeIndex, MatchesBruteForce3D) { dla::check_against_brute_force<dla::KdTreeIndex>(3); }
 TEST(KdTreeIndex, MatchesBruteForce2D) { dla::check_against_brute_force<dla::KdTreeIndex>(2); }
+
+// The gap update tests a block's row of 8 cells in floats first (detail::may_lower_gaps): every
+// cell the exact test in double lowers must be flagged, at random and a rounding below the gap,
+// and a cell clearly beyond its gap must not be.
+TEST(GridIndex, GapUpdateFlagsEveryCellTheExactTestLowers) {
+  dla::Rng rng(5);
+  constexpr double reach2 = 128.0 * 128.0;  // the gap map's reach, in gap units squared
+  int lowered = 0, edges = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    std::array<std::uint8_t, 8> row;
+    std::array<double, 8> along;
+    std::array<float, 8> along_floats;
+    const double yz2 = trial % 4 == 0 ? 0.0 : reach2 * rng.uniform() * rng.uniform();
+    for (int i = 0; i < 8; ++i) {
+      row[i] = static_cast<std::uint8_t>(rng() % 129);
+      const double gap2 = static_cast<double>(row[i]) * row[i];
+      along[i] = reach2 * rng.uniform();
+      if (rng() % 2 && gap2 > yz2) {  // within a few roundings of the gap, either side
+        along[i] = gap2 - yz2;
+        for (int k = static_cast<int>(rng() % 7) - 3; k != 0; k += k > 0 ? -1 : 1)
+          along[i] = std::nextafter(along[i], k > 0 ? reach2 : 0.0);
+        ++edges;
+      }
+      along_floats[i] = static_cast<float>(along[i]);
+    }
+    const unsigned bits = dla::detail::may_lower_gaps(row.data(), static_cast<float>(yz2), along_floats.data());
+    for (int i = 0; i < 8; ++i) {
+      const double d2 = yz2 + along[i], gap2 = static_cast<double>(row[i]) * row[i];
+      const bool flagged = (bits >> i) & 1u;
+      if (d2 < gap2) {
+        ASSERT_TRUE(flagged) << "gap " << int{row[i]} << ", distance² " << d2;
+        ++lowered;
+      }
+      if (d2 > gap2 * 1.00001) {
+        ASSERT_FALSE(flagged) << "gap " << int{row[i]} << ", distance² " << d2;
+      }
+    }
+  }
+  EXPECT_GT(lowered, 10000);
+  EXPECT_GT(edges, 10000);
+}
 
 // The grid's large arrays: from 2 MiB on, a mapping of their own on a 2 MiB boundary, counted
 // while held; below that, the heap. Growing through both keeps every value.
