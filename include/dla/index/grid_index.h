@@ -42,10 +42,11 @@ namespace detail {
 //! 2e-7 of the square) is covered by 1e-6. An update meets about 600 cells and lowers about
 //! 16: most rows come back empty after a few instructions (GridIndex::lower_gaps).
 inline unsigned may_lower_gaps(const std::uint8_t* row, float yz2, const float* along) {
+  constexpr float kSlack = 1.000001f;  // the square of a gap, widened past the floats' rounding
 #if defined(__SSE2__)
   const __m128i zero = _mm_setzero_si128();
   const __m128i gaps = _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(row)), zero);
-  const __m128 slack = _mm_set1_ps(1.000001f), yz = _mm_set1_ps(yz2);
+  const __m128 slack = _mm_set1_ps(kSlack), yz = _mm_set1_ps(yz2);
   unsigned bits = 0;
   for (int half = 0; half < 2; ++half) {
     const __m128 gap = _mm_cvtepi32_ps(half ? _mm_unpackhi_epi16(gaps, zero) : _mm_unpacklo_epi16(gaps, zero));
@@ -57,7 +58,7 @@ inline unsigned may_lower_gaps(const std::uint8_t* row, float yz2, const float* 
   unsigned bits = 0;
   for (int i = 0; i < 8; ++i) {
     const float gap = row[i];
-    bits |= static_cast<unsigned>(yz2 + along[i] < gap * gap * 1.000001f) << i;
+    bits |= static_cast<unsigned>(yz2 + along[i] < gap * gap * kSlack) << i;
   }
   return bits;
 #endif
