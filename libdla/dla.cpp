@@ -55,12 +55,18 @@ void require_no_mesh_options(const DlaOptions& options) {
   if (options.fill != 0.0) throw InvalidInput("`fill` fills a mesh's volume: give one with `stl`");
 }
 
+//! The counts start afresh, a resumed run's walks from those that grew what it resumes; the
+//! particles go on to the same feed.
+void start_counting(DlaStats* stats, const WalkStats& walks = {}) {
+  if (stats) *stats = {walks, 0, 0.0, stats->feed};
+}
+
 }  // namespace
 
 Cluster grow(const DlaOptions& options, const ProgressFn& progress, const StopFlag* stop, DlaStats* stats) {
   validate(options);
   require_no_mesh_options(options);
-  if (stats) *stats = {};
+  start_counting(stats);
   return grow_any(options, progress, nullptr, nullptr, stop, stats);
 }
 
@@ -69,7 +75,7 @@ Cluster resume(const DlaOptions& options, const Cluster& partial, const Progress
   validate(options);
   require_no_mesh_options(options);
   validate_partial(options, partial);
-  if (stats) *stats = {stats->walk};
+  start_counting(stats, stats->walk);
   return grow_any(options, progress, nullptr, &partial, stop, stats);
 }
 
@@ -77,7 +83,7 @@ Cluster resume(const DlaOptions& options, const MeshConstraint& constraint, cons
                const ProgressFn& progress, const StopFlag* stop, DlaStats* stats) {
   validate(options, constraint);
   validate_partial(options, partial);
-  if (stats) *stats = {stats->walk};
+  start_counting(stats, stats->walk);
   return grow_any(options, progress, &constraint, &partial, stop, stats);
 }
 
@@ -117,7 +123,7 @@ void validate(const DlaOptions& options, const MeshConstraint& constraint) {
 Cluster grow(const DlaOptions& options, const MeshConstraint& constraint, const ProgressFn& progress,
              const StopFlag* stop, DlaStats* stats) {
   validate(options, constraint);
-  if (stats) *stats = {};
+  start_counting(stats);
   return grow_any(options, progress, &constraint, nullptr, stop, stats);
 }
 

@@ -98,6 +98,12 @@ SurfaceDistance::~SurfaceDistance() = default;
 SurfaceDistance::SurfaceDistance(SurfaceDistance&&) noexcept = default;
 SurfaceDistance& SurfaceDistance::operator=(SurfaceDistance&&) noexcept = default;
 
+SurfaceDistance::Closest SurfaceDistance::on_triangle(const Vec3& p, std::uint32_t t) const {
+  const TriangleMesh& mesh = tree_->mesh;
+  const auto& tri = mesh.triangles.at(t);
+  return {closest_point_on_triangle(p, mesh.vertices[tri[0]], mesh.vertices[tri[1]], mesh.vertices[tri[2]]), t};
+}
+
 SurfaceDistance::Closest SurfaceDistance::closest(const Vec3& p, std::uint32_t hint) const {
   const TriangleMesh& mesh = tree_->mesh;
   const double scale = std::max(tree_->scale, p.cwiseAbs().maxCoeff());

@@ -2,6 +2,7 @@
 // walk, determinism, the fractal dimension, and that bad options are refused.
 
 #include "dla/core/analysis.h"
+#include "dla/core/particle_feed.h"
 #include "dla/models/dla.h"
 #include "tree_check.h"
 
@@ -12,6 +13,7 @@
 #include <chrono>
 #include <thread>
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -189,6 +191,58 @@ TEST(Growth, ResumedGrowthIsTheUninterruptedOne) {
   Cluster foreign = grow(shorter);
   foreign.particles[1].position.x() += 1.0;  // a seed that is not the options'
   EXPECT_THROW(resume(o, foreign), InvalidInput);
+}
+
+TEST(ParticleFeed, HandsOverEveryParticleInOrderUntilItCloses) {
+  const auto particle = [](std::size_t i) { return Particle{Vec3(static_cast<double>(i), 0, 0), static_cast<std::int32_t>(i) - 1, 0}; };
+  // No one takes: the room fills, the feed closes and takes no more, and keeps the first.
+  ParticleFeed full(1024);
+  for (std::size_t i = 0; i < 1500; ++i) full.put(particle(i));
+  ASSERT_TRUE(full.closed());
+  ASSERT_EQ(full.put_count(), 1024u);
+  for (std::size_t k = 0; k < 1024; ++k) ASSERT_EQ(full.at(k).parent, static_cast<std::int32_t>(k) - 1);
+  full.taken(1024);
+  full.put(particle(1500));
+  EXPECT_EQ(full.put_count(), 1024u) << "closed for good";
+
+  // A taker on another thread gets every particle in order, up to where the feed closed if it
+  // fell a room behind.
+  ParticleFeed feed(1024);
+  constexpr std::size_t kCount = 200000;
+  std::vector<Particle> got;
+  std::atomic<bool> done{false};
+  std::thread taker([&] {
+    std::size_t k = 0;
+    for (;;) {
+      const bool last = done.load();
+      for (const std::size_t put = feed.put_count(); k < put; ++k) got.push_back(feed.at(k));
+      feed.taken(k);
+      if (last) return;
+    }
+  });
+  for (std::size_t i = 0; i < kCount; ++i) feed.put(particle(i));
+  done = true;
+  taker.join();
+  ASSERT_EQ(got.size(), feed.closed() ? feed.put_count() : kCount);
+  ASSERT_GE(got.size(), 1024u);
+  for (std::size_t k = 0; k < got.size(); ++k) ASSERT_EQ(got[k].position.x(), static_cast<double>(k)) << k;
+}
+
+TEST(ParticleFeed, GrowthFeedsEveryParticleAsItAttaches) {
+  DlaOptions o = small(2000);
+  o.seeds = {Vec3(-6, 0, 0), Vec3(6, 0, 0)};
+  for (const int threads : {1, 2}) {
+    o.threads = threads;
+    ParticleFeed feed(4096);
+    DlaStats stats;
+    stats.feed = &feed;
+    const Cluster c = grow(o, {}, nullptr, &stats);
+    ASSERT_EQ(feed.put_count(), c.particles.size()) << threads << " threads";
+    for (std::size_t k = 0; k < c.particles.size(); ++k) {
+      ASSERT_EQ(feed.at(k).position, c.particles[k].position) << k;
+      ASSERT_EQ(feed.at(k).parent, c.particles[k].parent) << k;
+    }
+  }
 }
 
 // Walkers on several threads commit in launch order and run again when a particle attached

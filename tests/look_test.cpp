@@ -59,6 +59,12 @@ struct GrownInBall {
         }()) {}
 };
 
+//! `mesh` with vertex colours: red where x > 2, white elsewhere.
+TriangleMesh painted_red_past_x2(TriangleMesh mesh) {
+  for (const Vec3& v : mesh.vertices) mesh.colors.push_back(v.x() > 2.0 ? Vec3(1, 0, 0) : Vec3(1, 1, 1));
+  return mesh;
+}
+
 //! A straight chain of `n` particles along x from the origin, a spacing apart.
 Cluster chain(std::size_t n) {
   Cluster c;
@@ -213,6 +219,58 @@ TEST(Attributes, BoundaryDistanceIsTheSurfacesOnAnyThreadCount) {
   ASSERT_EQ(one.boundary_distance, two.boundary_distance);
   for (std::size_t i = 0; i < c.particles.size(); i += 97)
     ASSERT_NEAR(one.boundary_distance[i], testing::brute_distance(ball.mesh(), c.particles[i].position), 1e-5);
+}
+
+TEST(Attributes, ClosestTrianglesMeasuredBeforeAreTakenForTheSameParticlesOnly) {
+  const GrownInBall grown(20.0, 6000);
+  const Cluster& c = grown.cluster;
+  const TriangleMesh painted = painted_red_past_x2(grown.ball.mesh());
+  const SurfaceDistance surface(painted);
+  const Paint red = parse_paint("red,0.3");
+  const AttributeOptions fresh{&surface, nullptr, 2, true, &red, &painted};
+  const Attributes expected = compute_attributes(c, fresh);
+  // As a run measures them while it grows: the first particles' closest triangles.
+  MeasuredClosest before;
+  before.surface = &surface;
+  for (std::size_t i = 0; i < 2500; ++i) {
+    before.triangles.push_back(surface.closest(c.particles[i].position).triangle);
+    before.positions_hash = MeasuredClosest::hash_with(before.positions_hash, c.particles[i].position);
+  }
+  AttributeOptions taking = fresh;
+  taking.measured = &before;
+  const Attributes taken = compute_attributes(c, taking);
+  EXPECT_EQ(taken.boundary_distance, expected.boundary_distance);
+  EXPECT_EQ(taken.on_paint, expected.on_paint);
+  EXPECT_EQ(taken.boundary_reach, expected.boundary_reach);
+
+  // Taken, not measured again: the farthest triangle in place of one shows.
+  const std::size_t k = 1234;
+  const Vec3& p = c.particles[k].position;
+  std::uint32_t farthest = 0;
+  double far = 0.0;
+  for (std::uint32_t t = 0; t < painted.triangles.size(); ++t) {
+    const auto& corners = painted.triangles[t];
+    const double d = (closest_point_on_triangle(p, painted.vertices[corners[0]], painted.vertices[corners[1]],
+                                                painted.vertices[corners[2]]) - p).norm();
+    if (d > far) far = d, farthest = t;
+  }
+  MeasuredClosest wrong = before;
+  wrong.triangles[k] = farthest;
+  taking.measured = &wrong;
+  EXPECT_EQ(compute_attributes(c, taking).boundary_distance[k], static_cast<float>(far));
+  // Not for particles elsewhere, another surface, or more particles than the cluster has.
+  Cluster moved = c;
+  moved.particles[10].position.y() += 1e-9;
+  EXPECT_EQ(compute_attributes(moved, taking).boundary_distance[k], expected.boundary_distance[k]);
+  const SurfaceDistance other(painted);
+  MeasuredClosest elsewhere = wrong;
+  elsewhere.surface = &other;
+  taking.measured = &elsewhere;
+  EXPECT_EQ(compute_attributes(c, taking).boundary_distance[k], expected.boundary_distance[k]);
+  Cluster fewer = c;
+  fewer.particles.resize(2000);
+  taking.measured = &wrong;
+  EXPECT_EQ(compute_attributes(fewer, taking).boundary_distance[k], expected.boundary_distance[k]);
 }
 
 TEST(Attributes, TipGapsAreTheSameOnAnyThreadCount) {
@@ -561,8 +619,7 @@ TEST(Instances, EveryKthIsKeptAndGrowsIntoTheRoomLeft) {
 TEST(Instances, NoneWhoseClosestSurfacePointIsPaintedAndAllOthersKept) {
   const GrownInBall grown(10.0, 3000);
   const Cluster& c = grown.cluster;
-  TriangleMesh painted = grown.ball.mesh();
-  for (const Vec3& v : painted.vertices) painted.colors.push_back(v.x() > 2.0 ? Vec3(1, 0, 0) : Vec3(1, 1, 1));
+  const TriangleMesh painted = painted_red_past_x2(grown.ball.mesh());
   const SurfaceDistance surface(painted);
   const Paint red = parse_paint("red,0.3");
   const Attributes a = compute_attributes(c, {&surface, nullptr, 2, true, &red, &painted});

@@ -8,6 +8,9 @@
 #include "dla/io/pov_writer.h"
 #include "dla/io/run_report.h"
 #include "dla/run/run.h"
+#include "dla/mesh/shapes.h"
+#include "dla/mesh/surface_distance.h"
+#include "mesh_util.h"
 #include "png_util.h"
 #include "test_util.h"
 
@@ -19,6 +22,7 @@
 #include <filesystem>
 
 #include <sstream>
+#include <thread>
 
 namespace dla {
 namespace {
@@ -201,6 +205,36 @@ TEST(RunReport, RecordsOptionsSeedAndCounts) {
                                "\"complete\": true", "\"grow_seconds\": 1", "\"particles_per_second\": 500",
                                "\"walkers\": 500", "\"fractal_dimension_gyration\": "})
     EXPECT_NE(json.find(expected), std::string::npos) << expected;
+}
+
+TEST(GrowRecorded, MeasuresTheDistancesToTheMeshAsItGrowsAndTheFilesStayTheSame) {
+  ScratchDir dir;
+  write_stl(make_sphere(Vec3::Zero(), 12.0, 12, 24), dir / "ball.stl");
+  DlaRunOptions o;
+  o.stl = dir / "ball.stl";
+  o.particles = 3000;
+  o.growth.rng_seed = 5;
+  const auto run = prepare_run(o);
+  RunRecord record;
+  const Cluster c = grow_recorded(*run, {}, nullptr, record);
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "no core to spare: nothing is measured as it grows";
+  ASSERT_NE(run->measured_while_growing, nullptr);
+  const MeasuredClosest& measured = *run->measured_while_growing;
+  ASSERT_LE(measured.triangles.size(), c.particles.size());
+  const TriangleMesh& mesh = run->constraint->mesh();
+  for (std::size_t i = 0; i < measured.triangles.size(); i += 7) {
+    const Vec3& p = c.particles[i].position;
+    const auto& t = mesh.triangles[measured.triangles[i]];
+    const Vec3 q = closest_point_on_triangle(p, mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]);
+    ASSERT_NEAR((q - p).norm(), testing::brute_distance(mesh, p), 1e-9) << i;
+  }
+  OutputOptions files = run->files;
+  files.output = dir / "taken";
+  write_run(*run, c, files, record);
+  run->measured_while_growing = nullptr;
+  files.output = dir / "measured";
+  write_run(*run, c, files, record);
+  EXPECT_EQ(read_file(dir / "taken.inc"), read_file(dir / "measured.inc"));
 }
 
 using testing::Picture;

@@ -98,6 +98,11 @@ class DlaRun : public Run {
     return links_inside(cluster, links, threads, constraint_.get());
   }
 
+  bool feed_to(ParticleFeed* feed) override {
+    stats_.feed = feed;
+    return true;
+  }
+
   std::size_t done(const Cluster& so_far) const override { return attached(so_far); }
   double filled() const override { return stats_.filled; }
   const WalkStats* walks() const override { return &stats_.walk; }

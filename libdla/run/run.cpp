@@ -3,11 +3,19 @@
 
 #include "model_runs.h"
 
+#include "dla/core/particle_feed.h"
+#include "dla/look/attributes.h"
 #include "dla/mesh/mesh.h"
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
 
 namespace dla {
 
@@ -130,14 +138,100 @@ std::unique_ptr<Run> prepare_run(const RunOptions& options, const MeshReader& re
   return run;
 }
 
+namespace {
+
+//! While a run with a constraint mesh grows on fewer threads than the machine has cores:
+//! measures on a spare core the closest triangle of the mesh's surface to each particle as it
+//! attaches, for the look's distances (attributes.h), which then need not wait for the write.
+//! Growth never waits for it: it measures what it keeps up with, a first part of the particles.
+class SurfaceFollower {
+ public:
+  explicit SurfaceFollower(Run& run) : run_(run) {
+    if (!run.constraint || run.threads >= static_cast<int>(std::thread::hardware_concurrency())) return;
+    measured_ = std::make_shared<MeasuredClosest>();
+    measured_->surface = &run.constraint->surface();
+    feed_ = std::make_unique<ParticleFeed>(kRoom);
+    if (!run.feed_to(feed_.get())) return;
+    try {
+      thread_ = std::thread([this] { follow(); });
+    } catch (...) {  // no thread to spare after all: the write measures them all
+      run.feed_to(nullptr);
+    }
+  }
+  ~SurfaceFollower() { finish(); }
+  SurfaceFollower(const SurfaceFollower&) = delete;
+  SurfaceFollower& operator=(const SurfaceFollower&) = delete;
+
+  //! Once growth is over: stops measuring and gives what was measured, or null.
+  std::shared_ptr<const MeasuredClosest> finish() {
+    if (!thread_.joinable()) return nullptr;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      stop_.store(true, std::memory_order_relaxed);
+    }
+    woken_.notify_one();
+    thread_.join();
+    run_.feed_to(nullptr);
+    return measured_;
+  }
+
+ private:
+  //! How long it rests when it has caught up: about a hundred particles' growth in a mesh,
+  //! which is what it may leave to the write.
+  static constexpr std::chrono::microseconds kRest{1000};
+  //! Particles it may fall behind before the feed closes: 1 MB.
+  static constexpr std::size_t kRoom = std::size_t{1} << 15;
+
+  void follow() noexcept {
+    try {
+      measure();
+    } catch (...) {  // out of memory: what was measured stands, and the write measures the rest
+    }
+  }
+
+  void measure() {
+    ParticleFeed& feed = *feed_;
+    const SurfaceDistance& surface = *measured_->surface;
+    std::vector<std::uint32_t>& triangles = measured_->triangles;
+    std::uint64_t& hash = measured_->positions_hash;
+    for (std::size_t k = 0;;) {
+      for (const std::size_t put = feed.put_count(); k < put && !stop_.load(std::memory_order_relaxed); ++k) {
+        const Particle& p = feed.at(k);
+        const auto parent = static_cast<std::size_t>(p.parent);
+        const std::uint32_t hint = p.parent >= 0 && parent < k ? triangles[parent] : SurfaceDistance::kNoHint;
+        triangles.push_back(surface.closest(p.position, hint).triangle);
+        hash = MeasuredClosest::hash_with(hash, p.position);
+      }
+      feed.taken(k);
+      std::unique_lock<std::mutex> lock(mutex_);
+      if (woken_.wait_for(lock, kRest, [&] { return stop_.load(std::memory_order_relaxed); })) return;
+      if (feed.closed() && k == feed.put_count()) return;
+    }
+  }
+
+  Run& run_;
+  std::unique_ptr<ParticleFeed> feed_;
+  std::shared_ptr<MeasuredClosest> measured_;
+  std::mutex mutex_;
+  std::condition_variable woken_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+}  // namespace
+
 Cluster grow_recorded(Run& run, const ProgressFn& progress, const StopFlag* stop, RunRecord& record) {
   const auto start = std::chrono::steady_clock::now();
   Cluster cluster;
-  try {
-    cluster = run.grow(progress, stop);
-  } catch (const PartialGrowth& e) {
-    cluster = e.partial();
-    record.stopped_by = std::string("error: ") + e.what();
+  {
+    SurfaceFollower follower(run);
+    try {
+      cluster = run.grow(progress, stop);
+    } catch (const PartialGrowth& e) {
+      cluster = e.partial();
+      record.stopped_by = std::string("error: ") + e.what();
+    }
+    run.measured_while_growing = follower.finish();
   }
   if (run.links.any()) cluster.links = run.make_links(cluster);
   record.grow_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

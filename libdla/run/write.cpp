@@ -130,7 +130,7 @@ FilesWritten write_files(const Cluster& cluster, const OutputOptions& files, con
                               {context.constraint ? &context.constraint->surface() : nullptr, nullptr,
                                std::max(context.threads, cores), files.formats.tips || !files.leaf.empty(),
                                files.instances.exclude_paint ? &*files.instances.exclude_paint : nullptr,
-                               context.constraint ? &context.constraint->mesh() : nullptr});
+                               context.constraint ? &context.constraint->mesh() : nullptr, context.measured});
   // The solid's plan first: a solid that would not fit is refused before any file is written.
   const SolidPlan plan = files.formats.solid() ? plan_solid(cluster, look.radii(cluster), files.solid) : SolidPlan{};
   FilesWritten written;
@@ -183,7 +183,8 @@ void write_run(const Run& run, const Cluster& cluster, const OutputOptions& file
   std::exception_ptr failure;
   try {
     FilesWritten written = write_files(
-        cluster, files, {run.threads, run.constraint, run.scene_mesh, record.command, stop, solid_progress});
+        cluster, files,
+        {run.threads, run.constraint, run.scene_mesh, record.command, stop, solid_progress, run.measured_while_growing.get()});
     record.solid = written.solid;
     record.lod_triangles = std::move(written.glb.lod_triangles);
     if (!files.leaf.empty() && files.formats.glb) record.leaves = written.glb.leaves;

@@ -32,6 +32,9 @@ class SurfaceDistance {
   //! precision (on a tie, the triangle listed first). `hint`, a triangle that is likely near
   //! (a neighbour's closest), only speeds the search. Safe to call from several threads at once.
   Closest closest(const Vec3& p, std::uint32_t hint = kNoHint) const;
+  //! The point of triangle t closest to p: closest(p) itself, bit for bit, where t is the
+  //! closest triangle. For closest triangles found before (attributes.h).
+  Closest on_triangle(const Vec3& p, std::uint32_t t) const;
   Vec3 closest_point(const Vec3& p) const { return closest(p).point; }
   //! Distance from p to the surface (unsigned).
   double distance(const Vec3& p) const { return (closest_point(p) - p).norm(); }

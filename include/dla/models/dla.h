@@ -5,6 +5,7 @@
 
 #include "dla/core/cluster.h"
 #include "dla/core/huge_pages.h"
+#include "dla/core/particle_feed.h"
 #include "dla/mesh/constraint.h"
 #include "dla/core/options.h"
 #include "dla/core/random.h"
@@ -353,6 +354,7 @@ class Aggregation {
 
   void add(const Particle& p) {
     cluster_.particles.push_back(p);
+    if (stats_.feed) stats_.feed->put(p);
     if (fill_) {
       fill_->add(p.position);
       stats_.filled = fill_->fraction();

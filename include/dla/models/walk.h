@@ -14,6 +14,8 @@
 
 namespace dla {
 
+class ParticleFeed;
+
 //! Counters of DLA's walks, for the JSON sidecar and for tuning.
 struct WalkStats {
   std::uint64_t walkers = 0;      //!< walkers launched (one per attached particle)
@@ -36,6 +38,9 @@ struct DlaStats {
   //! Growing to fill a mesh (DlaOptions::fill): the fraction of its volume covered so far;
   //! else 0.
   double filled = 0.0;
+  //! Where each particle goes as it attaches, seeds first, for another thread to work on while
+  //! growth goes on (run.h); null: nowhere.
+  ParticleFeed* feed = nullptr;
 };
 
 //! A unit vector orthogonal to unit vector n (Duff et al., "Building an orthonormal basis,

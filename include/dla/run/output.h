@@ -79,6 +79,9 @@ struct WriteContext {
   std::string comment;                         //!< the POV-Ray scene's first line (the command)
   const StopFlag* stop = nullptr;              //!< set, it stops the solid: no solid file is written
   SolidProgress solid_progress;                //!< how the solid's build goes (solid.h)
+  //! Closest triangles of the constraint's surface measured before (Run::measured_while_growing),
+  //! or null.
+  const MeasuredClosest* measured = nullptr;
 };
 
 //! What writing measured: the solid's measures, when a solid format was asked for.

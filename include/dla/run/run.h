@@ -28,6 +28,9 @@
 
 namespace dla {
 
+class ParticleFeed;
+struct MeasuredClosest;
+
 //! Reads the mesh a path names, with the hash of its file when `hash` is not null. The default
 //! is read_mesh(); the Python module hands over meshes held in memory under a name.
 using MeshReader = std::function<TriangleMesh(const std::string& path, std::uint64_t* hash)>;
@@ -54,6 +57,12 @@ class Run {
   //! The model's part of the JSON record of the run: its options and statistics (the
   //! statistics as growth left them).
   virtual ModelRecord record() const = 0;
+  //! From the next grow() on, hands each particle to `feed` as it attaches (null: to none), if
+  //! the model can; returns whether it will. DLA can.
+  virtual bool feed_to(ParticleFeed* feed) {
+    (void)feed;
+    return false;
+  }
 
   std::string_view model;          //!< grow (DLA), colonize, eden, drop or ballistic
   //! The files, with the defaults the mesh gives resolved (the up axis, the radii).
@@ -66,6 +75,10 @@ class Run {
   std::string mesh_line;
   //! The mesh the look measures distances to (the boundary radius model), or null.
   const MeshConstraint* constraint = nullptr;
+  //! The closest triangles of the constraint's surface to the first particles grown, measured
+  //! by grow_recorded on a spare core as they attached; write_run takes them rather than
+  //! measuring again. Null: none.
+  std::shared_ptr<const MeasuredClosest> measured_while_growing;
   //! The mesh the POV-Ray scene and the web viewer show, or null.
   const TriangleMesh* scene_mesh = nullptr;
   //! DLA growing to fill a mesh: the fraction of its volume asked for, else 0.
@@ -112,7 +125,9 @@ std::unique_ptr<Run> prepare_run(const RunOptions& options, const MeshReader& re
 //! the links its options ask for among what grew), and
 //! records the time taken and, when growth failed part way, "error: " and why in
 //! `record.stopped_by`. What stopped a structure short otherwise (a signal, a callback) only
-//! the caller knows, and records.
+//! the caller knows, and records. With a constraint mesh and a core that growth leaves free, it
+//! measures there the particles' closest points of the mesh as they attach
+//! (Run::measured_while_growing), which the write then need not: the files are the same.
 Cluster grow_recorded(Run& run, const ProgressFn& progress, const StopFlag* stop, RunRecord& record);
 
 //! Writes the files `files` asks for, the JSON record among them, of what `run` grew, each
