@@ -8,6 +8,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <exception>
+#include <future>
+#include <string>
+#include <vector>
 
 namespace dla {
 
@@ -512,12 +516,27 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
   const std::string include = prefix + ".inc";
   const auto [center, extent] = bounding_sphere(cluster, mesh);
   const SceneFrame frame = scene_frame(cluster.spacing, center);
-  write_geometry(cluster, frame, used, options, include);
   const std::string growth = prefix + "_growth.inc", mesh_include = prefix + "_mesh.inc";
-  write_growth(cluster, frame, used, options, growth);
-  if (mesh) write_mesh(*mesh, frame, mesh_include);
   const std::string tips = prefix + "_tips.inc";
-  if (options.tips) write_tips(cluster, frame, used, options.instances, tips);
+  {
+    // The includes, each on a thread of its own: a file that replaces another waits on the
+    // disk when it is put in place. Every one is finished before the first failure is thrown.
+    std::vector<std::future<void>> parts;
+    parts.push_back(std::async(std::launch::async, [&] { write_geometry(cluster, frame, used, options, include); }));
+    parts.push_back(std::async(std::launch::async, [&] { write_growth(cluster, frame, used, options, growth); }));
+    if (mesh) parts.push_back(std::async(std::launch::async, [&] { write_mesh(*mesh, frame, mesh_include); }));
+    if (options.tips)
+      parts.push_back(std::async(std::launch::async, [&] { write_tips(cluster, frame, used, options.instances, tips); }));
+    std::exception_ptr failure;
+    for (std::future<void>& part : parts) {
+      try {
+        part.get();
+      } catch (...) {
+        if (!failure) failure = std::current_exception();
+      }
+    }
+    if (failure) std::rethrow_exception(failure);
+  }
 
   const double unit = cluster.spacing * frame.scale;  // a spacing in scene units
   const bool colored = used.options.color_by != ColorBy::none;
