@@ -55,10 +55,10 @@ void require_no_mesh_options(const DlaOptions& options) {
   if (options.fill != 0.0) throw InvalidInput("`fill` fills a mesh's volume: give one with `stl`");
 }
 
-//! The counts start afresh, a resumed run's walks from those that grew what it resumes; the
-//! particles go on to the same feed.
-void start_counting(DlaStats* stats, const WalkStats& walks = {}) {
-  if (stats) *stats = {walks, 0, 0.0, stats->feed};
+//! The counts start afresh, but a resumed run's walks, which go on from those that grew what it
+//! resumes; the particles go on to the same feed.
+void start_counting(DlaStats* stats, bool resumed = false) {
+  if (stats) *stats = {resumed ? stats->walk : WalkStats{}, 0, 0.0, stats->feed};
 }
 
 }  // namespace
@@ -75,7 +75,7 @@ Cluster resume(const DlaOptions& options, const Cluster& partial, const Progress
   validate(options);
   require_no_mesh_options(options);
   validate_partial(options, partial);
-  start_counting(stats, stats->walk);
+  start_counting(stats, true);
   return grow_any(options, progress, nullptr, &partial, stop, stats);
 }
 
@@ -83,7 +83,7 @@ Cluster resume(const DlaOptions& options, const MeshConstraint& constraint, cons
                const ProgressFn& progress, const StopFlag* stop, DlaStats* stats) {
   validate(options, constraint);
   validate_partial(options, partial);
-  start_counting(stats, stats->walk);
+  start_counting(stats, true);
   return grow_any(options, progress, &constraint, &partial, stop, stats);
 }
 
