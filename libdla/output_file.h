@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <deque>
+#include <exception>
 #include <future>
 #include <memory>
 #include <string>
@@ -226,6 +227,19 @@ class OutputFile : public Text {
   std::string temp_;
   std::FILE* file_ = nullptr;
 };
+
+//! Waits for every task, then rethrows the first failure: `first` if this thread's own part
+//! failed, else the earliest task's. A writer that fails loses no other writer's file.
+inline void finish_all(std::vector<std::future<void>>& tasks, std::exception_ptr first = nullptr) {
+  for (std::future<void>& task : tasks) {
+    try {
+      task.get();
+    } catch (...) {
+      if (!first) first = std::current_exception();
+    }
+  }
+  if (first) std::rethrow_exception(first);
+}
 
 //! Threads that format the parts of a large file at once (write_in_order): the machine's.
 inline int format_threads() { return static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 16u)); }

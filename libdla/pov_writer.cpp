@@ -527,15 +527,7 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
     if (mesh) parts.push_back(std::async(std::launch::async, [&] { write_mesh(*mesh, frame, mesh_include); }));
     if (options.tips)
       parts.push_back(std::async(std::launch::async, [&] { write_tips(cluster, frame, used, options.instances, tips); }));
-    std::exception_ptr failure;
-    for (std::future<void>& part : parts) {
-      try {
-        part.get();
-      } catch (...) {
-        if (!failure) failure = std::current_exception();
-      }
-    }
-    if (failure) std::rethrow_exception(failure);
+    detail::finish_all(parts);
   }
 
   const double unit = cluster.spacing * frame.scale;  // a spacing in scene units

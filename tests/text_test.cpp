@@ -4,11 +4,15 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <future>
 #include <random>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -66,6 +70,45 @@ TEST(Text, NumbersReadBackExactly) {
     ASSERT_EQ(float_back, static_cast<float>(value)) << as_float;
     ASSERT_LE(as_float.size(), as_double.size());
   }
+}
+
+// The writers' threads: every one finishes, and the first failure is the one thrown.
+TEST(FinishAll, WaitsForEveryTaskThenThrowsTheFirstFailure) {
+  std::atomic<int> finished{0};
+  const auto tasks = [&](int failing_from) {
+    std::vector<std::future<void>> started;
+    for (int i = 0; i < 4; ++i)
+      started.push_back(std::async(std::launch::async, [&finished, i, failing_from] {
+        ++finished;
+        if (i >= failing_from) throw std::runtime_error("task " + std::to_string(i));
+      }));
+    return started;
+  };
+  auto fine = tasks(4);
+  EXPECT_NO_THROW(dla::detail::finish_all(fine));
+  EXPECT_EQ(finished.load(), 4);
+
+  finished = 0;
+  auto failing = tasks(1);
+  try {
+    dla::detail::finish_all(failing);
+    ADD_FAILURE() << "no failure thrown";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "task 1");
+  }
+  EXPECT_EQ(finished.load(), 4);
+  for (const std::future<void>& task : failing) EXPECT_FALSE(task.valid()) << "a task not waited for";
+
+  // This thread's own failure comes first.
+  finished = 0;
+  auto after_own = tasks(0);
+  try {
+    dla::detail::finish_all(after_own, std::make_exception_ptr(std::runtime_error("own")));
+    ADD_FAILURE() << "no failure thrown";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "own");
+  }
+  EXPECT_EQ(finished.load(), 4);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "dla/io/pov_writer.h"
 #include "dla/io/svg_writer.h"
 #include "dla/mesh/surface_distance.h"
+#include "../output_file.h"
 
 #include <malloc.h>
 
@@ -106,7 +107,7 @@ SolidMeasures write_solid(const SolidPlan& plan, const WriteJob& job, const Writ
     writers.push_back(
         std::async(std::launch::async, [&solid, &job, &writer, path] { writer.write(solid, job, path); }));
   }
-  for (std::future<void>& writer : writers) writer.get();
+  detail::finish_all(writers);
   return solid.measures;
 }
 
@@ -146,31 +147,15 @@ FilesWritten write_files(const Cluster& cluster, const OutputOptions& files, con
     const std::string path = files.output + writer.suffix;
     writers.push_back(std::async(std::launch::async, [&job, &writer, path] { writer.write(job, path); }));
   }
-  std::future<SolidMeasures> solid;
   if (files.formats.solid())
-    solid = std::async(std::launch::async, [&] { return write_solid(plan, job, context); });
-  // Every writer finishes before the first failure is thrown: one failing loses no other file.
-  std::exception_ptr failure;
+    writers.push_back(std::async(std::launch::async, [&] { written.solid = write_solid(plan, job, context); }));
+  std::exception_ptr scene_failure;
   try {
     if (scene) scene->write(job, files.output);
   } catch (...) {
-    failure = std::current_exception();
+    scene_failure = std::current_exception();
   }
-  for (std::future<void>& writer : writers) {
-    try {
-      writer.get();
-    } catch (...) {
-      if (!failure) failure = std::current_exception();
-    }
-  }
-  if (solid.valid()) {
-    try {
-      written.solid = solid.get();
-    } catch (...) {
-      if (!failure) failure = std::current_exception();
-    }
-  }
-  if (failure) std::rethrow_exception(failure);
+  detail::finish_all(writers, scene_failure);
   return written;
 }
 
