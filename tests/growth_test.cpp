@@ -205,6 +205,13 @@ TEST(ParticleFeed, HandsOverEveryParticleInOrderUntilItCloses) {
   full.put(particle(1500));
   EXPECT_EQ(full.put_count(), 1024u) << "closed for good";
 
+  // A room that is not a power of two gets the next one: every particle keeps its place.
+  ParticleFeed odd(1000);
+  for (std::size_t i = 0; i < 1500; ++i) odd.put(particle(i));
+  ASSERT_TRUE(odd.closed());
+  ASSERT_EQ(odd.put_count(), 1024u);
+  for (std::size_t k = 0; k < 1024; ++k) ASSERT_EQ(odd.at(k).parent, static_cast<std::int32_t>(k) - 1) << k;
+
   // A taker on another thread gets every particle in order, up to where the feed closed if it
   // fell a room behind.
   ParticleFeed feed(1024);

@@ -16,8 +16,9 @@ namespace dla {
 //! the taker has every particle from the first up to where it closed, and growth never slows.
 class ParticleFeed {
  public:
-  //! Room for `room` particles, a power of two.
-  explicit ParticleFeed(std::size_t room = std::size_t{1} << 16) : ring_(room) {}
+  //! Room for at least `room` particles: the next power of two, so that a count finds its
+  //! place with a mask.
+  explicit ParticleFeed(std::size_t room = std::size_t{1} << 16) : ring_(power_of_two_from(room)) {}
 
   //! On the growing thread: the next particle; dropped once the feed is closed.
   void put(const Particle& particle) {
@@ -47,6 +48,12 @@ class ParticleFeed {
   bool closed() const { return closed_.load(std::memory_order_acquire); }
 
  private:
+  static std::size_t power_of_two_from(std::size_t room) {
+    std::size_t size = 1;
+    while (size < room) size *= 2;
+    return size;
+  }
+
   std::vector<Particle> ring_;
   alignas(64) std::atomic<std::size_t> put_{0};
   std::atomic<bool> closed_{false};
