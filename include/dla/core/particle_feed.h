@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 namespace dla {
@@ -48,9 +49,11 @@ class ParticleFeed {
   bool closed() const { return closed_.load(std::memory_order_acquire); }
 
  private:
+  //! The least power of two not below `room`; past the largest, the largest (which no vector
+  //! can hold: its constructor throws std::length_error).
   static std::size_t power_of_two_from(std::size_t room) {
     std::size_t size = 1;
-    while (size < room) size *= 2;
+    while (size < room && size <= std::numeric_limits<std::size_t>::max() / 2) size *= 2;
     return size;
   }
 
