@@ -213,7 +213,7 @@ TEST(ParticleFeed, HandsOverEveryParticleInOrderUntilItCloses) {
   ASSERT_EQ(odd.put_count(), 1024u);
   for (std::size_t k = 0; k < 1024; ++k) ASSERT_EQ(odd.at(k).parent, static_cast<std::int32_t>(k) - 1) << k;
   // A room beyond every power of two is refused, not a loop that never ends.
-  EXPECT_THROW(ParticleFeed(std::numeric_limits<std::size_t>::max()), std::length_error);
+  EXPECT_THROW(ParticleFeed{std::numeric_limits<std::size_t>::max()}, std::length_error);
 
   // A taker on another thread gets every particle in order, up to where the feed closed if it
   // fell a room behind.
