@@ -300,6 +300,15 @@ TEST(Threads, SameResultWithDriftStickinessAndSeveralSeeds) {
   expect_same_for_every_thread_count(o);
 }
 
+TEST(Threads, SameResultWithSeedsFarApart) {
+  // Walkers start 150 spacings and more from either tree, beyond the node map's reach (64):
+  // the far map bounds most of their steps (its opening boxes are checked one by one in
+  // index_test.cpp), and the result must still not depend on the thread count.
+  DlaOptions o = small(3000);
+  o.seeds = {Vec3(-150, 0, 0), Vec3(150, 0, 0)};
+  expect_same_for_every_thread_count(o);
+}
+
 TEST(Threads, StoppedAndResumedGrowthIsTheOneThreadRun) {
   DlaOptions o = small(4000);
   o.threads = 2;

@@ -226,6 +226,16 @@ TEST(GridIndex, FarBoundsAreTight) {
   expect_tight_bounds(18.0, 40.0, {70.0, 600.0}, [](double r) { return r / 2; }, 0.8);
 }
 
+TEST(GridIndex, BeyondTheNodeMapTheFarMapBounds) {
+  // Beyond the node map's reach (64 spacings) only the pyramid bounded the distance, at about
+  // half of it (docs/spatial-index.md). The far map counts whole blocks (32
+  // spacings) to the nearest block holding a particle, up to 8: where it is below that cap its
+  // bound is within two block diagonals of the distance, and it must survive the domain
+  // doubling, which makes the map again.
+  expect_tight_bounds(100.0, 150.0, {300.0, 1200.0},
+                      [](double r) { return std::max(r / 8, r - 64.0 * std::sqrt(3.0)); }, 0.7);
+}
+
 TEST(GridIndex, AParticleOutsideAProbesReachChangesNothing) {
   // What lets walkers run ahead on other threads (dla.h): a probe's answer stays the same
   // when a particle is inserted outside its reach box, and outside its opening box unless it

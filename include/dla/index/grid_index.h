@@ -4,13 +4,15 @@
 //! allocated where they are needed, with an occupancy bit per cell, a gap map (per cell, a
 //! lower bound on the distance from the cell to the nearest particle, kept within four cells
 //! of the structure), a node map (every fourth cell corner, its distance to the nearest
-//! occupied cell, kept within sixteen cells) and a pyramid of coarser occupancy bits.
+//! occupied cell, kept within sixteen cells), a far map (per block of 8 cells a side, the
+//! whole blocks to the nearest block holding a particle, kept within eight blocks) and a
+//! pyramid of coarser occupancy bits.
 //!
 //! Next to the structure a probe returns the exact nearest particle, walking the lists of the
 //! occupied cells of the 3x3x3 block about the point (the occupancy bits of a row of cells are
 //! read in one load). From half a cell out it reads the point's gap, beyond the gap map's
-//! reach the eight nodes about the point, and beyond theirs one bit per pyramid level, and
-//! returns a lower bound on the distance: the walk only needs a ball free of particles.
+//! reach the eight nodes about the point, and beyond theirs the far map and one bit per pyramid
+//! level, and returns a lower bound on the distance: the walk only needs a ball free of particles.
 //! nearest() finds the exact nearest particle however far the point (random drops), bound()
 //! the probe's bound without reading a particle (straight lines). See docs/spatial-index.md for the
 //! layout and the measurements that chose it.
@@ -23,6 +25,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
 #include <memory>
 #include <string>
@@ -326,6 +329,8 @@ class GridIndex {
   static constexpr int kNodeUnits = 8;                    // node map units per cell width
   static constexpr int kNodeReach = 16;                   // cells an occupied cell lowers nodes within
   static constexpr int kNodeCap = kNodeReach * kNodeUnits;  // value of nodes beyond every reach
+  static constexpr int kFarReach = 8;                     // blocks a block's first particle lowers the far map within
+  static constexpr int kFarCap = kFarReach * kFarReach;   // far map value beyond every reach
 
   using Cell = std::array<int, 3>;
 
@@ -551,7 +556,9 @@ class GridIndex {
                            planar_ ? 0 : (z + shift) << kBlockShift};
           gaps_of_[block_of(first)] = old_gaps[old_index];
           heads_of_[block_of(first)] = old_heads[old_index];
-          if (old_heads[old_index]) mark_occupied(first, old_heads[old_index]);
+          if (!old_heads[old_index]) continue;
+          mark_occupied(first, old_heads[old_index]);
+          if (distance_maps_) lower_far(first);
         }
   }
 
@@ -567,6 +574,7 @@ class GridIndex {
     const int nodes = (cells_ >> kNodeShift) + 1;  // corners of the cells at both ends
     node_dims_ = {nodes, nodes, planar_ ? 1 : nodes};
     nodes_.assign(static_cast<std::size_t>(nodes) * nodes * node_dims_[2], static_cast<std::uint8_t>(kNodeCap));
+    far_.assign(heads_of_.size(), static_cast<std::uint8_t>(kFarCap));
     levels_.clear();
     for (int shift = 1; (cells_ >> shift) >= 4; ++shift) {
       const Cell dims{cells_ >> shift, cells_ >> shift, planar_ ? 1 : cells_ >> shift};
@@ -651,15 +659,17 @@ class GridIndex {
   bool place(std::int32_t id) {
     const Vec3& p = position(id);
     const Cell c = cell_of(p);
+    const bool opens_block = heads_of_[block_of(c)] == nullptr;  // only place() allocates a block
     std::int32_t& head = heads_at(c)[cell_in_block(c)];
     const bool opens = head < 0;
     store(next_[static_cast<std::size_t>(id)], head);
     store_release(head, id);
     if (distance_maps_) lower_gaps(p, c);
-    if (!opens) return false;  // the bits, the pyramid and the nodes already know the cell
+    if (!opens) return false;  // the bits, the pyramid, the nodes and the far map know the cell
     occupied_.set(c);
     for (Level& level : levels_) level.mark(c, planar_);
     if (distance_maps_) lower_nodes(c);
+    if (distance_maps_ && opens_block) lower_far(c);
     return true;
   }
 
@@ -736,8 +746,11 @@ class GridIndex {
     }
     const double best = std::max({term[0], term[1], term[2], term[3], term[4], term[5], term[6], term[7], 0.0});
     if (capped == 8) {
-      // A node lowered later would take the pyramid out of the answer: any of them counts.
+      // A node lowered later would take the far map and the pyramid out of the answer: any
+      // of them counts.
       Probe coarse = pyramid_bound(f, c, reach);
+      const Probe far = far_map_bound(f, c, reach);
+      if (far.distance > coarse.distance) coarse = far;
       if (reach == Reach::set) node_box(n0, 1, kNodeCap, coarse);
       coarse.distance = std::max(coarse.distance, best * cell_);
       return coarse;
@@ -749,6 +762,45 @@ class GridIndex {
       node_box(n, 0, load(nodes_[node_index(n)]), answer);
     }
     return answer;
+  }
+
+  //! From the far map: every particle lies in a block at least sqrt(B) whole blocks from x's
+  //! block (B, the block's value), so at least that far from x plus x's distance to its own
+  //! block's faces (each axis the blocks are apart on adds at least that margin). Only a
+  //! particle that opens a block, in the blocks within ceil(sqrt(B)) of x's, lowers B.
+  Probe far_map_bound(const std::array<double, 3>& f, const Cell& c, Reach reach) const {
+    const int held2 = load(far_[block_of(c)]);
+    if (held2 == 0) return unchangeable(0.0);  // a particle may lie in x's own block
+    const double blocks = std::sqrt(static_cast<double>(held2));
+    Probe answer = unchangeable((blocks * (1 << kBlockShift) + face_margin(f, c, kBlockShift)) * cell_);
+    if (reach == Reach::set)
+      block_box(c, kBlockShift, static_cast<int>(std::ceil(blocks)), 0.0, answer.opening_min, answer.opening_max);
+    return answer;
+  }
+
+  //! Lowers the far map over the blocks within kFarReach of cell c's block, which has just
+  //! got its first particle: each to its squared number of whole blocks between the two.
+  void lower_far(const Cell& c) {
+    Cell low{0, 0, 0}, high{0, 0, 0}, home{0, 0, 0};
+    for (int a = 0; a < 3; ++a) {
+      home[a] = c[a] >> kBlockShift;
+      low[a] = std::max(home[a] - kFarReach, 0);
+      high[a] = std::min(home[a] + kFarReach, block_dims_[a] - 1);
+    }
+    const auto gap2 = [](int from, int to) {
+      const int gap = std::max(std::abs(to - from) - 1, 0);
+      return gap * gap;
+    };
+    for (int z = low[2]; z <= high[2]; ++z)
+      for (int y = low[1]; y <= high[1]; ++y) {
+        const int yz2 = gap2(home[1], y) + gap2(home[2], z);
+        if (yz2 >= kFarCap) continue;
+        std::uint8_t* row = &far_[(static_cast<std::size_t>(z) * block_dims_[1] + y) * block_dims_[0]];
+        for (int x = low[0]; x <= high[0]; ++x) {
+          const int value = yz2 + gap2(home[0], x);
+          if (value < row[x]) store(row[x], static_cast<std::uint8_t>(value));
+        }
+      }
   }
 
   //! Widens a probe's opening box over every cell that lowers a node from n to n + span (in
@@ -872,6 +924,9 @@ class GridIndex {
                                             // distance to the nearest occupied cell's box,
                                             // rounded down, in cell widths / kNodeUnits;
                                             // kNodeCap beyond reach
+  HugePageVector<std::uint8_t> far_;        // per block (x fastest): squared number of whole
+                                            // blocks between it and the nearest block holding
+                                            // a particle; kFarCap beyond reach
   std::vector<Level> levels_;               // finest first
 };
 
