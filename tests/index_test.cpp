@@ -236,6 +236,54 @@ TEST(GridIndex, BeyondTheNodeMapTheFarMapBounds) {
                       [](double r) { return std::max(r / 8, r - 64.0 * std::sqrt(3.0)); }, 0.7);
 }
 
+TEST(GridIndex, BeyondTheFarMapsCapThePyramidBounds) {
+  // Below its cap the far map alone answers beyond the node map (the pyramid is not read).
+  // At its cap (8 blocks, 256 spacings) it says only that much, and the pyramid must still
+  // give its half or so of the distance: the far map alone gives about a third at 500-1000.
+  expect_tight_bounds(500.0, 500.0, {1200.0}, [](double r) { return r / 8; }, 0.5);
+}
+
+TEST(GridIndex, FarProbesChangeOnlyThroughTheirBoxes) {
+  // Far from a lone particle the answer comes from the far map or the pyramid, each with an
+  // opening box of its own, which the test below seldom probes. Each trial puts one particle
+  // just outside the probe's boxes, where it must change nothing, or within 300 spacings,
+  // where it mostly does. (A pyramid box one ring too small fails here, not there.)
+  for (int dimensions : {3, 2}) {
+    dla::Rng rng(29);
+    int outside = 0, changed = 0;
+    for (int trial = 0; trial < 40; ++trial) {
+      std::vector<dla::Particle> store{{dla::Vec3::Zero(), -1, 0}};
+      dla::GridIndex grid(store, 1.0, dimensions);
+      grid.insert(0);
+      grid.cover(dla::Vec3::Zero(), 1000.0);
+      const dla::Vec3 x = (350.0 + 250.0 * rng.uniform()) * dla::random_direction(rng, dimensions);
+      const dla::Probe before = grid.probe(x);
+      dla::Vec3 p = x + (150.0 + 150.0 * rng.uniform()) * dla::random_direction(rng, dimensions);
+      if (trial % 2 == 0) {  // beyond a face of the boxes, level with x
+        const int axis = static_cast<int>(rng() % static_cast<std::uint64_t>(dimensions));
+        const double beyond = 1.0 + 40.0 * rng.uniform();
+        p = x;
+        p[axis] = rng() % 2 ? std::max(before.reach_max[axis], before.opening_max[axis]) + beyond
+                            : std::min(before.reach_min[axis], before.opening_min[axis]) - beyond;
+      }
+      store.push_back({p, 0, 0});
+      const bool opened = grid.insert(1);
+      const dla::Probe after = grid.probe(x);
+      const bool in_reach = dla::in_box(p, before.reach_min, before.reach_max) ||
+                            (opened && dla::in_box(p, before.opening_min, before.opening_max));
+      const bool same = after.nearest == before.nearest && after.distance == before.distance;
+      if (!in_reach) {
+        ++outside;
+        ASSERT_TRUE(same) << dimensions << "D, trial " << trial << ": " << before.distance << " became "
+                          << after.distance;
+      }
+      changed += !same;
+    }
+    EXPECT_GE(outside, 20) << dimensions << "D";
+    EXPECT_GT(changed, 10) << dimensions << "D: the particles hardly changed a probe";
+  }
+}
+
 TEST(GridIndex, AParticleOutsideAProbesReachChangesNothing) {
   // What lets walkers run ahead on other threads (dla.h): a probe's answer stays the same
   // when a particle is inserted outside its reach box, and outside its opening box unless it

@@ -722,8 +722,9 @@ class GridIndex {
   //! Beyond the gap map's reach: from each corner k of the node cell (4 cells a side) holding
   //! base cell c, every particle is at least the node's value V_k away, so at least V_k less
   //! the corner's distance from f. The largest of the eight, or where every node is beyond
-  //! the node map's reach, the larger of that and the pyramid's bound. Only a particle that
-  //! opens a cell changes a node or the pyramid.
+  //! the node map's reach, the larger of that and the far map's bound, and the pyramid's where
+  //! the far map says nothing (0) or is at its cap. Only a particle that opens a cell changes
+  //! a node, the far map or the pyramid.
   Probe far_bound(const std::array<double, 3>& f, const Cell& c, Reach reach) const {
     const Cell n0{c[0] >> kNodeShift, c[1] >> kNodeShift, planar_ ? 0 : c[2] >> kNodeShift};
     const std::size_t first = node_index(n0);
@@ -747,10 +748,16 @@ class GridIndex {
     const double best = std::max({term[0], term[1], term[2], term[3], term[4], term[5], term[6], term[7], 0.0});
     if (capped == 8) {
       // A node lowered later would take the far map and the pyramid out of the answer: any
-      // of them counts.
-      Probe coarse = pyramid_bound(f, c, reach);
-      const Probe far = far_map_bound(f, c, reach);
-      if (far.distance > coarse.distance) coarse = far;
+      // of them counts. Below its cap the far map's bound is within two block diagonals and
+      // the pyramid seldom beats it, and at 10^7 the pyramid's bit is a miss in the caches.
+      // The pyramid beats the capped far map only at a level 8 blocks wide or coarser, whose
+      // box holds every block that could bring the far map below its cap.
+      const int held2 = load(far_[block_of(c)]);
+      Probe coarse = far_map_bound(f, c, held2, reach);
+      if (held2 == 0 || held2 == kFarCap) {
+        const Probe pyramid = pyramid_bound(f, c, reach);
+        if (pyramid.distance > coarse.distance) coarse = pyramid;
+      }
       if (reach == Reach::set) node_box(n0, 1, kNodeCap, coarse);
       coarse.distance = std::max(coarse.distance, best * cell_);
       return coarse;
@@ -768,8 +775,7 @@ class GridIndex {
   //! block (B, the block's value), so at least that far from x plus x's distance to its own
   //! block's faces (each axis the blocks are apart on adds at least that margin). Only a
   //! particle that opens a block, in the blocks within ceil(sqrt(B)) of x's, lowers B.
-  Probe far_map_bound(const std::array<double, 3>& f, const Cell& c, Reach reach) const {
-    const int held2 = load(far_[block_of(c)]);
+  Probe far_map_bound(const std::array<double, 3>& f, const Cell& c, int held2, Reach reach) const {
     if (held2 == 0) return unchangeable(0.0);  // a particle may lie in x's own block
     const double blocks = std::sqrt(static_cast<double>(held2));
     Probe answer = unchangeable((blocks * (1 << kBlockShift) + face_margin(f, c, kBlockShift)) * cell_);
