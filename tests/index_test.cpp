@@ -237,11 +237,27 @@ TEST(GridIndex, BeyondTheNodeMapTheFarMapBounds) {
 }
 
 TEST(GridIndex, BeyondTheFarMapsCapThePyramidBounds) {
-  // Below its cap the far map alone answers beyond the node map (the pyramid is not read).
-  // At its cap (8 blocks, 256 spacings) it says only that much, and the pyramid must still
-  // give its half or so of the distance: the far map alone gives about a third at 500-1000.
+  // Beyond the node map the far map answers alone where it is between 0 and its cap; the
+  // pyramid is read only where it says 0 or is at its cap (8 blocks, 256 spacings). At the cap
+  // the far map says only that much, and the pyramid must still give its half or so of the
+  // distance: the far map alone gives about a third at 500-1000.
   expect_tight_bounds(500.0, 500.0, {1200.0}, [](double r) { return r / 8; }, 0.5);
 }
+
+namespace {
+
+// Whether inserting a particle at p, which opened a cell or not, may change what a probe
+// answered before: only inside its reach box, or inside its opening box if a cell opened.
+bool may_change(const dla::Probe& before, const dla::Vec3& p, bool opened) {
+  return dla::in_box(p, before.reach_min, before.reach_max) ||
+         (opened && dla::in_box(p, before.opening_min, before.opening_max));
+}
+
+bool same_answer(const dla::Probe& a, const dla::Probe& b) {
+  return a.nearest == b.nearest && a.distance == b.distance;
+}
+
+}  // namespace
 
 TEST(GridIndex, FarProbesChangeOnlyThroughTheirBoxes) {
   // Far from a lone particle the answer comes from the far map or the pyramid, each with an
@@ -269,10 +285,8 @@ TEST(GridIndex, FarProbesChangeOnlyThroughTheirBoxes) {
       store.push_back({p, 0, 0});
       const bool opened = grid.insert(1);
       const dla::Probe after = grid.probe(x);
-      const bool in_reach = dla::in_box(p, before.reach_min, before.reach_max) ||
-                            (opened && dla::in_box(p, before.opening_min, before.opening_max));
-      const bool same = after.nearest == before.nearest && after.distance == before.distance;
-      if (!in_reach) {
+      const bool same = same_answer(after, before);
+      if (!may_change(before, p, opened)) {
         ++outside;
         ASSERT_TRUE(same) << dimensions << "D, trial " << trial << ": " << before.distance << " became "
                           << after.distance;
@@ -318,10 +332,9 @@ TEST(GridIndex, AParticleOutsideAProbesReachChangesNothing) {
       const dla::Vec3& p = all[i].position;
       for (std::size_t q = 0; q < xs.size(); ++q) {
         const dla::Probe after = grid.probe(xs[q]);
-        const bool in_opening = dla::in_box(p, before[q].opening_min, before[q].opening_max);
-        const bool in_reach = dla::in_box(p, before[q].reach_min, before[q].reach_max) || (opened && in_opening);
-        const bool same = after.nearest == before[q].nearest && after.distance == before[q].distance;
-        if (!in_reach && in_opening) ++opening_only;
+        const bool in_reach = may_change(before[q], p, opened);
+        const bool same = same_answer(after, before[q]);
+        if (!in_reach && dla::in_box(p, before[q].opening_min, before[q].opening_max)) ++opening_only;
         if (!in_reach) {
           ++outside;
           ASSERT_TRUE(same) << dimensions << "D, particle " << i << " outside the reach changed a probe";
