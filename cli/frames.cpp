@@ -81,7 +81,8 @@ int frames(const FramesCommand& command, bool quiet, const StopFlag& stop, const
   check_writable(file_names(files).front());
   // The last frame's solid is the largest: refused, before any frame is written, if it would
   // not fit.
-  if (files.formats.solid()) plan_solid(whole, make_look(whole, files.look).radii(whole), files.solid);
+  if (files.formats.solid())
+    plan_solid(whole, make_look(whole, files.look, {nullptr, nullptr, 1, false}).radii(whole), files.solid);
 
   const std::size_t others = attached(whole);
   ProgressBar bar(command.count, !quiet && isatty(STDERR_FILENO));

@@ -663,7 +663,8 @@ py::tuple instances(Result& result) {
   {
     py::gil_scoped_release released;
     const Look look = make_look(result.cluster, files.look,
-                                {run.constraint ? &run.constraint->surface() : nullptr, nullptr, run.threads, true,
+                                {run.constraint ? &run.constraint->surface() : nullptr, nullptr, run.threads,
+                                 picks_every_tip(files.instances),
                                  files.instances.exclude_paint ? &*files.instances.exclude_paint : nullptr,
                                  run.constraint ? &run.constraint->mesh() : nullptr});
     points = instancing_points(result.cluster, look.attributes, files.instances);

@@ -584,6 +584,29 @@ TEST(Instances, TheSameWhetherTheAttributesHoldTheTipsGapsOrNot) {
   expect_calls(read_file(dir / "all_tips.inc"), every);
 }
 
+TEST(Instances, OnlyEveryTipTakesTheAttributesGaps) {
+  // The run measures the attributes' tip gaps only for a selection of every tip; any other
+  // selection must measure its own, whether the attributes hold the tips' gaps or not.
+  EXPECT_TRUE(picks_every_tip({}));
+  InstanceOptions all, sparse, near, unpainted;
+  all.set = InstanceSet::all;
+  sparse.every = 3;
+  near.within = 2.0;
+  unpainted.exclude_paint = Paint{};
+  for (const InstanceOptions& other : {all, sparse, near, unpainted}) EXPECT_FALSE(picks_every_tip(other));
+  const Cluster c = grown(3000);
+  const Look with = make_look(c, {}), without = make_look(c, {}, {nullptr, nullptr, 1, false});
+  for (const InstanceOptions& other : {all, sparse}) {
+    const std::vector<Instance> from_with = instancing_points(c, with.attributes, other);
+    const std::vector<Instance> from_without = instancing_points(c, without.attributes, other);
+    ASSERT_EQ(from_with.size(), from_without.size());
+    for (std::size_t k = 0; k < from_with.size(); ++k) {
+      ASSERT_EQ(from_with[k].particle, from_without[k].particle);
+      ASSERT_EQ(from_with[k].scale, from_without[k].scale);
+    }
+  }
+}
+
 TEST(Instances, EveryKthIsKeptAndGrowsIntoTheRoomLeft) {
   const Cluster c = grown(3000);
   const Look look = make_look(c, {});

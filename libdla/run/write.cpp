@@ -125,11 +125,12 @@ FilesWritten write_files(const Cluster& cluster, const OutputOptions& files, con
   mallopt(M_MMAP_THRESHOLD, 128 * 1024);
   // The distance to the mesh feeds the boundary model and the scene's switch to it; measured
   // on every core, as the files do not depend on how many. The tips' gaps only for the files
-  // with instancing points: PREFIX_tips.ply and .inc.
+  // with instancing points (PREFIX_tips.ply and .inc, the leaves), where they pick every tip.
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const Look look = make_look(cluster, files.look,
                               {context.constraint ? &context.constraint->surface() : nullptr, nullptr,
-                               std::max(context.threads, cores), files.formats.tips || !files.leaf.empty(),
+                               std::max(context.threads, cores),
+                               (files.formats.tips || !files.leaf.empty()) && picks_every_tip(files.instances),
                                files.instances.exclude_paint ? &*files.instances.exclude_paint : nullptr,
                                context.constraint ? &context.constraint->mesh() : nullptr, context.measured});
   // The solid's plan first: a solid that would not fit is refused before any file is written.

@@ -47,9 +47,9 @@ struct AttributeOptions {
   const std::vector<Vec3>* points = nullptr; //!< seed_distance is to these; default: the seeds
   int threads = 1;                           //!< for the distances to the surface and between
                                              //!< tips, 1-256; the result does not depend on it
-  //! Measure Attributes::tip_gaps, which only the instancing points (instances.h) use: the
-  //! POV-Ray scene's tips and PREFIX_tips.ply. Without them those measure their own, after
-  //! the rest of the attributes, in more memory.
+  //! Measure Attributes::tip_gaps, which only instancing points that pick every tip use
+  //! (picks_every_tip in instances.h): the POV-Ray scene's tips, PREFIX_tips.ply, the leaves.
+  //! Without them those measure their own, after the rest of the attributes, in more memory.
   bool tip_gaps = true;
   //! With `surface` and its mesh's vertex colours in `mesh`: mark the particles whose closest
   //! point of the surface is painted this colour (Attributes::on_paint).

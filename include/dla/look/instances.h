@@ -45,6 +45,13 @@ struct InstanceOptions {
   std::optional<Paint> exclude_paint;
 };
 
+//! Whether `options` pick every tip and nothing else: the points whose gaps the attributes
+//! keep (AttributeOptions::tip_gaps). Any other selection measures its own.
+inline bool picks_every_tip(const InstanceOptions& options) {
+  return options.set == InstanceSet::tips && options.within == std::numeric_limits<double>::infinity() &&
+         options.every == 1 && !options.exclude_paint;
+}
+
 inline void validate(const InstanceOptions& options) {
   if (!(options.within >= 0.0)) throw InvalidInput("tips within " + detail::format_number(options.within) + " is not >= 0");
   if (options.every < 1 || options.every > 1'000'000)
@@ -127,9 +134,7 @@ inline std::size_t count_instances(const Cluster& cluster, const Attributes& att
 inline const std::vector<float>& instance_gaps(const Cluster& cluster, const Attributes& attributes,
                                                const InstanceOptions& options, const InstanceSelection& selected,
                                                std::vector<float>& measured, int threads = 1) {
-  if (options.set == InstanceSet::tips && options.within == std::numeric_limits<double>::infinity() &&
-      options.every == 1 && !options.exclude_paint && !attributes.tip_gaps.empty())
-    return attributes.tip_gaps;
+  if (picks_every_tip(options) && !attributes.tip_gaps.empty()) return attributes.tip_gaps;
   std::vector<bool> chosen(cluster.particles.size());
   for (std::size_t i = 0; i < chosen.size(); ++i) chosen[i] = selected(i);
   measured = half_gaps(cluster, chosen, threads);
