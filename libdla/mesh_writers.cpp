@@ -352,9 +352,34 @@ TubeTotals glb_of(const Cluster& cluster, const Look& look, const Pieces& each_t
   return totals;
 }
 
+//! Lines of an OBJ file gathered from the tube pieces, to be formatted on a thread of its
+//! own: vertices and faces in runs, each run's vertex lines before its face lines, as a
+//! piece's are. A large piece (the solid) spans several batches.
+struct ObjBatch {
+  std::vector<Eigen::Vector3f> positions, normals;
+  std::vector<Eigen::Vector2f> uvs;        // textured pieces only
+  std::vector<std::int32_t> particles;     // for the colours only
+  std::vector<std::array<std::size_t, 3>> faces;  // OBJ's indices, counted from 1
+  std::vector<std::array<std::size_t, 2>> run_ends;  // each run's end in positions and faces
+
+  std::size_t lines() const { return positions.size() + faces.size(); }
+  void end_run() {
+    const std::array<std::size_t, 2> end{positions.size(), faces.size()};
+    if (end != (run_ends.empty() ? std::array<std::size_t, 2>{} : run_ends.back())) run_ends.push_back(end);
+  }
+  void clear() {
+    positions.clear(), normals.clear(), uvs.clear(), particles.clear(), faces.clear(), run_ends.clear();
+  }
+};
+
+//! Lines (a vertex with its normal and texture, or a face) in a batch of an OBJ file: about
+//! 2 MB of text, a few batches in memory at a time.
+constexpr std::size_t kObjBatchLines = std::size_t{1} << 15;
+
 //! OBJ's faces name a vertex's position, texture coordinates and normal by one index; its v
 //! counts up from the image's foot where glTF's counts down from its head, so it holds 1 - v
-//! and both files map an image alike.
+//! and both files map an image alike. The walk over the pieces gathers their lines in batches,
+//! which the machine's threads format at once.
 template <class Pieces>
 void obj_of(const Cluster& cluster, const Look& look, const Pieces& each_tube, std::string_view what,
             const std::string& path) {
@@ -365,39 +390,64 @@ void obj_of(const Cluster& cluster, const Look& look, const Pieces& each_tube, s
   out.integer(static_cast<long long>(cluster.particles.size()))
       << " particles, radius model " << to_string(look.options.radius.model) << (colored ? ", colour by " : "")
       << (colored ? to_string(look.options.color_by) : "") << "\no dla\n";
+  const auto format = [&](detail::Text& text, const ObjBatch& batch) {
+    std::size_t v = 0, f = 0;
+    for (const auto& [vertex_end, face_end] : batch.run_ends) {
+      for (; v < vertex_end; ++v) {
+        text << "v ";
+        for (int a = 0; a < 3; ++a) text.number(batch.positions[v][a], 7) << (a < 2 ? " " : "");
+        if (colored) {
+          const std::array<double, 3> rgb = color_at(scale(static_cast<std::size_t>(batch.particles[v])));
+          for (int c = 0; c < 3; ++c) text << ' ', text.fixed(rgb[c], 4);
+        }
+        text << "\nvn ";
+        for (int a = 0; a < 3; ++a) text.fixed(batch.normals[v][a], 5) << (a < 2 ? " " : "\n");
+        if constexpr (Pieces::textured) {
+          text << "vt ";
+          text.fixed(batch.uvs[v].x(), 5) << ' ';
+          const double flipped = 1.0 - static_cast<double>(batch.uvs[v].y());
+          (std::abs(flipped) < 1e9 ? text.fixed(flipped, 5) : text.float_number(static_cast<float>(flipped))) << '\n';
+        }
+      }
+      for (; f < face_end; ++f) {
+        text << 'f';
+        for (const std::size_t index : batch.faces[f]) {
+          // The index once in digits, then as position/texture/normal (position//normal).
+          char digits[24];
+          const char* const end = std::to_chars(digits, digits + 24, index).ptr;
+          const std::string_view name(digits, static_cast<std::size_t>(end - digits));
+          text << ' ' << name << (Pieces::textured ? "/" : "//");
+          if (Pieces::textured) text << name << '/';
+          text << name;
+        }
+        text << '\n';
+      }
+    }
+  };
+  detail::OrderedBatches<ObjBatch, decltype(format)> batches(out, detail::format_threads(), format);
+  const auto line_added = [&] {
+    if (batches.batch().lines() < kObjBatchLines) return;
+    batches.batch().end_run();
+    batches.send();
+  };
   std::size_t base = 1;  // OBJ counts from 1
   each_tube([&](const TubePiece& piece) {
     for (std::size_t v = 0; v < piece.positions.size(); ++v) {
-      out << "v ";
-      for (int a = 0; a < 3; ++a) out.number(piece.positions[v][a], 7) << (a < 2 ? " " : "");
-      if (colored) {
-        const std::array<double, 3> rgb = color_at(scale(static_cast<std::size_t>(piece.particles[v])));
-        for (int c = 0; c < 3; ++c) out << ' ', out.fixed(rgb[c], 4);
-      }
-      out << "\nvn ";
-      for (int a = 0; a < 3; ++a) out.fixed(piece.normals[v][a], 5) << (a < 2 ? " " : "\n");
-      if constexpr (Pieces::textured) {
-        out << "vt ";
-        out.fixed(piece.uvs[v].x(), 5) << ' ';
-        const double flipped = 1.0 - static_cast<double>(piece.uvs[v].y());
-        (std::abs(flipped) < 1e9 ? out.fixed(flipped, 5) : out.float_number(static_cast<float>(flipped))) << '\n';
-      }
+      ObjBatch& batch = batches.batch();
+      batch.positions.push_back(piece.positions[v]);
+      batch.normals.push_back(piece.normals[v]);
+      if constexpr (Pieces::textured) batch.uvs.push_back(piece.uvs[v]);
+      if (colored) batch.particles.push_back(piece.particles[v]);
+      line_added();
     }
     for (const auto& t : piece.triangles) {
-      out << 'f';
-      for (const std::uint32_t v : t) {
-        // The index once in digits, then as position/texture/normal (position//normal).
-        char digits[24];
-        const char* const end = std::to_chars(digits, digits + 24, base + v).ptr;
-        const std::string_view index(digits, static_cast<std::size_t>(end - digits));
-        out << ' ' << index << (Pieces::textured ? "/" : "//");
-        if (Pieces::textured) out << index << '/';
-        out << index;
-      }
-      out << '\n';
+      batches.batch().faces.push_back({base + t[0], base + t[1], base + t[2]});
+      line_added();
     }
+    batches.batch().end_run();
     base += piece.positions.size();
   });
+  batches.finish();
   out.commit();
 }
 

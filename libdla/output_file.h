@@ -278,4 +278,79 @@ void write_in_order(OutputFile& out, std::size_t count, std::size_t chunk, int t
   }
 }
 
+//! Appends to `out`, in order, the text of batches that the calling thread fills one after
+//! another and up to `threads` threads format at once, each batch on a thread of its own: the
+//! same bytes as formatting every batch into `out` in turn, with a few batches in memory at a
+//! time. Fill batch(), then send() it; finish() sends the last and appends what is left. For
+//! text whose parts come from a walk, where write_in_order's ranges of items do not apply.
+//! Batch needs clear(); format(Text&, const Batch&) must not change what it reads elsewhere.
+template <class Batch, class Format>
+class OrderedBatches {
+ public:
+  OrderedBatches(OutputFile& out, int threads, Format format)
+      : out_(out), format_(std::move(format)), slots_(static_cast<std::size_t>(std::max(threads, 1)) + 1) {
+    for (Slot& slot : slots_) free_.push_back(&slot);
+    take();
+  }
+  OrderedBatches(const OrderedBatches&) = delete;
+  OrderedBatches& operator=(const OrderedBatches&) = delete;
+
+  Batch& batch() { return filling_->batch; }
+
+  //! Formats the batch filled so far on a thread of its own; batch() is then an empty one.
+  void send() {
+    Slot* const slot = filling_;
+    pending_.emplace_back(std::async(std::launch::async, [this, slot] {
+      slot->text.clear();
+      format_(slot->text, slot->batch);
+    }), slot);
+    take();
+  }
+
+  //! Sends the last batch and appends every batch's text to `out`. Rethrows the first failure
+  //! of a format, once the batches under way have finished.
+  void finish() {
+    send();
+    std::exception_ptr first;
+    while (!pending_.empty()) {
+      try {
+        append_first();
+      } catch (...) {
+        if (!first) first = std::current_exception();
+      }
+    }
+    if (first) std::rethrow_exception(first);
+  }
+
+ private:
+  struct Slot {
+    Batch batch;
+    Text text;
+  };
+
+  //! The next batch to fill: a free slot, or the oldest one sent, once its text is appended.
+  void take() {
+    if (free_.empty()) append_first();
+    filling_ = free_.back();
+    free_.pop_back();
+    filling_->batch.clear();
+  }
+  void append_first() {
+    auto [formatted, slot] = std::move(pending_.front());
+    pending_.pop_front();
+    free_.push_back(slot);
+    formatted.get();
+    out_.append(slot->text);
+  }
+
+  OutputFile& out_;
+  Format format_;
+  // Declared before the tasks: a std::async future waits for its task when destroyed, so on an
+  // exception the tasks end before the slots and the format they use.
+  std::vector<Slot> slots_;
+  std::vector<Slot*> free_;
+  Slot* filling_ = nullptr;
+  std::deque<std::pair<std::future<void>, Slot*>> pending_;
+};
+
 }  // namespace dla::detail

@@ -740,15 +740,20 @@ TEST(LookFiles, PlyAndCsvCarryTheAttributes) {
 
 TEST(LookFiles, GlbAndObjHoldEveryTube) {
   ScratchDir dir;
-  const Cluster c = grown(400);
+  const Cluster c = grown(5000);
   LookOptions options;
   options.color_by = ColorBy::depth;
   const Look look = make_look(c, options);
   std::size_t vertices = 0, triangles = 0;
+  std::vector<TubePiece> pieces;
   for_each_tube(c, look.attributes, look.radii(c), options.tubes, [&](const TubePiece& piece) {
     vertices += piece.positions.size();
     triangles += piece.triangles.size();
+    pieces.push_back(piece);
   });
+  // The OBJ writer gathers the pieces' lines in batches of 32,768 and formats them on several
+  // threads: the file must still hold the pieces in the walk's order.
+  ASSERT_GT(vertices + triangles, 4u * 32768) << "too few lines to span several batches";
   write_glb(c, look, dir / "a.glb");
   const std::string glb = read_file(dir / "a.glb");
   std::uint32_t head[5];
@@ -778,6 +783,7 @@ TEST(LookFiles, GlbAndObjHoldEveryTube) {
   EXPECT_EQ(vt, vertices);
   EXPECT_EQ(f, triangles);
   EXPECT_NE(obj.find("\nf 1/1/1 2/2/2 "), std::string::npos) << "faces name position, texture and normal";
+  testing::expect_obj_holds(obj, pieces);
 
   // No branch at all: still a valid file, with an empty scene.
   Cluster lone;

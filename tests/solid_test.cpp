@@ -5,6 +5,7 @@
 #include "solid_check.h"
 #include "test_util.h"
 #include "tree_check.h"
+#include "tube_check.h"
 
 #include "dla/core/random.h"
 #include "dla/io/solid_writers.h"
@@ -314,6 +315,21 @@ TEST(Solid, BadOptionsAreRefusedByName) {
       EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
     }
   }
+}
+
+TEST(Solid, ObjHoldsTheMeshOverManyBatches) {
+  // The solid is one piece, larger than the OBJ writer's batches of 32,768 lines: it is split
+  // over several, formatted on several threads.
+  const Cluster c = small_tree(500, 31);
+  const Look look = make_look(c, {});
+  const Solid solid = build_solid(c, look.radii(c), {});
+  ASSERT_GT(solid.mesh.vertices.size() + solid.mesh.triangles.size(), 3u * 32768) << "too small to span batches";
+  ScratchDir dir;
+  write_solid_obj(solid, c, look, dir / "s.obj");
+  TubePiece piece;
+  piece.positions = solid.mesh.vertices;
+  piece.triangles = solid.mesh.triangles;
+  testing::expect_obj_holds(read_file(dir / "s.obj"), {piece});
 }
 
 TEST(Solid, TheSameFilesOnAnyThreadCount) {

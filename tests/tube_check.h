@@ -9,8 +9,11 @@
 
 #include <cmath>
 #include <map>
+#include <sstream>
+#include <string>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 namespace dla::testing {
 
@@ -83,6 +86,48 @@ inline void expect_texture_frame(const TubePiece& piece) {
     ASSERT_GT(tangent.dot(along_u), 0.0) << "the tangent runs against u";
     ASSERT_GT(normal.cross(tangent).dot(along_v), 0.0) << "normal x tangent runs against v";
   }
+}
+
+//! An OBJ file's lines hold `pieces` in order, as the writers walk them: each piece's vertex
+//! lines (positions to the 7 significant digits written), then its faces, whose indices count
+//! from 1 over the whole file.
+inline void expect_obj_holds(const std::string& obj, const std::vector<TubePiece>& pieces) {
+  std::vector<Eigen::Vector3f> positions;
+  std::vector<std::array<std::size_t, 3>> faces;
+  std::vector<std::size_t> vertices_before;  // for each face: the vertex lines above it
+  for (const TubePiece& piece : pieces) {
+    const std::size_t base = positions.size() + 1;
+    positions.insert(positions.end(), piece.positions.begin(), piece.positions.end());
+    for (const auto& t : piece.triangles) {
+      faces.push_back({base + t[0], base + t[1], base + t[2]});
+      vertices_before.push_back(positions.size());
+    }
+  }
+  std::istringstream lines(obj);
+  std::size_t v = 0, f = 0;
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream fields(line.substr(line.find(' ') + 1));
+    if (line.rfind("v ", 0) == 0) {
+      ASSERT_LT(v, positions.size()) << "more vertices than the pieces";
+      for (int a = 0; a < 3; ++a) {
+        double value = 0;
+        fields >> value;
+        ASSERT_NEAR(value, positions[v][a], 1e-6 * std::abs(positions[v][a]) + 1e-12) << "vertex " << v + 1;
+      }
+      ++v;
+    } else if (line.rfind("f ", 0) == 0) {
+      ASSERT_LT(f, faces.size()) << "more faces than the pieces";
+      ASSERT_EQ(v, vertices_before[f]) << "face " << f + 1 << " not right after its piece's vertices";
+      for (const std::size_t expected : faces[f]) {
+        std::string corner;
+        fields >> corner;
+        ASSERT_EQ(std::stoull(corner.substr(0, corner.find('/'))), expected) << line;
+      }
+      ++f;
+    }
+  }
+  EXPECT_EQ(v, positions.size());
+  EXPECT_EQ(f, faces.size());
 }
 
 }  // namespace dla::testing
