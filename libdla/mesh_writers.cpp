@@ -447,6 +447,7 @@ void obj_of(const Cluster& cluster, const Look& look, const Pieces& each_tube, s
     batches.batch().end_run();
     base += piece.positions.size();
   });
+  batches.send();
   batches.finish();
   out.commit();
 }

@@ -241,55 +241,30 @@ inline void finish_all(std::vector<std::future<void>>& tasks, std::exception_ptr
   if (first) std::rethrow_exception(first);
 }
 
-//! Threads that format the parts of a large file at once (write_in_order): the machine's.
+//! Threads that format the parts of a large file at once (OrderedBatches): the machine's.
 inline int format_threads() { return static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 16u)); }
 
-//! Room for the text of one range of write_in_order: 4,096 particles' lines take 100-450 kB;
-//! a longer range grows its buffer.
+//! Room for the text of one batch of OrderedBatches: 4,096 particles' lines (a range of
+//! write_in_order) take 100-450 kB; a longer batch grows its buffer.
 constexpr std::size_t kPartBytes = std::size_t{1} << 19;
-
-//! Calls format(Text&, begin, end) for the items [0, count) in ranges of `chunk`, up to
-//! `threads` ranges at once, each on a thread of its own, and appends their text to `out` in
-//! order: the same bytes as format(out, 0, count), with a few ranges' text in memory at a time.
-//! An exception from format is rethrown here, once the ranges under way have finished.
-template <class Format>
-void write_in_order(OutputFile& out, std::size_t count, std::size_t chunk, int threads, Format&& format) {
-  // One more slot than threads: a range is ready to append while the others format. The slots'
-  // buffers are reserved here and reused: fresh ones would cost a page fault every 4 kB.
-  std::vector<Text> slots(static_cast<std::size_t>(std::max(threads, 1)) + 1);
-  for (Text& slot : slots) slot.reserve(kPartBytes);
-  std::deque<std::pair<std::future<void>, std::size_t>> pending;
-  std::size_t next = 0;
-  const auto start = [&](std::size_t slot) {
-    const std::size_t begin = next, end = std::min(count, next + chunk);
-    next = end;
-    pending.emplace_back(std::async(std::launch::async, [&format, &text = slots[slot], begin, end] {
-      text.clear();
-      format(text, begin, end);
-    }), slot);
-  };
-  for (std::size_t slot = 0; slot < slots.size() && next < count; ++slot) start(slot);
-  while (!pending.empty()) {
-    auto [formatted, slot] = std::move(pending.front());
-    pending.pop_front();
-    formatted.get();
-    out.append(slots[slot]);
-    if (next < count) start(slot);
-  }
-}
 
 //! Appends to `out`, in order, the text of batches that the calling thread fills one after
 //! another and up to `threads` threads format at once, each batch on a thread of its own: the
 //! same bytes as formatting every batch into `out` in turn, with a few batches in memory at a
-//! time. Fill batch(), then send() it; finish() sends the last and appends what is left. For
-//! text whose parts come from a walk, where write_in_order's ranges of items do not apply.
-//! Batch needs clear(); format(Text&, const Batch&) must not change what it reads elsewhere.
+//! time. Fill batch(), then send() it; finish() appends what is left. For text whose parts
+//! come from a walk (the OBJ writer's), or ranges of items (write_in_order). Batch needs
+//! clear(); format(Text&, const Batch&) must not change what it reads elsewhere.
 template <class Batch, class Format>
 class OrderedBatches {
  public:
   OrderedBatches(OutputFile& out, int threads, Format format)
       : out_(out), format_(std::move(format)), slots_(static_cast<std::size_t>(std::max(threads, 1)) + 1) {
-    for (Slot& slot : slots_) free_.push_back(&slot);
+    // The slots' buffers are reserved here and reused: fresh ones would cost a page fault
+    // every 4 kB.
+    for (Slot& slot : slots_) {
+      slot.text.reserve(kPartBytes);
+      free_.push_back(&slot);
+    }
     take();
   }
   OrderedBatches(const OrderedBatches&) = delete;
@@ -307,10 +282,9 @@ class OrderedBatches {
     take();
   }
 
-  //! Sends the last batch and appends every batch's text to `out`. Rethrows the first failure
-  //! of a format, once the batches under way have finished.
+  //! Appends the text of every batch sent to `out`; batch() is not sent. Rethrows the first
+  //! failure of a format, once the batches under way have finished.
   void finish() {
-    send();
     std::exception_ptr first;
     while (!pending_.empty()) {
       try {
@@ -352,5 +326,24 @@ class OrderedBatches {
   Slot* filling_ = nullptr;
   std::deque<std::pair<std::future<void>, Slot*>> pending_;
 };
+
+//! Calls format(Text&, begin, end) for the items [0, count) in ranges of `chunk`, up to
+//! `threads` ranges at once, each on a thread of its own, and appends their text to `out` in
+//! order: the same bytes as format(out, 0, count), with a few ranges' text in memory at a time.
+//! An exception from format is rethrown here, once the ranges under way have finished.
+template <class Format>
+void write_in_order(OutputFile& out, std::size_t count, std::size_t chunk, int threads, Format&& format) {
+  struct Range {
+    std::size_t begin = 0, end = 0;
+    void clear() { begin = end = 0; }
+  };
+  const auto format_range = [&format](Text& text, const Range& range) { format(text, range.begin, range.end); };
+  OrderedBatches<Range, decltype(format_range)> ranges(out, threads, format_range);
+  for (std::size_t begin = 0; begin < count; begin += chunk) {
+    ranges.batch() = {begin, std::min(count, begin + chunk)};
+    ranges.send();
+  }
+  ranges.finish();
+}
 
 }  // namespace dla::detail

@@ -510,7 +510,8 @@ void validate_pov_prefix(const std::string& prefix) {
 void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptions& options,
                const TriangleMesh* mesh, const Look* given_look) {
   validate_pov_prefix(prefix);
-  const Look look = given_look ? Look{} : make_look(cluster, {}, {nullptr, nullptr, 1, options.tips && picks_every_tip(options.instances)});
+  const Look look = given_look ? Look{}
+                               : make_look(cluster, {}, {nullptr, nullptr, 1, options.tips && picks_every_tip(options.instances)});
   const Look& used = given_look ? *given_look : look;
   const RadiusOptions& radius = used.options.radius;
   const std::string include = prefix + ".inc";
