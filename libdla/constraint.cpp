@@ -74,9 +74,7 @@ MeshConstraint::MeshConstraint(const TriangleMesh& mesh, const ConstraintOptions
       surface_(mesh_) {
   if (solid(options.side)) {
     const Region wrong = options.side == Side::inside ? Region::outside : Region::inside;
-    lost_cells_.assign((inside_.cell_count() + 63) / 64, 0);
-    for (std::size_t cell = 0; cell < inside_.cell_count(); ++cell)
-      lost_cells_[cell >> 6] |= std::uint64_t{inside_.cell_region(cell) == wrong} << (cell & 63);
+    lost_cells_ = BrickBits(inside_.grid(), [&](std::size_t cell) { return inside_.cell_region(cell) == wrong; });
   }
   // Cumulative areas, and the volume's centroid by the divergence theorem.
   area_prefix_.reserve(mesh_.triangles.size());

@@ -333,6 +333,35 @@ void expect_inside_test_matches(const TriangleMesh& mesh, int samples, std::uint
   EXPECT_LT(inside, samples - samples / part);
 }
 
+// Every cell's bit against the set it was made from, on a grid whose sides are not whole
+// bricks, sparse (most bricks hold no set cell and answer from their own bit) and dense.
+TEST(BrickBits, MatchesTheSetCellByCell) {
+  const VoxelGrid grid(Box{Vec3(-1.0, 2.0, 0.5), Vec3(8.0, 7.5, 11.0)}, 0.25, 0.5);
+  ASSERT_EQ(grid.dims, (std::array<std::size_t, 3>{19, 12, 22}));
+  for (const double density : {0.004, 0.5}) {
+    Rng rng(7);
+    std::vector<bool> set(grid.size());
+    for (std::size_t i = 0; i < set.size(); ++i) set[i] = rng.uniform() < density;
+    const BrickBits bits(grid, [&](std::size_t i) { return set[i]; });
+    std::size_t found = 0;
+    for (std::size_t z = 0; z < grid.dims[2]; ++z)
+      for (std::size_t y = 0; y < grid.dims[1]; ++y)
+        for (std::size_t x = 0; x < grid.dims[0]; ++x) {
+          std::array<std::size_t, 3> c;
+          ASSERT_TRUE(grid.locate(grid.center(x, y, z), c));
+          ASSERT_EQ(c, (std::array<std::size_t, 3>{x, y, z}));
+          const std::size_t i = (z * grid.dims[1] + y) * grid.dims[0] + x;
+          ASSERT_EQ(grid.index(grid.center(x, y, z)), i);
+          ASSERT_EQ(bits.test(c), set[i]) << x << ' ' << y << ' ' << z << " at density " << density;
+          found += set[i];
+        }
+    EXPECT_GT(found, 0u);
+  }
+  std::array<std::size_t, 3> c;
+  EXPECT_FALSE(grid.locate(grid.origin - Vec3::Constant(0.1), c));
+  EXPECT_EQ(grid.index(grid.origin - Vec3::Constant(0.1)), grid.size());
+}
+
 TEST(InsideTest, MatchesSolidAnglesOnAClosedMesh) {
   expect_inside_test_matches(make_sphere(Vec3(0.5, -1, 2), 3.0, 10, 16), 4000, 1);
   expect_inside_test_matches(make_box(Vec3::Zero(), Vec3(2, 3, 4)), 4000, 2);

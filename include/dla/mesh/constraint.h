@@ -87,8 +87,8 @@ class MeshConstraint {
   bool lost(const Vec3& p) const {
     if (shell_) return !shell_->holds(p);
     if (options_.side == Side::both || options_.side == Side::surface) return false;
-    const std::size_t cell = inside_.cell_of(p);
-    return cell < inside_.cell_count() ? lost_cells_[cell >> 6] >> (cell & 63) & 1 : options_.side == Side::inside;
+    std::array<std::size_t, 3> cell;
+    return inside_.grid().locate(p, cell) ? lost_cells_.test(cell) : options_.side == Side::inside;
   }
 
   //! The shell's thickness in mesh units; 0 without one. Walkers in a shell step at most this
@@ -161,9 +161,9 @@ class MeshConstraint {
     return area_prefix_.back() * (static_cast<double>(j) / static_cast<double>(area_prefix_.size()));
   }
   InsideTest inside_;
-  // A bit a cell of the inside grid, set where walkers are lost: an eighth of the grid's bytes,
-  // so that the look-up on every step mostly hits the cache.
-  std::vector<std::uint64_t> lost_cells_;
+  // The cells of the inside grid where walkers are lost, looked up on every step: mostly in
+  // bricks with none, whose bits stay in the caches.
+  BrickBits lost_cells_;
   SurfaceIntersector hits_;
   SurfaceDistance surface_;
   double shell_thickness_ = 0.0;
