@@ -59,13 +59,11 @@ ShellBand::ShellBand(const TriangleMesh& mesh, const InsideTest& inside, Layer l
           if (distance_to_triangle(center, a, b, c) <= thickness) near[v] = true;
         }
   }
-  held_.assign(near.size(), false);
   const std::vector<bool> in = layer != Layer::both ? inside.inside_centres(grid_) : std::vector<bool>();
-  for (std::size_t v = 0; v < near.size(); ++v) {
-    if (!near[v] || (layer != Layer::both && in[v] != (layer == Layer::inside))) continue;
-    held_[v] = true;
-    voxels_.push_back(static_cast<std::uint32_t>(v));
-  }
+  const auto held = [&](std::size_t v) { return near[v] && (layer == Layer::both || in[v] == (layer == Layer::inside)); };
+  for (std::size_t v = 0; v < near.size(); ++v)
+    if (held(v)) voxels_.push_back(static_cast<std::uint32_t>(v));
+  held_ = BrickBits(grid_, held);
 }
 
 Vec3 ShellBand::draw(Rng& rng) const {

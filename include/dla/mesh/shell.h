@@ -26,8 +26,8 @@ class ShellBand {
 
   //! Whether p's voxel is in the layer: a look-up, for every step.
   bool holds(const Vec3& p) const {
-    const std::size_t i = grid_.index(p);
-    return i < held_.size() && held_[i];
+    std::array<std::size_t, 3> c;
+    return grid_.locate(p, c) && held_.test(c);
   }
 
   //! A point uniform in the layer's voxels.
@@ -38,7 +38,7 @@ class ShellBand {
 
  private:
   VoxelGrid grid_;
-  std::vector<bool> held_;
+  BrickBits held_;
   std::vector<std::uint32_t> voxels_;  // the held ones, to draw from
 };
 
