@@ -75,6 +75,7 @@ MeshConstraint::MeshConstraint(const TriangleMesh& mesh, const ConstraintOptions
   if (solid(options.side)) {
     const Region wrong = options.side == Side::inside ? Region::outside : Region::inside;
     lost_cells_ = BrickBits(inside_.grid(), [&](std::size_t cell) { return inside_.cell_region(cell) == wrong; });
+    if (inside_.closed()) offset_sides_ = std::vector<std::atomic<Offset>>(mesh_.triangles.size());
   }
   // Cumulative areas, and the volume's centroid by the divergence theorem.
   area_prefix_.reserve(mesh_.triangles.size());
@@ -160,7 +161,7 @@ Vec3 MeshConstraint::draw_inside(Rng& rng) const {
   throw GrowthError("no point inside the mesh in a million draws: it encloses no volume");
 }
 
-Vec3 MeshConstraint::surface_point(Rng& rng, Vec3* normal) const {
+Vec3 MeshConstraint::surface_point(Rng& rng, Vec3* normal, std::uint32_t* triangle) const {
   const double target = rng.uniform() * area_prefix_.back();
   // The first prefix past the target, searched for only within the target's slice.
   const std::size_t slices = area_prefix_.size();
@@ -183,6 +184,7 @@ Vec3 MeshConstraint::surface_point(Rng& rng, Vec3* normal) const {
     v = 1.0 - v;
   }
   if (normal) *normal = (b - a).cross(c - a).normalized();
+  if (triangle) *triangle = static_cast<std::uint32_t>(t);
   return a + u * (b - a) + v * (c - a);
 }
 
@@ -200,7 +202,9 @@ Vec3 MeshConstraint::draw_near_surface(Rng& rng) const {
   constexpr int max_draws = 1'000'000;
   for (int draw = 0; draw < max_draws; ++draw) {
     Vec3 normal;
-    const Vec3 p = beside(surface_point(rng, &normal), normal, rng);
+    std::uint32_t triangle;
+    const Vec3 s = surface_point(rng, &normal, &triangle);
+    const Vec3 p = beside(s, normal, rng, triangle);
     if (p.allFinite()) return p;  // else a degenerate triangle
   }
   throw GrowthError("no start beside the mesh surface in a million draws");
@@ -274,17 +278,37 @@ std::string colors_used(const std::vector<Vec3>& colors) {
 
 }  // namespace
 
-Vec3 MeshConstraint::beside(const Vec3& s, const Vec3& normal, Rng& rng) const {
+Vec3 MeshConstraint::beside(const Vec3& s, const Vec3& normal, Rng& rng, std::uint32_t triangle) const {
   if (!solid(options_.side)) return s + (rng.uniform() < 0.5 ? 0.5 : -0.5) * spacing_ * normal;  // either side grows
   // The normal's orientation is not trusted: take whichever side is the growing one, trying
   // first the one an outward normal (repair_mesh() turns them out) says it is.
   const double first = options_.side == Side::inside ? -0.5 : 0.5;
+  const Offset known = triangle < offset_sides_.size() ? offset_side(triangle, first) : Offset::mixed;
   for (const double side : {first, -first}) {
-    // Half a spacing off the surface is always in a surface cell of the grid: no look-up.
     const Vec3 p = s + side * spacing_ * normal;
+    if (side == first && known == Offset::growing) return p;
+    if (side == first && known == Offset::other) continue;
+    // Half a spacing off the surface is always in a surface cell of the grid: no look-up.
     if (inside_.contains(p) == (options_.side == Side::inside)) return p;
   }
   return Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+}
+
+MeshConstraint::Offset MeshConstraint::offset_side(std::uint32_t t, double side) const {
+  Offset known = offset_sides_[t].load(std::memory_order_relaxed);
+  if (known != Offset::unknown) return known;
+  // The triangle moved as surface_point() and beside() move its points. Where it stays clear of
+  // every triangle by the branches' gap, far beyond rounding, the closed mesh's winding number is
+  // one over all of it: one inside test answers for every start off this triangle.
+  const auto& tri = mesh_.triangles[t];
+  const Vec3 &a = mesh_.vertices[tri[0]], &b = mesh_.vertices[tri[1]], &c = mesh_.vertices[tri[2]];
+  const Vec3 shift = side * spacing_ * (b - a).cross(c - a).normalized();
+  known = Offset::mixed;
+  if (inside_.clear_of_surface(a + shift, b + shift, c + shift, gap_))
+    known = inside_.contains((a + b + c) / 3.0 + shift) == (options_.side == Side::inside) ? Offset::growing
+                                                                                              : Offset::other;
+  offset_sides_[t].store(known, std::memory_order_relaxed);
+  return known;
 }
 
 std::vector<Vec3> MeshConstraint::sample_surface(std::uint64_t rng_seed, const Paint* paint) const {

@@ -246,6 +246,46 @@ std::vector<bool> InsideTest::inside_centres(const VoxelGrid& grid) const {
   return inside;
 }
 
+namespace {
+
+//! Whether the corners q lie more than `margin` to one side of the plane through p with unit
+//! normal n.
+bool plane_separates(const Vec3& p, const Vec3& n, const Vec3* q, double margin) {
+  const double d0 = n.dot(q[0] - p), d1 = n.dot(q[1] - p), d2 = n.dot(q[2] - p);
+  return (d0 > margin && d1 > margin && d2 > margin) || (d0 < -margin && d1 < -margin && d2 < -margin);
+}
+
+}  // namespace
+
+bool InsideTest::clear_of_surface(const Vec3& a, const Vec3& b, const Vec3& c, double margin) const {
+  const Vec3 normal = (b - a).cross(c - a).normalized();
+  if (!normal.allFinite() || !(margin >= 0.0)) return false;
+  const Vec3 corners[3] = {a, b, c};
+  const Vec3 lo = a.cwiseMin(b).cwiseMin(c).array() - margin, hi = a.cwiseMax(b).cwiseMax(c).array() + margin;
+  // A triangle that comes within the margin has its shadow under the box's, in the buckets
+  // there, and its top above the box's bottom.
+  const auto bucket = [&](double v, int axis) {
+    const double f = std::floor((v - bucket_origin_[axis]) / bucket_);
+    return static_cast<int>(std::clamp(f, 0.0, static_cast<double>(bucket_dims_[axis] - 1)));
+  };
+  const int x0 = bucket(lo.x(), 0), x1 = bucket(hi.x(), 0), y0 = bucket(lo.y(), 1), y1 = bucket(hi.y(), 1);
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x) {
+      const std::size_t b_index = static_cast<std::size_t>(y) * bucket_dims_[0] + x;
+      for (std::uint32_t k = bucket_start_[b_index]; k < bucket_start_[b_index + 1]; ++k) {
+        if (from_top_.heights[k] < lo.z()) break;  // by falling top: this and the rest are below
+        const Vec3* q = &corners_[3 * from_top_.triangles[k]];
+        const Vec3 q_lo = q[0].cwiseMin(q[1]).cwiseMin(q[2]), q_hi = q[0].cwiseMax(q[1]).cwiseMax(q[2]);
+        if ((q_lo.array() > hi.array()).any() || (q_hi.array() < lo.array()).any()) continue;
+        if (plane_separates(a, normal, q, margin)) continue;
+        const Vec3 q_normal = (q[1] - q[0]).cross(q[2] - q[0]).normalized();
+        if (q_normal.allFinite() && plane_separates(q[0], q_normal, corners, margin)) continue;
+        return false;
+      }
+    }
+  return true;
+}
+
 int InsideTest::winding_number(const Vec3& p) const {
   const double fx = (p.x() - bucket_origin_.x()) / bucket_, fy = (p.y() - bucket_origin_.y()) / bucket_;
   if (!(fx >= 0.0 && fy >= 0.0 && fx < bucket_dims_[0] && fy < bucket_dims_[1])) return 0;

@@ -156,6 +156,26 @@ TEST(Constraint, SurfaceSpawnStartsHalfASpacingOffTheSurfaceOnTheGrowingSide) {
   }
 }
 
+// Starts off triangles whose offset crosses the surface (where the mesh crosses itself, or is
+// thinner than a spacing) are tested one by one; the rest by one test per triangle. Either way
+// every start lies on the growing side.
+TEST(Constraint, SurfaceSpawnOnCrossingAndThinPartsStartsOnTheGrowingSide) {
+  TriangleMesh two_spheres = make_sphere(Vec3::Zero(), 2.0, 12, 24);
+  append(two_spheres, make_sphere(Vec3(2.5, 0.3, 0.2), 2.0, 12, 24));
+  for (const TriangleMesh& mesh : {two_spheres, make_box(Vec3::Zero(), Vec3(4, 4, 0.3))})
+    for (const Side side : {Side::inside, Side::outside}) {
+      SCOPED_TRACE(std::string(to_string(side)));
+      ConstraintOptions c;
+      c.side = side;
+      const MeshConstraint constraint(mesh, c, 0.5);
+      Rng rng(8, 0);
+      for (int i = 0; i < 400; ++i) {
+        const Vec3 p = constraint.draw_near_surface(rng);
+        ASSERT_EQ(testing::generalized_winding_number(constraint.mesh(), p) > 0.5, side == Side::inside) << p.transpose();
+      }
+    }
+}
+
 // Once the structure covers the skin, walkers find no free start there, or start trapped
 // against it across the surface: a clear error in seconds, not a run that crawls on for ever
 // (a walker refused up to a million times in a row, as before, kept the bust's run going for

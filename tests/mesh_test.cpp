@@ -7,6 +7,7 @@
 #include "dla/mesh/mesh.h"
 #include "dla/mesh/mesh_repair.h"
 #include "dla/mesh/shapes.h"
+#include "dla/mesh/surface_distance.h"
 #include "dla/mesh/surface_intersector.h"
 #include "mesh_util.h"
 #include "test_util.h"
@@ -484,6 +485,78 @@ TEST(InsideTest, MatchesSolidAnglesOnTheBust) {
   DLA_NEED_BUST(path);
   const TriangleMesh bust = repair_mesh(read_mesh(path));
   expect_inside_test_matches(bust, 300, 5);
+}
+
+struct ClearCount {
+  int clear = 0;      // offset triangles the test calls clear
+  int near = 0;       // offset triangles a scan finds within the margin or across the surface
+  int asked = 0;
+};
+
+// Triangles of `mesh` moved `offset` along their normals, each asked whether it is clear of the
+// surface. Every one called clear is checked by a scan of every triangle at its corners and at
+// random points of it: farther than the margin from all, with the winding number of its centre
+// at all. Those the scan finds near or across the surface must not be called clear.
+ClearCount check_clear_triangles(const TriangleMesh& mesh, double offset, int count, std::uint64_t seed) {
+  const InsideTest test(mesh, std::abs(offset) + 0.1, 0.2);
+  const double margin = 1e-4 * std::max(std::abs(offset), 1e-3);
+  Rng rng(seed);
+  ClearCount counted;
+  for (int i = 0; i < count; ++i) {
+    const auto& t = mesh.triangles[std::min(mesh.triangles.size() - 1,
+                                            static_cast<std::size_t>(rng.uniform() * mesh.triangles.size()))];
+    const Vec3 normal = (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]).normalized();
+    if (!normal.allFinite()) continue;
+    const Vec3 a = mesh.vertices[t[0]] + offset * normal, b = mesh.vertices[t[1]] + offset * normal,
+               c = mesh.vertices[t[2]] + offset * normal;
+    const bool clear = test.clear_of_surface(a, b, c, margin);
+    ++counted.asked;
+    counted.clear += clear;
+    const int centre = test.winding_number((a + b + c) / 3.0);
+    bool near = false;
+    for (int k = 0; k < 8 && !near; ++k) {
+      double u = k == 1 ? 1.0 : k < 3 ? 0.0 : rng.uniform(), v = k == 2 ? 1.0 : k < 3 ? 0.0 : rng.uniform();
+      if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
+      const Vec3 p = a + u * (b - a) + v * (c - a);
+      for (const auto& q : mesh.triangles) {
+        const Vec3 closest = closest_point_on_triangle(p, mesh.vertices[q[0]], mesh.vertices[q[1]], mesh.vertices[q[2]]);
+        if ((closest - p).norm() <= margin) near = true;
+      }
+      if (!near && std::abs(testing::generalized_winding_number(mesh, p) - centre) > 0.5) near = true;
+    }
+    counted.near += near;
+    EXPECT_FALSE(near && clear) << "a triangle of " << a.transpose() << ", " << b.transpose() << ", " << c.transpose();
+  }
+  return counted;
+}
+
+// The mesh's own triangles are never clear; moved off it, most are, except where the mesh is
+// thinner than the move or crosses itself.
+TEST(InsideTest, ClearTrianglesKeepTheirMarginAndOneWindingNumber) {
+  const TriangleMesh sphere = make_sphere(Vec3(0.5, -1, 2), 3.0, 12, 24);
+  EXPECT_EQ(check_clear_triangles(sphere, 0.0, 50, 1).clear, 0);
+  for (const double offset : {-0.3, 0.3}) {
+    const ClearCount counted = check_clear_triangles(sphere, offset, 200, 2);
+    EXPECT_GT(counted.clear, counted.asked * 9 / 10) << offset;
+  }
+  // A box thinner than the move: moved in, a face's triangles cross the sides.
+  const ClearCount thin = check_clear_triangles(make_box(Vec3::Zero(), Vec3(4, 4, 0.5)), -0.3, 100, 3);
+  EXPECT_GT(thin.near, 10);
+  // Two spheres that overlap: the triangles of each near the curve where they cross stay near.
+  TriangleMesh two = make_sphere(Vec3::Zero(), 2.0, 12, 24);
+  append(two, make_sphere(Vec3(2.5, 0.3, 0.2), 2.0, 12, 24));
+  const ClearCount overlap = check_clear_triangles(two, -0.2, 300, 4);
+  EXPECT_GT(overlap.near, 10);
+  EXPECT_GT(overlap.clear, 10);
+}
+
+TEST(InsideTest, ClearTrianglesOnTheBust) {
+  DLA_NEED_BUST(path);
+  const TriangleMesh bust = repair_mesh(read_mesh(path));
+  for (const double offset : {-0.05, 0.2}) {  // half the fine spacing inward, half the default outward
+    const ClearCount counted = check_clear_triangles(bust, offset, 60, 5);
+    EXPECT_GT(counted.clear, counted.asked * 2 / 3) << offset;
+  }
 }
 
 TEST(SurfaceIntersector, MatchesBruteForce) {

@@ -110,6 +110,13 @@ class InsideTest {
 
   //! winding_number(p) > 0.
   bool contains(const Vec3& p) const { return winding_number(p) > 0; }
+  //! Whether every edge is used as often one way as the other. The winding number of a closed
+  //! mesh changes only across its triangles: it is the same all over a triangle that meets none.
+  bool closed() const { return closed_; }
+  //! True only if the triangle (a, b, c) stays more than `margin` from every triangle of the
+  //! mesh, each kept apart from it by the plane of one of the two. False where some triangle
+  //! comes nearer, and also for some that do not: a test for the common case, not a distance.
+  bool clear_of_surface(const Vec3& a, const Vec3& b, const Vec3& c, double margin) const;
 
   //! contains() at the centre of every cell of a grid (x fastest, then y, then z), by one
   //! sweep of vertical lines: for a grid of one's own (ShellBand's).
