@@ -298,13 +298,15 @@ MeshConstraint::Offset MeshConstraint::offset_side(std::uint32_t t, double side)
   Offset known = offset_sides_[t].load(std::memory_order_relaxed);
   if (known != Offset::unknown) return known;
   // The triangle moved as surface_point() and beside() move its points. Where it stays clear of
-  // every triangle by the branches' gap, far beyond rounding, the closed mesh's winding number is
-  // one over all of it: one inside test answers for every start off this triangle.
+  // every triangle by the branches' gap (or, far from the origin, a billionth of the
+  // coordinates), far beyond rounding, the closed mesh's winding number is one over all of it:
+  // one inside test answers for every start off this triangle.
   const auto& tri = mesh_.triangles[t];
   const Vec3 &a = mesh_.vertices[tri[0]], &b = mesh_.vertices[tri[1]], &c = mesh_.vertices[tri[2]];
   const Vec3 shift = side * spacing_ * (b - a).cross(c - a).normalized();
+  const double margin = std::max(gap_, 1e-9 * box_.min.cwiseAbs().cwiseMax(box_.max.cwiseAbs()).maxCoeff());
   known = Offset::mixed;
-  if (inside_.clear_of_surface(a + shift, b + shift, c + shift, gap_))
+  if (inside_.clear_of_surface(a + shift, b + shift, c + shift, margin))
     known = inside_.contains((a + b + c) / 3.0 + shift) == (options_.side == Side::inside) ? Offset::growing
                                                                                               : Offset::other;
   offset_sides_[t].store(known, std::memory_order_relaxed);

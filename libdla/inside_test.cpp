@@ -15,6 +15,7 @@ namespace dla {
 namespace {
 
 constexpr double kMaxBuckets = 1024.0 * 1024.0;
+constexpr double kMaxClearBuckets = 256.0;  // for clear_of_surface()
 
 //! Whether every edge is used as often one way as the other: a closed surface (or several),
 //! around which the winding number is the same along every line.
@@ -269,6 +270,9 @@ bool InsideTest::clear_of_surface(const Vec3& a, const Vec3& b, const Vec3& c, d
     return static_cast<int>(std::clamp(f, 0.0, static_cast<double>(bucket_dims_[axis] - 1)));
   };
   const int x0 = bucket(lo.x(), 0), x1 = bucket(hi.x(), 0), y0 = bucket(lo.y(), 1), y1 = bucket(hi.y(), 1);
+  // A triangle over many buckets (a CAD model's long cap, at a fine spacing) would cost more
+  // scans than the inside tests it saves.
+  if (static_cast<double>(x1 - x0 + 1) * (y1 - y0 + 1) > kMaxClearBuckets) return false;
   for (int y = y0; y <= y1; ++y)
     for (int x = x0; x <= x1; ++x) {
       const std::size_t b_index = static_cast<std::size_t>(y) * bucket_dims_[0] + x;

@@ -540,7 +540,7 @@ TEST(InsideTest, ClearTrianglesKeepTheirMarginAndOneWindingNumber) {
     EXPECT_GT(counted.clear, counted.asked * 9 / 10) << offset;
   }
   // A box thinner than the move: moved in, a face's triangles cross the sides.
-  const ClearCount thin = check_clear_triangles(make_box(Vec3::Zero(), Vec3(4, 4, 0.5)), -0.3, 100, 3);
+  const ClearCount thin = check_clear_triangles(make_box(Vec3::Zero(), Vec3(1.6, 1.6, 0.5)), -0.3, 100, 3);
   EXPECT_GT(thin.near, 10);
   // Two spheres that overlap: the triangles of each near the curve where they cross stay near.
   TriangleMesh two = make_sphere(Vec3::Zero(), 2.0, 12, 24);

@@ -115,7 +115,8 @@ class InsideTest {
   bool closed() const { return closed_; }
   //! True only if the triangle (a, b, c) stays more than `margin` from every triangle of the
   //! mesh, each kept apart from it by the plane of one of the two. False where some triangle
-  //! comes nearer, and also for some that do not: a test for the common case, not a distance.
+  //! comes nearer, and also for some that do not, and for a triangle over more than 256 of
+  //! the winding number's columns: a cheap test for the common case, not a distance.
   bool clear_of_surface(const Vec3& a, const Vec3& b, const Vec3& c, double margin) const;
 
   //! contains() at the centre of every cell of a grid (x fastest, then y, then z), by one
