@@ -32,7 +32,7 @@ void look(benchmark::State& state) {
   options.radius.model = dla::RadiusModel::pipe;
   for (auto _ : state) {
     const dla::Look look = dla::make_look(tree, options);
-    benchmark::DoNotOptimize(look.radii(tree));  // the radii are computed when asked
+    benchmark::DoNotOptimize(look.radii);  // the radii are computed when asked
   }
 }
 
@@ -47,7 +47,7 @@ void tube_mesh(benchmark::State& state) {
   for (auto _ : state) {
     const dla::Look look = dla::make_look(tree, options);
     vertices = triangles = 0;
-    dla::for_each_tube(tree, look.attributes, look.radii(tree), options.tubes, [&](const dla::TubePiece& piece) {
+    dla::for_each_tube(tree, look.attributes, look.radii, options.tubes, [&](const dla::TubePiece& piece) {
       vertices += piece.positions.size();
       triangles += piece.triangles.size();
     });

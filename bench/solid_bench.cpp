@@ -24,7 +24,7 @@ void solid_stl(benchmark::State& state) {
   const dla::Cluster& tree = dla_tree(static_cast<std::size_t>(state.range(0)));
   dla::LookOptions look;
   look.radius.model = dla::RadiusModel::pipe;
-  const std::vector<float> radii = dla::make_look(tree, look).radii(tree);
+  const std::vector<float> radii = dla::make_look(tree, look).radii;
   dla::SolidOptions options;
   options.voxel = static_cast<double>(state.range(1)) / 1000.0;
   options.adaptivity = static_cast<double>(state.range(2)) / 10.0;

@@ -82,7 +82,7 @@ int frames(const FramesCommand& command, bool quiet, const StopFlag& stop, const
   // The last frame's solid is the largest: refused, before any frame is written, if it would
   // not fit.
   if (files.formats.solid())
-    plan_solid(whole, make_look(whole, files.look, {nullptr, nullptr, 1, false}).radii(whole), files.solid);
+    plan_solid(whole, make_look(whole, files.look, {nullptr, nullptr, 1, false}).radii, files.solid);
 
   const std::size_t others = attached(whole);
   ProgressBar bar(command.count, !quiet && isatty(STDERR_FILENO));

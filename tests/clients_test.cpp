@@ -88,7 +88,7 @@ struct Tubes {
 
 Tubes tubes_of(const Cluster& c, const Look& look) {
   Tubes t;
-  for_each_tube(c, look.attributes, look.radii(c), look.options.tubes, [&](const TubePiece& piece) {
+  for_each_tube(c, look.attributes, look.radii, look.options.tubes, [&](const TubePiece& piece) {
     t.vertices += piece.positions.size();
     t.triangles += piece.triangles.size();
     std::set<std::pair<std::uint32_t, std::uint32_t>> edges;  // by index: the seam is an edge twice

@@ -9,6 +9,7 @@
 #include "dla/io/mesh_writers.h"
 #include "dla/models/dla.h"
 #include "dla/run/output.h"
+#include "dla/run/run.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -235,7 +236,34 @@ TEST(Leaves, FilesThatAreNotALeafAreRefusedInOneLine) {
   files.formats = parse_formats("glb");
   EXPECT_NO_THROW(check_glb_options(files));
   files.leaf = dir / "case0.glb";
-  EXPECT_THROW(check_glb_options(files), InvalidInput) << "read before growth";
+  EXPECT_NO_THROW(check_glb_options(files)) << "the formats' check reads no file";
+  // The run reads the leaf once, before any mesh or growth.
+  DlaRunOptions run;
+  run.particles = 200;
+  run.files.formats = parse_formats("glb");
+  run.files.leaf = dir / "case0.glb";
+  EXPECT_THROW(prepare_run(run), InvalidInput) << "read before growth";
+}
+
+// The leaf is read once, when the run is set up: the glb writes the leaf it read then, even
+// when the file has changed since.
+TEST(Leaves, TheLeafIsReadOnceWhenTheRunIsSetUp) {
+  ScratchDir dir;
+  std::filesystem::copy_file(kLeaf, dir / "leaf.glb");
+  DlaRunOptions options;
+  options.particles = 300;
+  options.files.formats = parse_formats("glb");
+  options.files.output = dir / "tree";
+  options.files.leaf = dir / "leaf.glb";
+  const std::unique_ptr<dla::Run> run = prepare_run(options);
+  ASSERT_TRUE(run->leaf);
+  EXPECT_EQ(run->leaf->path, options.files.leaf);
+  std::ofstream(dir / "leaf.glb", std::ios::trunc) << "no longer a glb";
+  RunRecord record;
+  const Cluster tree = grow_recorded(*run, {}, nullptr, record);
+  write_run(*run, tree, record);
+  const std::string glb = read_file(dir / "tree.glb");
+  EXPECT_NE(glb.find("\"name\":\"leaf "), std::string::npos) << "no leaf node in the glb";
 }
 
 // The command line: before growth, a bad leaf is refused and nothing is written; a good one

@@ -277,7 +277,7 @@ TEST(Links, TubesAreClosedAndJoinTheirEnds) {
   tree.links = neighbour_links(tree, parse_links("2.5,2"));
   ASSERT_GT(tree.links.size(), 5u);
   const Look look = make_look(tree, {});
-  const std::vector<float> radii = look.radii(tree);
+  const std::vector<float> radii = look.radii;
   std::size_t strands = 0, pieces = 0, link_tubes = 0;
   for_each_strand(tree, [&](const Strand& strand) { strands += strand.size() >= 2; });
   for_each_tube(tree, look.attributes, radii, {}, [&](const TubePiece& piece) {
@@ -303,7 +303,7 @@ TEST(Links, TubesAreClosedAndJoinTheirEnds) {
 // closed shell, with more volume than its tree alone.
 TEST(Links, AreBranchesOfTheSolid) {
   Cluster tree = dla_tree(800, 3);
-  const std::vector<float> radii = make_look(tree, {}).radii(tree);
+  const std::vector<float> radii = make_look(tree, {}).radii;
   SolidOptions o;
   o.voxel = 0.25;
   const Solid plain = build_solid(tree, radii, o);

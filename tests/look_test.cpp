@@ -14,7 +14,7 @@
 #include "dla/mesh/shapes.h"
 #include "dla/mesh/surface_distance.h"
 #include "dla/io/svg_writer.h"
-#include "glb_limit.h"
+#include "io/glb_limit.h"
 #include "mesh_util.h"
 #include "test_util.h"
 #include "tube_check.h"
@@ -360,7 +360,7 @@ void expect_closed_and_outward(const TubePiece& piece, const Vec3& inside) {
 TEST(Tubes, AreClosedOutwardAndAsWideAsTheirRadii) {
   const Cluster c = grown(800);
   const Look look = make_look(c, {});
-  const std::vector<float> radii = look.radii(c);
+  const std::vector<float> radii = look.radii;
   std::size_t pieces = 0, vertices = 0;
   for_each_tube(c, look.attributes, radii, look.options.tubes, [&](const TubePiece& piece) {
     ++pieces;
@@ -399,7 +399,7 @@ TEST(Tubes, PruneTwigsWithoutLeavingPiecesAfloat) {
   pruned.min_branch = 6;
   std::size_t all = 0, kept = 0;
   std::set<std::int32_t> tubed;  // particles with a ring
-  const std::vector<float> radii = look.radii(c);
+  const std::vector<float> radii = look.radii;
   for_each_tube(c, look.attributes, radii, {}, [&](const TubePiece&) { ++all; });
   std::vector<std::size_t> starts;  // each kept tube's first own particle
   for_each_tube(c, look.attributes, radii, pruned, [&](const TubePiece& piece) {
@@ -473,7 +473,7 @@ TEST(Tubes, TextureRunsAroundAndAlongFromParentToChild) {
 
   const Cluster c = grown(1500);
   const Look look = make_look(c, {});
-  const std::vector<float> r = look.radii(c);
+  const std::vector<float> r = look.radii;
   const double scale = 2 * 3.14159265358979323846 * *std::max_element(r.begin(), r.end()) * c.spacing;
   const auto v_at = [&](std::size_t i) {  // the path to the seed, step by step
     double length = 0.0;
@@ -746,7 +746,7 @@ TEST(LookFiles, GlbAndObjHoldEveryTube) {
   const Look look = make_look(c, options);
   std::size_t vertices = 0, triangles = 0;
   std::vector<TubePiece> pieces;
-  for_each_tube(c, look.attributes, look.radii(c), options.tubes, [&](const TubePiece& piece) {
+  for_each_tube(c, look.attributes, look.radii, options.tubes, [&](const TubePiece& piece) {
     vertices += piece.positions.size();
     triangles += piece.triangles.size();
     pieces.push_back(piece);

@@ -14,7 +14,7 @@
 #include "dla/models/colonization.h"
 #include "dla/models/dla.h"
 #include "dla/models/eden.h"
-#include "solid_grid.h"
+#include "look/solid_grid.h"
 
 #include <gtest/gtest.h>
 
@@ -119,7 +119,7 @@ Cluster small_tree(std::size_t particles, std::uint64_t seed, std::vector<Vec3> 
 std::vector<float> pipe_radii(const Cluster& c) {
   LookOptions options;
   options.radius.model = RadiusModel::pipe;
-  return make_look(c, options).radii(c);
+  return make_look(c, options).radii;
 }
 
 TEST(Solid, EveryVoxelHoldsTheDistanceToTheUnionOfCapsules) {
@@ -155,7 +155,7 @@ TEST(Solid, VolumeMatchesMonteCarloAndEveryParticleIsInside) {
     const Cluster c = small_tree(80, 9);
     LookOptions options;
     options.radius.model = model;
-    const std::vector<float> radii = make_look(c, options).radii(c);
+    const std::vector<float> radii = make_look(c, options).radii;
     const Solid solid = build_solid(c, radii, {});
     const auto [estimate, error] = Union(c, radii).volume(4000, 17);
     EXPECT_LT(error, 0.005 * estimate);
@@ -219,7 +219,7 @@ TEST(Solid, EveryModelAndShapeGivesAClosedSolid) {
     LookOptions look;
     look.radius.model = RadiusModel::uniform;
     look.radius.base_radius = 0.6;  // spheres a spacing apart overlap
-    const std::vector<float> radii = make_look(k.cluster, look).radii(k.cluster);
+    const std::vector<float> radii = make_look(k.cluster, look).radii;
     const Solid solid = build_solid(k.cluster, radii, o);
     EXPECT_EQ(edge_faults(solid.mesh), "");
     EXPECT_FALSE(self_intersects(solid.mesh));
@@ -322,7 +322,7 @@ TEST(Solid, ObjHoldsTheMeshOverManyBatches) {
   // over several, formatted on several threads.
   const Cluster c = small_tree(500, 31);
   const Look look = make_look(c, {});
-  const Solid solid = build_solid(c, look.radii(c), {});
+  const Solid solid = build_solid(c, look.radii, {});
   ASSERT_GT(solid.mesh.vertices.size() + solid.mesh.triangles.size(), 3u * 32768) << "too small to span batches";
   ScratchDir dir;
   write_solid_obj(solid, c, look, dir / "s.obj");
@@ -343,7 +343,7 @@ TEST(Solid, TheSameFilesOnAnyThreadCount) {
   for (const int threads : {1, 2, 3}) {
     SolidOptions o;
     o.threads = threads;
-    const Solid solid = build_solid(c, look.radii(c), o);
+    const Solid solid = build_solid(c, look.radii, o);
     write_stl(solid, dir / "s.stl");
     write_3mf(solid, dir / "s.3mf");
     write_vdb(solid, c, look, dir / "s.vdb");
@@ -361,7 +361,7 @@ TEST(Solid, TheSameFilesOnAnyThreadCount) {
     SolidOptions o;
     o.threads = threads;
     o.smooth = 0.4;
-    const Solid solid = build_solid(c, look.radii(c), o);
+    const Solid solid = build_solid(c, look.radii, o);
     write_stl(solid, dir / "smooth.stl");
     const std::string bytes = read_file(dir / "smooth.stl");
     if (threads == 1) first["smooth"] = bytes;

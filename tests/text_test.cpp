@@ -1,6 +1,6 @@
-// The writers' number formatting (libdla/output_file.h) against the standard library: the
+// The writers' number formatting (libdla/io/output_file.h) against the standard library: the
 // fast paths must give the bytes the plain calls give.
-#include "output_file.h"
+#include "io/output_file.h"
 
 #include <gtest/gtest.h>
 

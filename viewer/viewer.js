@@ -1,5 +1,5 @@
 // dla3d's web viewer: the script every PREFIX.html inlines (bundled with three.js by esbuild
-// at build time). It reads the structure the page embeds (libdla/html_writer.cpp writes it) and
+// at build time). It reads the structure the page embeds (libdla/io/html_writer.cpp writes it) and
 // shows it with orbit controls, a growth slider that replays the attach order, a colour
 // attribute, lines or tubes, and the constraint mesh as glass. docs/animation.md has the user's
 // side.

@@ -50,10 +50,8 @@ class BallisticRun : public Run {
     };
     out.statistics = [this](RecordWriter& w) {
       w.open("lines")
-          .count("launched", stats_.launched)
-          .count("missed", stats_.missed)
-          .count("far_steps", stats_.far_steps)
-          .count("near_steps", stats_.near_steps)
+          .counts({{"launched", stats_.launched}, {"missed", stats_.missed}, {"far_steps", stats_.far_steps},
+                   {"near_steps", stats_.near_steps}})
           .close();
     };
     return out;

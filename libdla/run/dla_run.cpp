@@ -130,15 +130,9 @@ class DlaRun : public Run {
       if (constraint_) record_constraint(w);
       const WalkStats& s = stats_.walk;
       w.open("walk")
-          .count("walkers", s.walkers)
-          .count("steps", s.steps)
-          .count("near_steps", s.near_steps)
-          .count("contacts", s.contacts)
-          .count("returns", s.returns)
-          .count("relaunches", s.relaunches)
-          .count("lost", s.lost)
-          .count("rejected", s.rejected)
-          .count("clipped", s.clipped)
+          .counts({{"walkers", s.walkers}, {"steps", s.steps}, {"near_steps", s.near_steps}, {"contacts", s.contacts},
+                   {"returns", s.returns}, {"relaunches", s.relaunches}, {"lost", s.lost}, {"rejected", s.rejected},
+                   {"clipped", s.clipped}})
           .close();
     };
     if (options_.fill > 0.0) out.measures = [this](RecordWriter& w) { w.number("filled", stats_.filled, 6); };

@@ -85,14 +85,11 @@ class DropRun : public Run {
     ModelRecord out{"drop", options_.rng_seed};
     out.options = [this](RecordWriter& w) { record_options(w); };
     out.statistics = [this](RecordWriter& w) {
+      const DropStats& s = stats_;
       w.open("drops")
-          .count("drops", stats_.drops)
-          .count("on_structure", stats_.on_structure)
-          .count("refused", stats_.refused)
-          .count("lost", stats_.lost)
-          .count("mesh_rejected", stats_.mesh_rejected)
-          .count("clipped", stats_.clipped)
-          .flag("zone_full", stats_.zone_full)
+          .counts({{"drops", s.drops}, {"on_structure", s.on_structure}, {"refused", s.refused}, {"lost", s.lost},
+                   {"mesh_rejected", s.mesh_rejected}, {"clipped", s.clipped}})
+          .flag("zone_full", s.zone_full)
           .close();
     };
     return out;

@@ -74,7 +74,6 @@ void check_glb_options(const OutputOptions& output) {
     throw InvalidInput("`lod` " + std::to_string(output.lods) + " writes levels of the glb: add glb to `formats`");
   if (output.leaf.empty()) return;
   if (!output.formats.glb) throw InvalidInput("`leaf` places leaves in the glb: add glb to `formats`");
-  read_leaf(output.leaf);
 }
 
 std::vector<std::string> file_names(const OutputOptions& output) {

@@ -130,8 +130,12 @@ std::unique_ptr<Run> prepare_run(const RunOptions& options, const MeshReader& re
   if (resumed.cluster && model.name != "grow") throw InvalidInput("only DLA runs go on from a checkpoint");
   const MeshReader reader =
       read ? read : [](const std::string& path, std::uint64_t* hash) { return read_mesh(path, hash); };
+  // The leaf before the meshes: a bad one is refused before a long set-up.
+  const std::string& leaf_path = output_of(options).leaf;
+  std::shared_ptr<const Leaf> leaf = leaf_path.empty() ? nullptr : std::make_shared<const Leaf>(read_leaf(leaf_path));
   std::unique_ptr<Run> run = model.prepare(options, reader, resumed);
   run->model = model.name;
+  run->leaf = std::move(leaf);
   // Refused before growing, not when the files are written.
   if (run->files.instances.exclude_paint && run->constraint)
     run->constraint->require_paint(*run->files.instances.exclude_paint, "tips_exclude_paint");

@@ -12,7 +12,7 @@
 #include "dla/io/pov_writer.h"
 #include "dla/io/svg_writer.h"
 #include "dla/mesh/surface_distance.h"
-#include "../output_file.h"
+#include "io/output_file.h"
 
 #include <malloc.h>
 
@@ -35,6 +35,7 @@ struct WriteJob {
   const OutputOptions& files;
   const PovOptions& pov;
   const TriangleMesh* scene_mesh;
+  const Leaf* leaf;  //!< for the glb, or null
   GlbWritten& glb;  //!< the glb's writer counts its levels' triangles and its leaves here
 };
 
@@ -53,9 +54,7 @@ const WriterEntry kWriters[] = {
      [](const WriteJob& j, const std::string& path) { write_ply(j.cluster, j.look, path, j.files.ply_encoding); }},
     {&Formats::glb, ".glb",
      [](const WriteJob& j, const std::string& path) {
-       std::optional<Leaf> leaf;
-       if (!j.files.leaf.empty()) leaf = read_leaf(j.files.leaf);
-       j.glb = write_glb(j.cluster, j.look, path, {j.files.lods, leaf ? &*leaf : nullptr, j.files.instances});
+       j.glb = write_glb(j.cluster, j.look, path, {j.files.lods, j.leaf, j.files.instances});
      }},
     {&Formats::obj, ".obj", [](const WriteJob& j, const std::string& path) { write_obj(j.cluster, j.look, path); }},
     {&Formats::tips, "_tips.ply",
@@ -134,9 +133,12 @@ FilesWritten write_files(const Cluster& cluster, const OutputOptions& files, con
                                files.instances.exclude_paint ? &*files.instances.exclude_paint : nullptr,
                                context.constraint ? &context.constraint->mesh() : nullptr, context.measured});
   // The solid's plan first: a solid that would not fit is refused before any file is written.
-  const SolidPlan plan = files.formats.solid() ? plan_solid(cluster, look.radii(cluster), files.solid) : SolidPlan{};
+  const SolidPlan plan = files.formats.solid() ? plan_solid(cluster, look.radii, files.solid) : SolidPlan{};
   FilesWritten written;
-  const WriteJob job{cluster, look, files, pov, context.scene_mesh, written.glb};
+  std::optional<Leaf> leaf_read_here;
+  const Leaf* leaf = context.leaf;
+  if (!leaf && !files.leaf.empty() && files.formats.glb) leaf = &leaf_read_here.emplace(read_leaf(files.leaf));
+  const WriteJob job{cluster, look, files, pov, context.scene_mesh, leaf, written.glb};
   std::vector<std::future<void>> writers;
   const WriterEntry* scene = nullptr;
   for (const WriterEntry& writer : kWriters) {
@@ -170,7 +172,8 @@ void write_run(const Run& run, const Cluster& cluster, const OutputOptions& file
   try {
     FilesWritten written = write_files(
         cluster, files,
-        {run.threads, run.constraint, run.scene_mesh, record.command, stop, solid_progress, run.measured_while_growing.get()});
+        {run.threads, run.constraint, run.scene_mesh, record.command, stop, solid_progress, run.measured_while_growing.get(),
+         run.leaf.get()});
     record.solid = written.solid;
     record.lod_triangles = std::move(written.glb.lod_triangles);
     if (!files.leaf.empty() && files.formats.glb) record.leaves = written.glb.leaves;

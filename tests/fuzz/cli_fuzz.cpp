@@ -143,7 +143,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // The look the options ask for: attributes, radii, tubes and instancing points.
     const dla::OutputOptions& files = run->files;
     const dla::Look look = dla::make_look(cluster, files.look);
-    const std::vector<float> radii = look.radii(cluster);
+    const std::vector<float> radii = look.radii;
     for (const float radius : radii)
       if (!(radius > 0.0f) || !std::isfinite(radius)) std::abort();
     std::size_t triangles = 0;

@@ -2,7 +2,7 @@
 // refused with InvalidInput or give a leaf whose objects renumber, for a glb with objects of
 // its own before them, without a fault. Build with -DDLA_FUZZ=ON (clang); see docs/testing.md.
 
-#include "leaf_parts.h"
+#include "io/leaf_parts.h"
 
 #include "dla/core/errors.h"
 

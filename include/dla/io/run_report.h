@@ -13,9 +13,11 @@
 
 #include <cstdint>
 #include <functional>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace dla {
@@ -46,6 +48,11 @@ class RecordWriter {
   }
   RecordWriter& integer(std::string_view name, long long value) { return field(name, std::to_string(value)); }
   RecordWriter& count(std::string_view name, std::uint64_t value) { return field(name, std::to_string(value)); }
+  //! count() of each (name, value), in order: a model's statistics.
+  RecordWriter& counts(std::initializer_list<std::pair<std::string_view, std::uint64_t>> named) {
+    for (const auto& [name, value] : named) count(name, value);
+    return *this;
+  }
   RecordWriter& text(std::string_view name, std::string_view value) { return field(name, json::string(value)); }
   RecordWriter& flag(std::string_view name, bool value) { return field(name, value ? "true" : "false"); }
   RecordWriter& point(std::string_view name, const Vec3& p) { return field(name, point_json(p)); }

@@ -26,23 +26,22 @@ inline void validate(const LookOptions& options) {
 struct Look {
   LookOptions options;
   Attributes attributes;
+  //! Every particle's branch radius, in spacings: the tube meshes', the solid's, the viewer's.
+  std::vector<float> radii;
 
   //! Particle i's branch radius in scene units.
-  double radius(const Cluster& cluster, std::size_t i) const {
-    return static_cast<double>(branch_radius(options.radius, cluster, attributes, i)) * cluster.spacing;
-  }
-  //! Every particle's branch radius, in spacings, for the tube meshes.
-  std::vector<float> radii(const Cluster& cluster) const { return branch_radii(options.radius, cluster, attributes); }
+  double radius(const Cluster& cluster, std::size_t i) const { return static_cast<double>(radii[i]) * cluster.spacing; }
 };
 
-//! Computes the attributes; the radii come from them when asked. Throws InvalidInput for bad
-//! options, or a model that needs a mesh (`boundary`) without `sources.surface`.
+//! Computes the attributes and, from them, the radii, once for every writer. Throws
+//! InvalidInput for bad options, or a model that needs a mesh (`boundary`) without
+//! `sources.surface`.
 inline Look make_look(const Cluster& cluster, const LookOptions& options, const AttributeOptions& sources = {}) {
   validate(options);
   Look look;
   look.options = options;
   look.attributes = compute_attributes(cluster, sources);
-  validate(options.radius, look.attributes);
+  look.radii = branch_radii(options.radius, cluster, look.attributes);
   return look;
 }
 

@@ -99,8 +99,9 @@ struct SolidMeasures {
 };
 
 namespace detail {
-struct SolidGrid;  // the OpenVDB level set (libdla/solid_grid.h)
-struct SolidWork;  // the pieces and where they reach (libdla/solid.cpp)
+struct SolidGrid;  // the OpenVDB level set (libdla/look/solid_grid.h)
+struct SolidWork;  // the pieces and where they reach (libdla/look/solid.cpp)
+struct SolidNearest;  // the particles' k-d tree, built on first use (libdla/look/solid.cpp)
 }  // namespace detail
 
 //! A structure's solid: its mesh, its measures, the grid it was meshed from (for the .vdb
@@ -111,6 +112,8 @@ struct Solid {
   std::shared_ptr<const detail::SolidGrid> grid;
   //! The structure's point p lies at (p - origin) * measures.scale in the mesh.
   Vec3 origin = Vec3::Zero();
+  //! The look-up of nearest_particles, shared by the solid's files and built once for all.
+  std::shared_ptr<detail::SolidNearest> nearest;
 };
 
 //! What building a structure's solid will take, found before any of it is built: the scale,
@@ -146,8 +149,9 @@ inline Solid build_solid(const Cluster& cluster, const std::vector<float>& radii
 //! .vdb) holds the widened union's distance, and the mesh's vertices lie on its zero.
 double chord_depth(double voxel, double radius, bool sphere);
 
-//! For each point of the mesh (in its units), the particle nearest to it: what the solid's
-//! vertex colours and attributes, and its `age` grid, are taken from.
+//! For each point of the mesh (in its units), the particle of `cluster`, the structure the solid
+//! was built from, nearest to it: what the solid's vertex colours and attributes, and its `age`
+//! grid, are taken from. The first call builds the look-up, for every later one on any thread.
 std::vector<std::int32_t> nearest_particles(const Cluster& cluster, const Solid& solid,
                                             const std::vector<Eigen::Vector3f>& points);
 

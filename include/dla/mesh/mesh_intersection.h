@@ -1,7 +1,7 @@
 #pragma once
 //! \file mesh_intersection.h
 //! Where two triangle meshes' surfaces meet, by CGAL's AABB tree and exact predicates
-//! (libdla/mesh_intersection.cpp): for seeds where one object enters another (`--seed-mesh`).
+//! (libdla/mesh/mesh_intersection.cpp): for seeds where one object enters another (`--seed-mesh`).
 
 #include "dla/mesh/mesh.h"
 

@@ -2,7 +2,7 @@
 //! \file mesh_repair.h
 //! Makes a user's mesh usable as a constraint: merges duplicate vertices, drops degenerate
 //! triangles, orients the triangles consistently and, for a solid, closes holes and turns the
-//! triangles to face out. CGAL does the work behind this interface (libdla/mesh_repair.cpp).
+//! triangles to face out. CGAL does the work behind this interface (libdla/mesh/mesh_repair.cpp).
 
 #include "dla/mesh/mesh.h"
 

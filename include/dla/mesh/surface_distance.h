@@ -1,7 +1,7 @@
 #pragma once
 //! \file surface_distance.h
 //! Closest points of a triangle mesh's surface, by Embree's point queries on its bounding volume
-//! hierarchy (libdla/surface_distance.cpp): for the attributes and radius models that depend on
+//! hierarchy (libdla/mesh/surface_distance.cpp): for the attributes and radius models that depend on
 //! the distance to a constraint mesh, a shell's exact test and the vessels of space colonization.
 
 #include "dla/mesh/mesh.h"

@@ -1,6 +1,6 @@
 #pragma once
 //! \file surface_intersector.h
-//! First hit of a segment with a triangle mesh, by Embree (libdla/surface_intersector.cpp).
+//! First hit of a segment with a triangle mesh, by Embree (libdla/mesh/surface_intersector.cpp).
 //! Used when a walker is about to stick, never on a walk step.
 
 #include "dla/mesh/mesh.h"

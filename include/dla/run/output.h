@@ -59,9 +59,9 @@ struct OutputOptions {
   std::optional<double> base_radius, tip_radius;
 };
 
-//! Throws InvalidInput for levels of detail or a leaf without the glb they belong to, and for a
-//! leaf file read_leaf refuses (IOError for one it cannot read): checked where the formats are
-//! final, before growth on the command line and at write() in Python.
+//! Throws InvalidInput for levels of detail or a leaf without the glb they belong to: checked
+//! where the formats are final, before growth on the command line and at write() in Python.
+//! The leaf file itself is read, once, by prepare_run (Run::leaf).
 void check_glb_options(const OutputOptions& output);
 
 //! The files `output` writes, in `formats` order, for a summary.
@@ -82,6 +82,8 @@ struct WriteContext {
   //! Closest triangles of the constraint's surface measured before (Run::measured_while_growing),
   //! or null.
   const MeasuredClosest* measured = nullptr;
+  //! The leaf of `leaf`, read once before growth (Run::leaf); null: read here if the glb wants it.
+  const Leaf* leaf = nullptr;
 };
 
 //! What writing measured: the solid's measures, when a solid format was asked for.

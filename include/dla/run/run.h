@@ -15,6 +15,7 @@
 //! \endcode
 
 #include "dla/core/cluster.h"
+#include "dla/io/leaf.h"
 #include "dla/io/run_report.h"
 #include "dla/mesh/constraint.h"
 #include "dla/run/models.h"
@@ -81,6 +82,8 @@ class Run {
   std::shared_ptr<const MeasuredClosest> measured_while_growing;
   //! The mesh the POV-Ray scene and the web viewer show, or null.
   const TriangleMesh* scene_mesh = nullptr;
+  //! The leaf file of `files.leaf`, read and checked once before any mesh, or null.
+  std::shared_ptr<const Leaf> leaf;
   //! DLA growing to fill a mesh: the fraction of its volume asked for, else 0.
   double fill = 0.0;
   //! The hash of the mesh's file (or text), which a checkpoint keeps to know it again.

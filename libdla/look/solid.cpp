@@ -586,13 +586,20 @@ double signed_volume(const SolidMesh& mesh, const std::array<std::uint32_t, 3>& 
 //! Turns the mesh outward and leaves out the voids the union encloses (the shells that face
 //! in), which a print would fill anyway and a slicer counts as parts, any piece inside a void,
 //! and specks of less than `least` volume: every piece of the union holds a whole particle's
-//! sphere, so a smaller one is the closing's or the sampling's, not the structure's. Returns
-//! the shells kept.
-std::size_t orient_and_fill(SolidMesh& mesh, double least) {
+//! sphere, so a smaller one is the closing's or the sampling's, not the structure's.
+struct Filled {
+  std::size_t shells = 0;  //!< kept
+  double volume = 0.0;     //!< of the kept shells, summed in the order of their triangles
+};
+Filled orient_and_fill(SolidMesh& mesh, double least) {
+  // Each triangle's signed volume once: the whole's, the shells' and the kept ones' sums.
+  std::vector<double> signed_volumes(mesh.triangles.size());
   double volume = 0.0;
-  for (const auto& t : mesh.triangles) volume += signed_volume(mesh, t);
-  if (volume < 0.0)
+  for (std::size_t k = 0; k < mesh.triangles.size(); ++k) volume += signed_volumes[k] = signed_volume(mesh, mesh.triangles[k]);
+  if (volume < 0.0) {  // turned outward: every signed volume changes sign exactly
     for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+    for (double& v : signed_volumes) v = -v;
+  }
   std::size_t shells = 0;
   const std::vector<std::uint32_t> shell = shells_of(mesh, shells);
   std::vector<double> volumes(shells, 0.0);
@@ -602,7 +609,7 @@ std::size_t orient_and_fill(SolidMesh& mesh, double least) {
     boxes[shell[v]].extend(mesh.vertices[v]);
     if (first[shell[v]] == ~0u) first[shell[v]] = v;
   }
-  for (const auto& t : mesh.triangles) volumes[shell[t[0]]] += signed_volume(mesh, t);
+  for (std::size_t k = 0; k < mesh.triangles.size(); ++k) volumes[shell[mesh.triangles[k][0]]] += signed_volumes[k];
   std::vector<char> keep(shells);
   for (std::size_t s = 0; s < shells; ++s) keep[s] = volumes[s] > least;
   // A piece inside a void: its first vertex is inside the void's shell (by its winding number).
@@ -622,8 +629,11 @@ std::size_t orient_and_fill(SolidMesh& mesh, double least) {
       if (std::abs(winding) > 2.0 * M_PI) keep[s] = 0;  // |winding number| above 1/2
     }
   }
-  const std::size_t kept = static_cast<std::size_t>(std::count(keep.begin(), keep.end(), 1));
-  if (kept == shells) return shells;
+  Filled kept;
+  kept.shells = static_cast<std::size_t>(std::count(keep.begin(), keep.end(), 1));
+  for (std::size_t k = 0; k < mesh.triangles.size(); ++k)
+    if (keep[shell[mesh.triangles[k][0]]]) kept.volume += signed_volumes[k];
+  if (kept.shells == shells) return kept;
   SolidMesh filled;
   std::vector<std::uint32_t> renumber(mesh.vertices.size(), ~0u);
   for (const auto& t : mesh.triangles) {
@@ -769,6 +779,7 @@ SolidPlan plan_solid(const Cluster& cluster, const std::vector<float>& radii, co
 Solid build_solid(const SolidPlan& plan, const StopFlag* stop, const SolidProgress& progress) {
   detail::initialize_openvdb();
   Solid solid;
+  solid.nearest = std::make_shared<detail::SolidNearest>();
   if (!plan.work) return solid;
   const detail::SolidWork& w = *plan.work;
   const SolidOptions& o = w.options;
@@ -804,10 +815,10 @@ Solid build_solid(const SolidPlan& plan, const StopFlag* stop, const SolidProgre
   if (smooth == 0.0) project_onto(solid.mesh, pieces, pairs, voxel, threads);
 
   // Half the thinnest sphere's volume: the mesh's facets cut inside a little.
-  const std::size_t shells = orient_and_fill(solid.mesh, M_PI / 12.0 * thinnest * thinnest * thinnest);
-  double volume = 0.0, area = 0.0;
+  const Filled filled = orient_and_fill(solid.mesh, M_PI / 12.0 * thinnest * thinnest * thinnest);
+  const std::size_t shells = filled.shells;
+  double volume = filled.volume, area = 0.0;
   for (const auto& t : solid.mesh.triangles) {
-    volume += signed_volume(solid.mesh, t);
     const Eigen::Vector3d a = solid.mesh.vertices[t[0]].cast<double>(), b = solid.mesh.vertices[t[1]].cast<double>(),
                           c = solid.mesh.vertices[t[2]].cast<double>();
     area += (b - a).cross(c - a).norm() / 2.0;
@@ -865,22 +876,33 @@ struct KdPoints {
 
 }  // namespace
 
-std::vector<std::int32_t> nearest_particles(const Cluster& cluster, const Solid& solid,
-                                            const std::vector<Eigen::Vector3f>& points) {
-  KdPoints particles;  // in the mesh's units
-  particles.at.reserve(cluster.particles.size());
-  for (const Particle& p : cluster.particles)
-    particles.at.push_back(((p.position - solid.origin) * solid.measures.scale).cast<float>());
-  std::vector<std::int32_t> nearest(points.size(), -1);
-  if (particles.at.empty()) return nearest;
+struct detail::SolidNearest {
   using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, KdPoints>, KdPoints, 3,
                                                    std::uint32_t>;
-  Tree tree(3, particles, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  tree.buildIndex();
+  std::once_flag built;
+  KdPoints particles;  // in the mesh's units
+  std::unique_ptr<Tree> tree;
+};
+
+std::vector<std::int32_t> nearest_particles(const Cluster& cluster, const Solid& solid,
+                                            const std::vector<Eigen::Vector3f>& points) {
+  if (!solid.nearest) throw std::logic_error("nearest_particles of a solid that build_solid did not build");
+  detail::SolidNearest& look_up = *solid.nearest;
+  std::call_once(look_up.built, [&] {
+    look_up.particles.at.reserve(cluster.particles.size());
+    for (const Particle& p : cluster.particles)
+      look_up.particles.at.push_back(((p.position - solid.origin) * solid.measures.scale).cast<float>());
+    if (look_up.particles.at.empty()) return;
+    look_up.tree = std::make_unique<detail::SolidNearest::Tree>(3, look_up.particles,
+                                                                nanoflann::KDTreeSingleIndexAdaptorParams(16));
+    look_up.tree->buildIndex();
+  });
+  std::vector<std::int32_t> nearest(points.size(), -1);
+  if (!look_up.tree) return nearest;
   for (std::size_t i = 0; i < points.size(); ++i) {
     std::uint32_t index = 0;
     float d2 = 0.0f;
-    tree.knnSearch(points[i].data(), 1, &index, &d2);
+    look_up.tree->knnSearch(points[i].data(), 1, &index, &d2);
     nearest[i] = static_cast<std::int32_t>(index);
   }
   return nearest;

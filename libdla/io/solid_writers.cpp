@@ -6,7 +6,7 @@
 #include "dla/core/hash.h"
 #include "dla/version.h"
 #include "output_file.h"
-#include "solid_grid.h"
+#include "look/solid_grid.h"
 
 #include <Model/COM/NMR_DLLInterfaces.h>
 #include <openvdb/io/Stream.h>

@@ -28,7 +28,7 @@ class LookTubes {
   static constexpr detail::GlbContent content = detail::GlbContent::tubes;
 
   LookTubes(const Cluster& cluster, const Look& look)
-      : cluster_(cluster), look_(look), radii_(look.radii(cluster)),
+      : cluster_(cluster), look_(look), radii_(look.radii),
         texture_(tube_texture(cluster, radii_, look.options.tubes.uv_scale)) {}
 
   template <class Visit>
@@ -42,7 +42,7 @@ class LookTubes {
  private:
   const Cluster& cluster_;
   const Look& look_;
-  std::vector<float> radii_;
+  const std::vector<float>& radii_;
   TubeTexture texture_;
 };
 
@@ -459,7 +459,7 @@ class SolidPieces {
   static constexpr bool textured = false;
   static constexpr detail::GlbContent content = detail::GlbContent::solid;
 
-  SolidPieces(const Solid& solid, const Cluster& cluster, const Look& look) : radii_(look.radii(cluster)) {
+  SolidPieces(const Solid& solid, const Cluster& cluster, const Look& look) : radii_(look.radii) {
     const SolidMesh& mesh = solid.mesh;
     piece_.positions = mesh.vertices;
     piece_.triangles = mesh.triangles;
@@ -485,7 +485,7 @@ class SolidPieces {
 
  private:
   TubePiece piece_;
-  std::vector<float> radii_;
+  const std::vector<float>& radii_;
 };
 
 }  // namespace

@@ -5,7 +5,7 @@
 #include "dla/mesh/mesh.h"
 
 #include "dla/core/hash.h"
-#include "output_file.h"
+#include "io/output_file.h"
 
 #include <algorithm>
 #include <array>

@@ -104,7 +104,7 @@ void write_html(const Cluster& cluster, const Look& look, const std::string& pat
     local(p.position, positions);
     parents.push_back(p.parent);
   }
-  const std::vector<float> radii = look.radii(cluster);
+  const std::vector<float> radii = look.radii;
   // A byte a particle for each colour attribute; distance only where it means something.
   std::vector<ColorBy> colorings = {ColorBy::age, ColorBy::depth, ColorBy::seed, ColorBy::distance};
   std::vector<std::uint8_t> colors;

@@ -1,0 +1,254 @@
+// The keyword values' readers, and a model's keywords as its run options: its table
+// (tables.cpp), then what only all of them decide (keywords.h).
+
+#include "keywords.h"
+#include "tables.h"
+
+#include <pybind11/numpy.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string_view>
+
+namespace dla::python {
+
+std::string shown(py::handle value) { return py::repr(value).cast<std::string>(); }
+
+double number(const char* name, py::handle value) {
+  if (py::isinstance<py::bool_>(value) || !(py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value)))
+    throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is not a number");
+  return value.cast<double>();
+}
+
+long long whole(const char* name, py::handle value) {
+  if (py::isinstance<py::bool_>(value) || !py::isinstance<py::int_>(value))
+    throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is not a whole number");
+  try {
+    return value.cast<long long>();
+  } catch (const py::cast_error&) {
+    throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is too large");
+  }
+}
+
+//! A whole number for an int option: one beyond an int is refused here, not wrapped into range.
+int whole_int(const char* name, py::handle value) {
+  const long long n = whole(name, value);
+  if (n < std::numeric_limits<int>::min() || n > std::numeric_limits<int>::max())
+    throw InvalidInput(std::string("`") + name + "` " + std::to_string(n) +
+                       (n > 0 ? " is too large" : " is too small"));
+  return static_cast<int>(n);
+}
+
+std::size_t count(const char* name, py::handle value) {
+  const long long n = whole(name, value);
+  if (n < 0) throw InvalidInput(std::string("`") + name + "` " + std::to_string(n) + " is negative");
+  return static_cast<std::size_t>(n);
+}
+
+std::string text(const char* name, py::handle value) {
+  if (!py::isinstance<py::str>(value)) throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is not a string");
+  return value.cast<std::string>();
+}
+
+//! A file's path: a string or a pathlib path.
+std::string path_text(const char* name, py::handle value) {
+  if (!py::isinstance<py::str>(value) && py::hasattr(value, "__fspath__"))
+    return text(name, value.attr("__fspath__")());
+  return text(name, value);
+}
+
+bool flag(const char* name, py::handle value) {
+  if (!py::isinstance<py::bool_>(value)) throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is not True or False");
+  return value.cast<bool>();
+}
+
+//! `count` numbers: a tuple, a list or an array of them.
+std::vector<double> numbers(const char* name, py::handle value, std::size_t count) {
+  const std::string wanted = std::to_string(count) + " numbers";
+  if (py::isinstance<py::str>(value) || !py::hasattr(value, "__len__") || py::len(value) != count)
+    throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is not " + wanted);
+  std::vector<double> values;
+  for (py::handle item : value) values.push_back(number(name, item));
+  return values;
+}
+
+Vec3 vec3(const char* name, py::handle value) {
+  const std::vector<double> v = numbers(name, value, 3);
+  return {v[0], v[1], v[2]};
+}
+
+//! One point (x, y, z), or a list or (N, 3) array of them.
+std::vector<Vec3> points(const char* name, py::handle value) {
+  // A sequence of numbers is one point, however many it holds.
+  const bool one = py::hasattr(value, "__len__") && !py::isinstance<py::str>(value) && py::len(value) > 0 &&
+                   !py::hasattr(value[py::int_(0)], "__len__");
+  std::vector<Vec3> all;
+  if (one) return {vec3(name, value)};
+  if (py::isinstance<py::str>(value) || !py::hasattr(value, "__iter__"))
+    throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is not a point (x, y, z) or a list of them");
+  for (py::handle item : value) all.push_back(vec3(name, item));
+  return all;
+}
+
+Box box(const char* name, py::handle value) {
+  const std::vector<double> b = numbers(name, value, 6);
+  return Box{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}};
+}
+
+//! `links`: D spacings, (D, K), or a word as dla3d writes it: "D,K" or "lattice".
+LinkOptions links(const char* name, py::handle value) {
+  if (py::isinstance<py::str>(value)) return parse_links(text(name, value));
+  const bool pair = py::hasattr(value, "__len__");
+  const std::vector<double> dk = pair ? numbers(name, value, 2) : std::vector<double>{number(name, value), 1.0};
+  if (!(dk[0] > 0.0)) throw InvalidInput("`links` " + shown(value) + ": the distance is not above 0");
+  if (!(dk[1] >= 1 && dk[1] <= static_cast<double>(kMaxLinksEach) && dk[1] == std::floor(dk[1])))
+    throw InvalidInput("`links` " + shown(value) + ": K " + detail::format_number(dk[1]) + " is not a whole number in 1-64");
+  LinkOptions o;
+  o.distance = dk[0];
+  o.most = static_cast<std::size_t>(dk[1]);
+  validate(o);
+  return o;
+}
+
+using Vertices = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using Faces = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+
+//! (V, 3) vertices and (F, 3) triangles as a mesh, checked.
+TriangleMesh mesh_from_arrays(const std::string& name, const Vertices& vertices, const Faces& faces) {
+  if (vertices.ndim() != 2 || vertices.shape(1) != 3)
+    throw InvalidInput(name + ": the vertices are not an array of shape (V, 3)");
+  if (faces.ndim() != 2 || faces.shape(1) != 3) throw InvalidInput(name + ": the faces are not an array of shape (F, 3)");
+  TriangleMesh mesh;
+  const auto v = vertices.unchecked<2>();
+  const auto f = faces.unchecked<2>();
+  mesh.vertices.reserve(static_cast<std::size_t>(v.shape(0)));
+  for (py::ssize_t i = 0; i < v.shape(0); ++i) {
+    const Vec3 p(v(i, 0), v(i, 1), v(i, 2));
+    if (!p.allFinite()) throw InvalidInput(name + ": vertex " + std::to_string(i) + " is not finite");
+    mesh.vertices.push_back(p);
+  }
+  mesh.triangles.reserve(static_cast<std::size_t>(f.shape(0)));
+  for (py::ssize_t i = 0; i < f.shape(0); ++i) {
+    std::array<std::uint32_t, 3> t;
+    for (int k = 0; k < 3; ++k) {
+      if (f(i, k) < 0 || f(i, k) >= v.shape(0))
+        throw InvalidInput(name + ": face " + std::to_string(i) + " names vertex " + std::to_string(f(i, k)) +
+                           ", not one of its " + std::to_string(v.shape(0)));
+      t[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(f(i, k));
+    }
+    mesh.triangles.push_back(t);
+  }
+  if (mesh.triangles.empty()) throw InvalidInput(name + ": the mesh has no faces");
+  return mesh;
+}
+
+//! A file's path, or (V, F) arrays held under a name that stands for them.
+std::string mesh(const char* name, py::handle value, Given& given) {
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (!py::isinstance<py::tuple>(value) && !py::isinstance<py::list>(value))
+    throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is not a file's path or (vertices, faces) arrays");
+  if (py::len(value) != 2)
+    throw InvalidInput(std::string("`") + name + "` is not a file's path or (vertices, faces) arrays");
+  const std::string key = "<" + std::string(name) + " arrays" +
+                          (given.meshes.empty() ? "" : " " + std::to_string(given.meshes.size() + 1)) + ">";
+  given.meshes[key] = mesh_from_arrays(key, value[py::int_(0)].cast<Vertices>(), value[py::int_(1)].cast<Faces>());
+  return key;
+}
+
+const Table<SolidOptions>& solid_keywords() {
+  using O = SolidOptions;
+  static const Table<O> t = {
+      {"solid_shape", [](O& o, py::handle v, Given&) { o.shape = word("solid_shape", v, parse_solid_shape); }},
+      {"solid_voxel", [](O& o, py::handle v, Given&) { o.voxel = number("solid_voxel", v); }},
+      {"solid_smooth", [](O& o, py::handle v, Given&) { o.smooth = number("solid_smooth", v); }},
+      {"solid_adaptivity", [](O& o, py::handle v, Given&) { o.adaptivity = number("solid_adaptivity", v); }},
+      {"print_size", [](O& o, py::handle v, Given&) { o.print_size = number("print_size", v); }},
+      {"min_wall", [](O& o, py::handle v, Given&) { o.min_wall = number("min_wall", v); }},
+      {"solid_join", [](O& o, py::handle v, Given&) { o.join_seeds = flag("solid_join", v); }},
+      {"solid_memory", [](O& o, py::handle v, Given&) { o.memory = number("solid_memory", v); }},
+  };
+  return t;
+}
+
+namespace {
+
+//! What only all the keywords together decide.
+void settle(RunOptions& run, const Given& given) {
+  const auto all = [&](MeshSeeds& seeds) {
+    if (given.seeds_all) seeds.surface = !seeds.paint && seeds.meshes.empty();
+  };
+  if (auto* o = std::get_if<DlaRunOptions>(&run)) {
+    all(o->seeds);
+  } else if (auto* o = std::get_if<DropRunOptions>(&run)) {
+    all(o->seeds);
+  } else if (auto* o = std::get_if<ColonizeRunOptions>(&run)) {
+    all(o->seeds);
+    o->sample_attractors = given.attractors && !o->attractors_from.empty();
+  } else if (auto* o = std::get_if<EdenRunOptions>(&run)) {
+    const int dimensions = given.eden_dimensions.value_or(2);
+    if (dimensions != 2 && dimensions != 3) throw InvalidInput("`dimensions` " + std::to_string(dimensions) + " is not 2 or 3");
+    if (!given.lattice) o->eden.lattice = dimensions == 3 ? Lattice::cubic6 : Lattice::square4;
+    else if (given.eden_dimensions && dimensions_of(o->eden.lattice) != dimensions)
+      throw InvalidInput("`lattice` " + std::string(to_string(o->eden.lattice)) + " is not a lattice in " +
+                         std::to_string(dimensions) + "D");
+  }
+}
+
+//! The run options of `model` that `keywords` ask for, from its defaults, with `table`.
+template <class Options>
+RunOptions set_all(const Table<Options>& table, const Model& model, const py::dict& keywords, Given& given) {
+  RunOptions run = model.options();
+  Options& options = std::get<Options>(run);
+  const std::string name(model.name);
+  for (const auto& [key, value] : keywords) {
+    const std::string keyword = key.template cast<std::string>();
+    const auto setter = table.find(keyword);
+    if (setter == table.end())
+      throw InvalidInput(keyword + " is not an option of " + name + "(): see docs/python.md, or `dla3d " +
+                         (name == "grow" ? "" : name + " ") + "--help`");
+    if (!value.is_none()) setter->second(options, value, given);
+  }
+  return run;
+}
+
+template <class Options, Table<Options> (*make_table)()>
+RunOptions keywords_of(const Model& model, const py::dict& keywords, Given& given) {
+  static const Table<Options> table = make_table();
+  return set_all(table, model, keywords, given);
+}
+
+using Keywords = RunOptions (*)(const Model& model, const py::dict& keywords, Given& given);
+
+//! Each model's keywords, by its name in the library's registry (dla/run/run.h).
+Keywords keywords_of(const Model& model) {
+  static const std::pair<std::string_view, Keywords> tables[] = {
+      {"grow", keywords_of<DlaRunOptions, dla_table>},
+      {"colonize", keywords_of<ColonizeRunOptions, colonize_table>},
+      {"eden", keywords_of<EdenRunOptions, eden_table>},
+      {"drop", keywords_of<DropRunOptions, drop_table>},
+      {"ballistic", keywords_of<BallisticRunOptions, ballistic_table>},
+  };
+  for (const auto& [name, set] : tables)
+    if (name == model.name) return set;
+  throw std::logic_error("the model " + std::string(model.name) + " has no keywords in Python");
+}
+
+}  // namespace
+
+void require_keywords(const Model& model) { keywords_of(model); }
+
+RunOptions run_options(const std::string& model, const py::dict& keywords, Given& given) {
+  const Model* found = find_model(model);
+  if (!found) {
+    std::string names;
+    for (const Model& m : models()) names += (names.empty() ? "" : ", ") + std::string(m.name);
+    throw InvalidInput("'" + model + "' is not one of " + names);
+  }
+  RunOptions run = keywords_of(*found)(*found, keywords, given);
+  settle(run, given);
+  validate(run);
+  return run;
+}
+
+}  // namespace dla::python

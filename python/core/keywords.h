@@ -1,0 +1,74 @@
+#pragma once
+// Keyword arguments as the run's options (dla/run/models.h): a value of the right kind, or one
+// line naming it. One table a model (tables.cpp), spelled as the options' C++ names.
+
+#include "dla/run/run.h"
+
+#include <pybind11/pybind11.h>
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace dla::python {
+
+namespace py = pybind11;
+
+//! Each reads a keyword's value as the option `name` needs it, or throws InvalidInput with one
+//! line naming it.
+std::string shown(py::handle value);
+double number(const char* name, py::handle value);
+long long whole(const char* name, py::handle value);
+//! A whole number for an int option: one beyond an int is refused here, not wrapped into range.
+int whole_int(const char* name, py::handle value);
+std::size_t count(const char* name, py::handle value);
+std::string text(const char* name, py::handle value);
+//! A file's path: a string or a pathlib path.
+std::string path_text(const char* name, py::handle value);
+bool flag(const char* name, py::handle value);
+//! `count` numbers: a tuple, a list or an array of them.
+std::vector<double> numbers(const char* name, py::handle value, std::size_t count);
+Vec3 vec3(const char* name, py::handle value);
+//! One point (x, y, z), or a list or (N, 3) array of them.
+std::vector<Vec3> points(const char* name, py::handle value);
+Box box(const char* name, py::handle value);
+//! `links`: D spacings, (D, K), or a word as dla3d writes it: "D,K" or "lattice".
+LinkOptions links(const char* name, py::handle value);
+
+//! A word of an enum, parsed as the library parses it.
+template <class Parse>
+auto word(const char* name, py::handle value, Parse&& parse) {
+  return parse(text(name, value));
+}
+
+//! What a run's keywords set besides its options: the meshes handed over as arrays, under the
+//! names that stand for them, and what only all the keywords together decide.
+struct Given {
+  std::map<std::string, TriangleMesh> meshes;
+  bool seeds_all = false;         //!< seeds="all"
+  bool attractors = false;        //!< attractors=N, a sample of attractors_from's
+  std::optional<int> eden_dimensions;
+  bool lattice = false;
+};
+
+//! A file's path, or (V, F) arrays held under a name that stands for them.
+std::string mesh(const char* name, py::handle value, Given& given);
+
+template <class Options>
+using Setter = std::function<void(Options& options, py::handle value, Given& given)>;
+template <class Options>
+using Table = std::map<std::string, Setter<Options>>;
+
+//! The solid's keywords (solid.h): in every model's table, and Result.solid()'s.
+const Table<SolidOptions>& solid_keywords();
+
+//! The run options that `keywords` ask of the model named `model`, checked; `given` receives
+//! the meshes handed over as arrays.
+RunOptions run_options(const std::string& model, const py::dict& keywords, Given& given);
+
+//! Fails if the registry has a model without keywords in Python.
+void require_keywords(const Model& model);
+
+}  // namespace dla::python

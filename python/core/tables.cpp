@@ -1,0 +1,235 @@
+// Every model's keywords: one table a model (tables.h), a keyword a field of its run options,
+// spelled as the field's C++ name; what several models share is added by the functions first.
+
+#include "tables.h"
+
+namespace dla::python {
+
+namespace {
+
+//! The look and output options every model has (the files themselves are Result.write()'s).
+template <class Options>
+void add_look(Table<Options>& t) {
+  const auto files = [](Options& o) -> OutputOptions& { return o.files; };
+  t["ply_format"] = [=](Options& o, py::handle v, Given&) { files(o).ply_encoding = word("ply_format", v, parse_ply_encoding); };
+  t["png_scale"] = [=](Options& o, py::handle v, Given&) { files(o).png.pixels_per_spacing = number("png_scale", v); };
+  t["png_bands"] = [=](Options& o, py::handle v, Given&) { files(o).png.bands = whole_int("png_bands", v); };
+  t["radius"] = [=](Options& o, py::handle v, Given&) { files(o).radius = word("radius", v, parse_radius_model); };
+  t["base_radius"] = [=](Options& o, py::handle v, Given&) { files(o).base_radius = number("base_radius", v); };
+  t["tip_radius"] = [=](Options& o, py::handle v, Given&) { files(o).tip_radius = number("tip_radius", v); };
+  t["pipe_exponent"] = [=](Options& o, py::handle v, Given&) { files(o).look.radius.pipe_exponent = number("pipe_exponent", v); };
+  t["color_by"] = [=](Options& o, py::handle v, Given&) { files(o).look.color_by = word("color_by", v, parse_color_by); };
+  t["look"] = [=](Options& o, py::handle v, Given&) { files(o).pov.style = word("look", v, parse_pov_style); };
+  t["tube_sides"] = [=](Options& o, py::handle v, Given&) { files(o).look.tubes.sides = whole_int("tube_sides", v); };
+  t["tube_tolerance"] = [=](Options& o, py::handle v, Given&) { files(o).look.tubes.tolerance = number("tube_tolerance", v); };
+  t["uv_scale"] = [=](Options& o, py::handle v, Given&) { files(o).look.tubes.uv_scale = number("uv_scale", v); };
+  t["lod"] = [=](Options& o, py::handle v, Given&) { files(o).lods = whole_int("lod", v); };
+  t["leaf"] = [=](Options& o, py::handle v, Given&) { files(o).leaf = path_text("leaf", v); };
+  t["tube_min_branch"] = [=](Options& o, py::handle v, Given&) {
+    files(o).look.tubes.min_branch = whole_int("tube_min_branch", v);
+  };
+  t["instances"] = [=](Options& o, py::handle v, Given&) { files(o).instances.set = word("instances", v, parse_instance_set); };
+  t["tips_within"] = [=](Options& o, py::handle v, Given&) { files(o).instances.within = number("tips_within", v); };
+  t["tips_exclude_paint"] = [=](Options& o, py::handle v, Given&) {
+    files(o).instances.exclude_paint = parse_paint(text("tips_exclude_paint", v), "tips_exclude_paint");
+  };
+  t["tips_every"] = [=](Options& o, py::handle v, Given&) { files(o).instances.every = whole_int("tips_every", v); };
+  t["up"] = [=](Options& o, py::handle v, Given&) { files(o).up = word("up", v, parse_axis); };
+  for (const auto& [name, set] : solid_keywords())
+    t[name] = [set = set](Options& o, py::handle v, Given& g) { set(o.files.solid, v, g); };
+}
+
+//! Where seeds (colonize: roots) go on the mesh, the same for DLA, drop and colonize.
+template <class O>
+void add_mesh_seeds(Table<O>& t) {
+  t["seeds"] = [](O& o, py::handle v, Given& g) {
+    if (py::isinstance<py::str>(v) && v.cast<std::string>() == "all") g.seeds_all = true;
+    else if ((o.seeds.count = count("seeds", v)) == 0) throw InvalidInput("`seeds` 0: there must be a seed");
+  };
+  t["seed_surface"] = [](O& o, py::handle v, Given&) { o.seeds.surface = flag("seed_surface", v); };
+  t["seed_paint"] = [](O& o, py::handle v, Given&) { o.seeds.paint = parse_paint(text("seed_paint", v)); };
+  t["seed_mesh"] = [](O& o, py::handle v, Given& g) {
+    const bool one = py::isinstance<py::str>(v) || (py::isinstance<py::tuple>(v) && py::len(v) == 2 &&
+                                                    py::hasattr(v[py::int_(0)], "shape"));
+    if (one) o.seeds.meshes.push_back(mesh("seed_mesh", v, g));
+    else
+      for (py::handle item : v) o.seeds.meshes.push_back(mesh("seed_mesh", item, g));
+  };
+}
+
+//! --fill and --shell, for the models they mean nothing to: refused with why.
+template <class O>
+void add_refused(Table<O>& t, const char* model) {
+  for (const char* option : {"fill", "shell"})
+    t[option] = [model, option](O&, py::handle, Given&) { refuse_for(model, option); };
+}
+
+//! What drop and ballistic share: the look, the count, the plane, the random seed, the links.
+template <class O, class Model>
+void add_seeded(Table<O>& t, Model O::*model) {
+  add_look(t);
+  t["links"] = [](O& o, py::handle v, Given&) { o.links = links("links", v); };
+  t["particles"] = [=](O& o, py::handle v, Given&) { (o.*model).particles = count("particles", v); };
+  t["dimensions"] = [=](O& o, py::handle v, Given&) { (o.*model).dimensions = whole_int("dimensions", v); };
+  t["rng_seed"] = [=](O& o, py::handle v, Given&) { (o.*model).rng_seed = count("rng_seed", v); };
+  t["n"] = t["particles"];
+}
+
+}  // namespace
+
+Table<DlaRunOptions> dla_table() {
+  using O = DlaRunOptions;
+  Table<O> t;
+  add_look(t);
+  t["particles"] = [](O& o, py::handle v, Given&) { o.particles = count("particles", v); };
+  t["spacing"] = [](O& o, py::handle v, Given&) { o.spacing = number("spacing", v); };
+  t["stickiness"] = [](O& o, py::handle v, Given&) { o.growth.stickiness = number("stickiness", v); };
+  t["dimensions"] = [](O& o, py::handle v, Given&) { o.growth.dimensions = whole_int("dimensions", v); };
+  t["seed_at"] = [](O& o, py::handle v, Given&) { o.seed_at = points("seed_at", v); };
+  t["rng_seed"] = [](O& o, py::handle v, Given&) { o.growth.rng_seed = count("rng_seed", v); };
+  t["min_step"] = [](O& o, py::handle v, Given&) { o.growth.min_step = number("min_step", v); };
+  t["links"] = [](O& o, py::handle v, Given&) { o.links = links("links", v); };
+  t["index"] = [](O& o, py::handle v, Given&) { o.growth.index = word("index", v, parse_index_kind); };
+  t["threads"] = [](O& o, py::handle v, Given&) { o.growth.threads = whole_int("threads", v); };
+  t["stl"] = [](O& o, py::handle v, Given& g) { o.stl = mesh("stl", v, g); };
+  t["text"] = [](O& o, py::handle v, Given&) {
+    const std::string font = o.text ? o.text->font : kDefaultFont;
+    o.text = TextOptions{text("text", v), font};
+  };
+  t["font"] = [](O& o, py::handle v, Given&) {
+    if (!o.text) o.text = TextOptions{};
+    o.text->font = text("font", v);
+  };
+  t["side"] = [](O& o, py::handle v, Given&) { o.constraint.side = word("side", v, parse_side); };
+  t["shell"] = [](O& o, py::handle v, Given&) { o.constraint.shell = number("shell", v); };
+  t["constraint"] = [](O& o, py::handle v, Given&) { o.constraint.mode = word("constraint", v, parse_constraint_mode); };
+  add_mesh_seeds(t);
+  t["scene_mesh"] = [](O& o, py::handle v, Given&) { o.scene_mesh = flag("scene_mesh", v); };
+  t["fill"] = [](O& o, py::handle v, Given&) { o.growth.fill = number("fill", v); };
+  t["fill_distance"] = [](O& o, py::handle v, Given&) { o.growth.fill_distance = number("fill_distance", v); };
+  t["spawn"] = [](O& o, py::handle v, Given&) { o.spawn = word("spawn", v, parse_spawn_mode); };
+  t["spawn_axis"] = [](O& o, py::handle v, Given&) { o.growth.spawn_axis = word("spawn_axis", v, parse_axis); };
+  t["disk_radius"] = [](O& o, py::handle v, Given&) { o.growth.disk_radius = number("disk_radius", v); };
+  t["box"] = [](O& o, py::handle v, Given&) { o.growth.spawn_box = box("box", v); };
+  t["drift"] = [](O& o, py::handle v, Given&) { o.growth.drift = vec3("drift", v); };
+  t["rotate"] = [](O& o, py::handle v, Given&) {
+    if (py::isinstance<py::str>(v) || !py::hasattr(v, "__len__") || py::len(v) != 2)
+      throw InvalidInput("`rotate` " + shown(v) + " is not (axis, degrees), as ('y', 30)");
+    o.growth.rotate_axis = word("rotate", v[py::int_(0)], parse_axis);
+    o.growth.rotate_degrees = number("rotate", v[py::int_(1)]);
+  };
+  t["n"] = t["particles"];
+  t["mesh"] = t["stl"];
+  return t;
+}
+
+Table<ColonizeRunOptions> colonize_table() {
+  using O = ColonizeRunOptions;
+  Table<O> t;
+  add_look(t);
+  t["max_nodes"] = [](O& o, py::handle v, Given&) { o.colonization.max_nodes = count("max_nodes", v); };
+  t["max_iterations"] = [](O& o, py::handle v, Given&) { o.colonization.max_iterations = count("max_iterations", v); };
+  t["spacing"] = [](O& o, py::handle v, Given&) { o.colonization.spacing = number("spacing", v); };
+  t["kill_distance"] = [](O& o, py::handle v, Given&) { o.colonization.kill_distance = number("kill_distance", v); };
+  t["influence"] = [](O& o, py::handle v, Given&) { o.colonization.influence = number("influence", v); };
+  t["venation"] = [](O& o, py::handle v, Given&) { o.colonization.venation = word("venation", v, parse_venation); };
+  t["noise"] = [](O& o, py::handle v, Given&) {
+    const std::vector<double> n = numbers("noise", v, 2);
+    o.colonization.noise_amplitude = n[0];
+    o.colonization.noise_scale = n[1];
+  };
+  t["tropism"] = [](O& o, py::handle v, Given&) { o.colonization.tropism = vec3("tropism", v); };
+  t["dimensions"] = [](O& o, py::handle v, Given&) { o.colonization.dimensions = whole_int("dimensions", v); };
+  t["rng_seed"] = [](O& o, py::handle v, Given&) { o.colonization.rng_seed = count("rng_seed", v); };
+  t["attractors"] = [](O& o, py::handle v, Given& g) {
+    o.attractors.count = count("attractors", v);
+    g.attractors = true;
+  };
+  t["attractors_in"] = [](O& o, py::handle v, Given&) { o.attractors.region = word("attractors_in", v, parse_attractor_region); };
+  t["attractors_from"] = [](O& o, py::handle v, Given&) { o.attractors_from = text("attractors_from", v); };
+  t["attractor_center"] = [](O& o, py::handle v, Given&) { o.attractors.center = vec3("attractor_center", v); };
+  t["attractor_radius"] = [](O& o, py::handle v, Given&) { o.attractors.radius = number("attractor_radius", v); };
+  t["attractor_box"] = [](O& o, py::handle v, Given&) {
+    const Box b = box("attractor_box", v);
+    o.attractors.box_min = b.min;
+    o.attractors.box_max = b.max;
+  };
+  t["attractor_falloff"] = [](O& o, py::handle v, Given&) { o.attractors.falloff = number("attractor_falloff", v); };
+  t["root_at"] = [](O& o, py::handle v, Given&) { o.root_at = points("root_at", v); };
+  t["roots"] = [](O& o, py::handle v, Given&) {
+    if ((o.root_count = count("roots", v)) == 0) throw InvalidInput("`roots` 0: there must be a root");
+  };
+  t["roots_in"] = [](O& o, py::handle v, Given&) { o.roots_in = word("roots_in", v, parse_root_region); };
+  t["roots_scale"] = [](O& o, py::handle v, Given&) { o.roots_scale = number("roots_scale", v); };
+  t["stl"] = [](O& o, py::handle v, Given& g) { o.stl = mesh("stl", v, g); };
+  t["collide"] = [](O& o, py::handle v, Given& g) { o.collide = mesh("collide", v, g); };
+  t["collision"] = [](O& o, py::handle v, Given&) { o.collision = word("collision", v, parse_collision_mode); };
+  add_mesh_seeds(t);
+  add_refused(t, "colonize");
+  t["n"] = t["max_nodes"];
+  return t;
+}
+
+Table<EdenRunOptions> eden_table() {
+  using O = EdenRunOptions;
+  Table<O> t;
+  add_look(t);
+  t["links"] = [](O& o, py::handle v, Given&) { o.links = links("links", v); };
+  t["sites"] = [](O& o, py::handle v, Given&) {
+    if ((o.eden.sites = count("sites", v)) == 0) throw InvalidInput("`sites` 0 is not at least 1");
+  };
+  t["dimensions"] = [](O&, py::handle v, Given& g) { g.eden_dimensions = whole_int("dimensions", v); };
+  t["lattice"] = [](O& o, py::handle v, Given& g) {
+    o.eden.lattice = word("lattice", v, parse_lattice);
+    g.lattice = true;
+  };
+  t["mode"] = [](O& o, py::handle v, Given&) { o.eden.mode = word("mode", v, parse_eden_mode); };
+  t["mask"] = [](O& o, py::handle v, Given&) {
+    const std::string mask = text("mask", v);
+    if (mask.size() == 1 && mask.find_first_of("ABCD") == 0) o.eden.mask = parse_eden_mask(mask);
+    else o.mask_file = mask;
+  };
+  t["mask_threshold"] = [](O& o, py::handle v, Given&) { o.eden.mask_threshold = whole_int("mask_threshold", v); };
+  t["seed_radius"] = [](O& o, py::handle v, Given&) { o.eden.seed_radius = number("seed_radius", v); };
+  t["spacing"] = [](O& o, py::handle v, Given&) { o.eden.spacing = number("spacing", v); };
+  t["rng_seed"] = [](O& o, py::handle v, Given&) { o.eden.rng_seed = count("rng_seed", v); };
+  t["n"] = t["sites"];
+  return t;
+}
+
+Table<DropRunOptions> drop_table() {
+  using O = DropRunOptions;
+  Table<O> t;
+  add_seeded(t, &O::drop);
+  add_refused(t, "drop");
+  t["spacing"] = [](O& o, py::handle v, Given&) { o.spacing = number("spacing", v); };
+  t["seed_at"] = [](O& o, py::handle v, Given&) { o.seed_at = points("seed_at", v); };
+  t["stickiness"] = [](O& o, py::handle v, Given&) { o.drop.stickiness = number("stickiness", v); };
+  t["zone"] = [](O& o, py::handle v, Given&) { o.drop.zone = word("zone", v, parse_drop_zone); };
+  t["zone_radius"] = [](O& o, py::handle v, Given&) { o.drop.zone_radius = number("zone_radius", v); };
+  t["zone_margin"] = [](O& o, py::handle v, Given&) { o.drop.zone_margin = number("zone_margin", v); };
+  t["zone_box"] = [](O& o, py::handle v, Given&) { o.drop.zone_box = box("zone_box", v); };
+  t["drop"] = [](O& o, py::handle v, Given&) { o.drop.bias = parse_drop_bias(text("drop", v)); };
+  t["stl"] = [](O& o, py::handle v, Given& g) { o.stl = mesh("stl", v, g); };
+  t["side"] = [](O& o, py::handle v, Given&) { o.constraint.side = word("side", v, parse_side); };
+  t["constraint"] = [](O& o, py::handle v, Given&) { o.constraint.mode = word("constraint", v, parse_constraint_mode); };
+  t["scene_mesh"] = [](O& o, py::handle v, Given&) { o.scene_mesh = flag("scene_mesh", v); };
+  add_mesh_seeds(t);
+  t["mesh"] = t["stl"];
+  return t;
+}
+
+Table<BallisticRunOptions> ballistic_table() {
+  using O = BallisticRunOptions;
+  Table<O> t;
+  add_seeded(t, &O::ballistic);
+  t["spacing"] = [](O& o, py::handle v, Given&) { o.ballistic.spacing = number("spacing", v); };
+  t["seed_at"] = [](O& o, py::handle v, Given&) { o.ballistic.seeds = points("seed_at", v); };
+  t["direction"] = [](O& o, py::handle v, Given&) {
+    o.ballistic.direction = vec3("direction", v);
+    if (o.ballistic.direction.squaredNorm() == 0.0) throw InvalidInput("`direction` (0, 0, 0) has no direction");
+  };
+  return t;
+}
+
+}  // namespace dla::python

@@ -1,0 +1,14 @@
+#pragma once
+// One keyword table a model (tables.cpp), which keywords.cpp's run_options() reads.
+
+#include "keywords.h"
+
+namespace dla::python {
+
+Table<DlaRunOptions> dla_table();
+Table<ColonizeRunOptions> colonize_table();
+Table<EdenRunOptions> eden_table();
+Table<DropRunOptions> drop_table();
+Table<BallisticRunOptions> ballistic_table();
+
+}  // namespace dla::python
