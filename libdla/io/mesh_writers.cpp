@@ -152,21 +152,12 @@ std::array<float, 6> vertex_attributes(const Cluster& cluster, const Look& look,
           static_cast<float>(static_cast<double>(tubes.radius(i)) * cluster.spacing)};
 }
 
-std::string vec3(const Eigen::Vector3f& v) {
-  return "[" + json::number(v.x()) + "," + json::number(v.y()) + "," + json::number(v.z()) + "]";
-}
-
-//! A float's shortest text that reads back to it.
-std::string float_text(float value) {
-  if (!std::isfinite(value)) return "null";
-  char text[24];
-  return std::string(text, std::to_chars(text, text + sizeof text, value).ptr);
-}
-
+//! A vector as a JSON array, each number as json::number writes it: a float's read back
+//! exactly, as glTF's accessors' min and max must be.
 template <class Vector>
-std::string float_list(const Vector& v) {
+std::string number_list(const Vector& v) {
   std::string text = "[";
-  for (Eigen::Index i = 0; i < v.size(); ++i) text += (i ? "," : "") + float_text(static_cast<float>(v[i]));
+  for (Eigen::Index i = 0; i < v.size(); ++i) text += (i ? "," : "") + json::number(static_cast<double>(v[i]));
   return text + "]";
 }
 
@@ -195,8 +186,8 @@ std::string leaf_nodes(const PlacedLeaves& leaves, const detail::LeafParts& part
     }
     const Eigen::Quaterniond q = Eigen::Quaterniond(rotation).normalized();
     nodes += ",{\"name\":\"leaf " + std::to_string(point.particle) + "\",\"mesh\":" + std::to_string(parts.mesh) +
-             ",\"translation\":" + float_list(placed.translation()) + ",\"rotation\":" + float_list(q.coeffs()) +
-             ",\"scale\":" + float_list(scale) + "}";
+             ",\"translation\":" + number_list(placed.translation()) + ",\"rotation\":" + number_list(q.coeffs()) +
+             ",\"scale\":" + number_list(scale) + "}";
   }
   return nodes;
 }
@@ -232,7 +223,7 @@ TubeTotals glb_of(const Cluster& cluster, const Look& look, const Pieces& each_t
   } else {
     const std::string count = std::to_string(totals.vertices);
     std::string accessors = "{\"bufferView\":0,\"byteOffset\":0,\"componentType\":5126,\"count\":" + count +
-                            ",\"type\":\"VEC3\",\"min\":" + vec3(totals.min) + ",\"max\":" + vec3(totals.max) + "}";
+                            ",\"type\":\"VEC3\",\"min\":" + number_list(totals.min) + ",\"max\":" + number_list(totals.max) + "}";
     accessors += ",{\"bufferView\":0,\"byteOffset\":12,\"componentType\":5126,\"count\":" + count + ",\"type\":\"VEC3\"}";
     std::string attributes = "\"POSITION\":0,\"NORMAL\":1";
     std::size_t offset = 24, accessor = 2;
