@@ -196,6 +196,20 @@ TEST(Cli, CtrlCWhileTheSolidBuildsKeepsTheOtherFilesAndLeavesNoSolidFile) {
   }
 }
 
+// A solid that no structure of the count asked for can fit is refused before growth: 2 x 10^7
+// particles would grow for minutes (the CPU limit ends such a run), and nothing is written.
+TEST(Cli, ASolidThatCannotFitIsRefusedBeforeGrowth) {
+  ScratchDir dir;
+  const CliRun run = dla3d(dir, "-n 20000000 --formats csv,json,stl --solid-voxel 0.001 --solid-memory 100 -o big",
+                           "ulimit -t 20 &&");
+  ASSERT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_EQ(run.err.rfind("dla3d: error: the solid of 20,000,000 particles at --solid-voxel 0.001 spacings would take at least ", 0),
+            0u) << run.err;
+  EXPECT_NE(run.err.find("(--solid-memory): give --solid-voxel "), std::string::npos) << run.err;
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+}
+
 TEST(Cli, SigtermWritesPartialFiles) {
   ScratchDir dir;
   const int code = interrupted(dir, "-n 300000 -o part", SIGTERM, 1.0);

@@ -295,6 +295,79 @@ TEST(Solid, RefusesWhatWouldNotFitAndNamesAVoxelThatDoes) {
   EXPECT_GT(solid.measures.estimated_seconds, 0.0);
 }
 
+// The bound a run refuses a solid by before growth never passes the plan of a structure it
+// describes: whatever it refuses, the plan after growth would have refused too.
+TEST(Solid, TheLeastBytesBeforeGrowthNeverPassTheGrownStructuresPlan) {
+  EdenOptions sites;
+  sites.sites = 1500;
+  sites.rng_seed = 3;
+  sites.lattice = Lattice::cubic6;
+  DlaOptions flat;
+  flat.particles = 1500;
+  flat.dimensions = 2;
+  flat.rng_seed = 4;
+  const Cluster lattice = eden(sites), dla = small_tree(1500, 5), plane = grow(flat);
+  struct Case {
+    const char* name;
+    const Cluster& cluster;
+    SolidShape shape;
+    RadiusModel radius;
+  };
+  for (const Case& k : {Case{"dla taper", dla, SolidShape::branches, RadiusModel::taper},
+                        Case{"dla pipe", dla, SolidShape::branches, RadiusModel::pipe},
+                        Case{"dla 2d spheres", plane, SolidShape::spheres, RadiusModel::uniform},
+                        Case{"eden cubes", lattice, SolidShape::cubes, RadiusModel::uniform}}) {
+    LookOptions look;
+    look.radius.model = k.radius;
+    const std::vector<float> radii = make_look(k.cluster, look).radii;
+    SolidForecast forecast{k.cluster.particles.size() - k.cluster.seed_count, 1.0, 0.0, 0.0};
+    forecast.least_radius = std::min(look.radius.tip_radius, look.radius.base_radius);
+    forecast.most_radius = std::max(look.radius.tip_radius, look.radius.base_radius);
+    for (const double voxel : {0.0, 0.08, 0.2})
+      for (const double smooth : {0.0, 0.3}) {
+        SCOPED_TRACE(std::string(k.name) + " voxel " + std::to_string(voxel) + " smooth " + std::to_string(smooth));
+        SolidOptions o;
+        o.shape = k.shape;
+        o.voxel = voxel;
+        o.smooth = smooth;
+        o.memory = 1e9;  // MB: planned, never refused
+        const double least = least_solid_bytes(forecast, o);
+        EXPECT_GT(least, 0.0);
+        EXPECT_LE(least, plan_solid(k.cluster, radii, o).bytes);
+      }
+  }
+  // What promises nothing bounds nothing.
+  SolidOptions o;
+  EXPECT_EQ(least_solid_bytes({0, 1.0, 0.25, 0.5}, o), 0.0);
+  EXPECT_EQ(least_solid_bytes({1000, 0.0, 0.25, 0.5}, o), 0.0);
+  o.print_size = 50.0;  // the voxel then follows min_wall, in millimetres the growth sets
+  EXPECT_EQ(least_solid_bytes({1000, 1.0, 0.25, 0.5}, o), 0.0);
+}
+
+// A solid that no structure of the count fits is refused with a voxel that the bound lets
+// through, and that voxel is not refused.
+TEST(Solid, ASolidThatCannotFitIsRefusedBeforeGrowthWithAVoxelThatMay) {
+  const SolidForecast forecast{1'000'000, 1.0, 0.25, 0.5};
+  SolidOptions o;
+  o.voxel = 0.002;
+  o.memory = 1000;  // MB
+  std::string message;
+  try {
+    refuse_solid_before_growth(forecast, o);
+  } catch (const InvalidInput& e) {
+    message = e.what();
+  }
+  ASSERT_EQ(message.rfind("the solid of 1,000,000 particles at `solid_voxel` 0.002 spacings would take at least ", 0), 0u)
+      << message;
+  ASSERT_EQ(message.find('\n'), std::string::npos);
+  const std::size_t at = message.rfind("`solid_voxel` ");
+  ASSERT_NE(message.find(" or more", at), std::string::npos) << message;
+  o.voxel = std::stod(message.substr(at + 14));
+  EXPECT_GT(o.voxel, 0.002);
+  EXPECT_NO_THROW(refuse_solid_before_growth(forecast, o));
+  EXPECT_LE(least_solid_bytes(forecast, o), o.memory * 1e6);
+}
+
 TEST(Solid, BadOptionsAreRefusedByName) {
   const std::map<std::string, SolidOptions> cases = [] {
     std::map<std::string, SolidOptions> m;

@@ -684,6 +684,49 @@ struct SolidWork {
 
 }  // namespace detail
 
+double least_solid_bytes(const SolidForecast& f, const SolidOptions& o) {
+  validate(o);
+  if (f.particles == 0 || !(f.separation > 0.0)) return 0.0;
+  // In spacings. Every particle's ball of radius r (a cube's: its inscribed ball) lies in the
+  // solid, and those of radius half the separation are disjoint.
+  const bool cubes = o.shape == SolidShape::cubes;
+  const double least_radius = cubes ? 0.5 : f.least_radius, most_radius = cubes ? 0.5 : f.most_radius;
+  // The voxel, or the largest it can be when derived: a third of the thinnest diameter.
+  double voxel = o.voxel;
+  if (voxel == 0.0) {
+    if (o.print_size > 0.0) return 0.0;  // the thinnest is min_wall, in units the growth sets
+    voxel = 2.0 * most_radius / kVoxelsAcross;
+  }
+  if (!(voxel > 0.0)) return 0.0;
+  const double r = std::min(least_radius, f.separation / 2.0);
+  const double ball = 4.0 / 3.0 * M_PI;
+  const double volume = static_cast<double>(f.particles) * ball * r * r * r;
+  // The band outside a body of that volume is at least a ball's: (V^1/3 + b (4 pi/3)^1/3)^3 - V.
+  const double band = kBandVoxels * voxel;
+  const double outer = std::pow(std::cbrt(volume) + band * std::cbrt(ball), 3.0) - volume;
+  // Every leaf of 8^3 voxels that the band touches is stored, and they cover it.
+  const double leaf = kLeafSide * voxel;
+  const double smooth_factor = o.smooth > 0.0 ? 3.0 + 2.0 * o.smooth / voxel : 1.0;
+  return outer / (leaf * leaf * leaf) * kBytesPerLeaf * smooth_factor;
+}
+
+void refuse_solid_before_growth(const SolidForecast& f, const SolidOptions& o) {
+  const double least = least_solid_bytes(f, o);
+  const double limit = o.memory > 0.0 ? o.memory * 1e6 : default_memory_limit();
+  if (least <= limit) return;
+  const bool derived = o.voxel == 0.0;
+  SolidOptions coarser = o;
+  coarser.voxel = derived ? 2.0 * (o.shape == SolidShape::cubes ? 0.5 : f.most_radius) / kVoxelsAcross : o.voxel;
+  for (int tries = 0; tries < 200 && coarser.voxel < 100.0 && least_solid_bytes(f, coarser) > limit; ++tries)
+    coarser.voxel = std::min(100.0, coarser.voxel * 1.25);
+  const std::string voxel = derived ? "its voxel, a third of the thinnest branch," : "`solid_voxel` " + detail::format_number(o.voxel) + " spacings";
+  throw InvalidInput("the solid of " + detail::format_count(f.particles) + " particles at " + voxel +
+                     " would take at least " + megabytes(least) + ", more than the " + megabytes(limit) +
+                     " it may use (`solid_memory`): give `solid_voxel` " +
+                     detail::format_number(std::ceil(coarser.voxel * 1000.0) / 1000.0) +
+                     " or more, or fewer `particles`");
+}
+
 SolidPlan plan_solid(const Cluster& cluster, const std::vector<float>& radii, const SolidOptions& o) {
   validate(o);
   if (radii.size() != cluster.particles.size())

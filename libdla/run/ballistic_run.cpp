@@ -23,6 +23,7 @@ class BallisticRun : public Run {
     files = resolve(o.files, nullptr, false);
     links = o.links;
     total = options_.seeds.size() + options_.particles;
+    solid_forecast = {options_.particles, 1.0};  // stuck at contact, a spacing from every particle
   }
 
   Cluster grow(const ProgressFn& progress, const StopFlag* stop) override {

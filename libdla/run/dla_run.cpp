@@ -79,6 +79,9 @@ class DlaRun : public Run {
       files = resolve(o.files, nullptr, false);
     }
     check_memory(options_.particles);
+    // Walkers stick at contact, a spacing from every particle, unless a branch is clipped short.
+    const bool clipped = o.has_mesh() && o.constraint.mode == ConstraintMode::clip;
+    solid_forecast = {options_.fill > 0.0 ? 0 : options_.particles, clipped ? 0.0 : 1.0};
     total = options_.particles;
     fill = options_.fill;
     links = o.links;

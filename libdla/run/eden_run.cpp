@@ -31,6 +31,7 @@ class EdenRun : public Run {
     links = o.links;
     unit = "sites";
     total = options_.sites;
+    solid_forecast = {options_.sites, 1.0};  // lattice sites, a spacing apart
     if (!mask_file_.empty()) {
       std::ifstream in(mask_file_, std::ios::binary);
       std::ostringstream text;

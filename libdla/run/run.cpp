@@ -136,6 +136,12 @@ std::unique_ptr<Run> prepare_run(const RunOptions& options, const MeshReader& re
   std::unique_ptr<Run> run = model.prepare(options, reader, resumed);
   run->model = model.name;
   run->leaf = std::move(leaf);
+  if (run->files.formats.solid()) {
+    const RadiusOptions& radius = run->files.look.radius;
+    run->solid_forecast.least_radius = std::min(radius.tip_radius, radius.base_radius);
+    run->solid_forecast.most_radius = std::max(radius.tip_radius, radius.base_radius);
+    refuse_solid_before_growth(run->solid_forecast, run->files.solid);
+  }
   // Refused before growing, not when the files are written.
   if (run->files.instances.exclude_paint && run->constraint)
     run->constraint->require_paint(*run->files.instances.exclude_paint, "tips_exclude_paint");

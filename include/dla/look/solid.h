@@ -125,6 +125,27 @@ struct SolidPlan {
   std::shared_ptr<const detail::SolidWork> work;
 };
 
+//! What a run knows of its structure before growing it: enough to bound its solid's memory from
+//! below, and so refuse a solid that cannot fit before the growth, not after it.
+struct SolidForecast {
+  std::size_t particles = 0;  //!< particles it grows (seeds aside); 0: not known before growth
+  //! The least distance, in spacings, between the centre of a particle grown and any other
+  //! particle's; 0: the model promises none (space colonization, a clipped branch).
+  double separation = 0.0;
+  double least_radius = 0.0, most_radius = 0.0;  //!< the look's range of radii, in spacings
+};
+
+//! The least memory, in bytes, that the solid of any structure `forecast` describes can take:
+//! by the Brunn-Minkowski inequality, its narrow band outside the union of the particles'
+//! disjoint balls is at least that of a ball of their volume. 0 where the forecast bounds
+//! nothing (no count, no separation, a voxel derived from the print size).
+double least_solid_bytes(const SolidForecast& forecast, const SolidOptions& options);
+
+//! Throws InvalidInput, before growth, naming a `solid_voxel` below which no structure of the
+//! forecast can fit in `solid_memory`, when the one asked for cannot. A solid that may fit is
+//! planned, and refused if need be, once grown (plan_solid).
+void refuse_solid_before_growth(const SolidForecast& forecast, const SolidOptions& options);
+
 //! Plans the solid of `cluster` with `radii[i]`, particle i's branch radius in spacings (the
 //! look's). Throws InvalidInput for bad options, and, naming a voxel that fits, when the build
 //! would take more than `solid_memory`: before anything is allocated by the voxel.

@@ -86,6 +86,9 @@ class Run {
   std::shared_ptr<const Leaf> leaf;
   //! DLA growing to fill a mesh: the fraction of its volume asked for, else 0.
   double fill = 0.0;
+  //! What the model promises of the structure before growing it, for a solid that cannot fit
+  //! to be refused before growth (solid.h); the radii are the look's, set by prepare_run.
+  SolidForecast solid_forecast;
   //! The hash of the mesh's file (or text), which a checkpoint keeps to know it again.
   std::uint64_t input_hash = 0;
 };
