@@ -61,9 +61,11 @@ TEST(Faults, AFullDiskIsAClearErrorAndKeepsTheCheckpoint) {
   EXPECT_TRUE(read_file(dir / "after.ck") == saved) << "the checkpoint on disk changed";
 }
 
-// SIGKILL at moments spread over the writing of every file: any file under a final name is
-// whole, the same bytes as an uninterrupted run's (the JSON up to its timings). Every file the
-// run writes is checked, with every 3D format asked for, so writers added later are covered too.
+// SIGKILL at moments of the writing, each an event on disk: a writer's temporary file opened
+// (the first, the glb's, the OBJ's), a file renamed into place while others are written. Any
+// file under a final name is whole, the same bytes as an uninterrupted run's (the JSON up to
+// its timings). Every file the run writes is checked, with every 3D format asked for, so
+// writers added later are covered too.
 TEST(Faults, AKillWhileWritingNeverLeavesATruncatedFile) {
   const std::string args = "-n 60000 --threads 2 -q -o out --rng-seed 4 --formats pov,csv,ply,json,glb,obj,tips";
   ScratchDir reference;
@@ -71,26 +73,30 @@ TEST(Faults, AKillWhileWritingNeverLeavesATruncatedFile) {
   const std::set<std::string> finals = files_in(reference.path());
   const auto growth_part = [](const std::string& json) { return json.substr(0, json.find("\"timings\"")); };
   int killed_while_writing = 0;
-  for (const double delay : {0.0, 0.02, 0.05, 0.1, 0.2}) {
+  // The shell test that is true once the moment has come.
+  for (const std::string moment : {"-n \"$(ls | grep '\\.tmp$')\"", "-e out.glb.tmp", "-e out.obj.tmp",
+                                   "-e out.csv -a -n \"$(ls | grep '\\.tmp$')\""}) {
     ScratchDir dir;
-    // Waits for the first file's temporary (the CSV), then kills after `delay` seconds.
-    const std::string command =
-        "cd '" + dir.path().string() + "' && { '" DLA3D_PATH "' " + args +
-        " & pid=$!; while [ ! -e out.csv.tmp ] && kill -0 $pid 2>/dev/null; do sleep 0.005; done; sleep " +
-        std::to_string(delay) + "; kill -KILL $pid 2>/dev/null; wait $pid; echo $? > code.txt; }";
+    // Waits for the moment (or the run's end), then kills at once.
+    const std::string command = "cd '" + dir.path().string() + "' && { '" DLA3D_PATH "' " + args +
+                                " & pid=$!; while ! [ " + moment +
+                                " ] && kill -0 $pid 2>/dev/null; do sleep 0.001; done; kill -KILL $pid 2>/dev/null; "
+                                "wait $pid; echo $? > code.txt; }";
     ASSERT_EQ(std::system(command.c_str()), 0);
-    killed_while_writing += std::atoi(read_file(dir / "code.txt").c_str()) == 128 + SIGKILL;
+    const bool killed = std::atoi(read_file(dir / "code.txt").c_str()) == 128 + SIGKILL;
     std::filesystem::remove(dir / "code.txt");
+    killed_while_writing += killed;
     for (const std::string& name : files_in(dir.path())) {
       if (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0) continue;  // not a final name
       ASSERT_TRUE(finals.count(name)) << name << " is not a file the run writes";
       const std::string written = read_file(dir / name), whole = read_file(reference / name);
       if (name == "out.json")
-        EXPECT_EQ(growth_part(written), growth_part(whole)) << "killed after " << delay << " s";
+        EXPECT_EQ(growth_part(written), growth_part(whole)) << "killed at [ " << moment << " ]";
       else
-        EXPECT_TRUE(written == whole) << name << " is not whole, killed after " << delay << " s";
+        EXPECT_TRUE(written == whole) << name << " is not whole, killed at [ " << moment << " ]";
     }
   }
+  // The first moment comes while the process runs and writes: its kill lands then.
   EXPECT_GT(killed_while_writing, 0) << "no run was killed while it wrote";
 }
 

@@ -3,8 +3,11 @@
 // the user types:
 //   - dla3d exits within the bound (no hang) and by exit(), never by a signal (no crash; under
 //     the sanitizers, a report ends the run with a multi-line stderr, which fails below);
-//   - exit 0 leaves valid files: the CSV a tree whose branches are at most a spacing, the PLY's
-//     counts and size its header's, the JSON whole, the POV-Ray scene rendered by POV-Ray;
+//   - exit 0 leaves the files --formats asks for and no other, each read back whole: the CSV
+//     and the PLY trees (with the JSON, of its counts, and the CSV's branches at most a
+//     spacing), the JSON whole, the STL, OBJ and 3MF closed meshes (the 3MF read by lib3mf),
+//     the glb passed by the glTF-Validator where it is installed, the POV-Ray scene rendered
+//     by POV-Ray (which the setup installs: its absence fails the run by name);
 //   - exit 2 (bad input) prints one line and writes no file;
 //   - exit 1 (growth or I/O failed) ends with one error line, and any files are marked
 //     incomplete.
@@ -33,9 +36,11 @@
 
 #include "tree_check.h"
 
+#include <Model/COM/NMR_DLLInterfaces.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -328,35 +333,249 @@ std::string glb_fault(const ScratchDir& dir, const std::string& name) {
   return report.empty() ? "" : name + " fails the glTF-Validator: " + report;
 }
 
-//! What is wrong with the .obj `name` in `dir`: "" if it is whole.
-std::string obj_fault(const ScratchDir& dir, const std::string& name) {
+//! The triangles of the OBJ `name` in `dir`, its positions welded where they are equal;
+//! `fault` says what is wrong with the file, if anything.
+SolidMesh read_obj(const ScratchDir& dir, const std::string& name, std::string& fault) {
   const std::string obj = read_file(dir / name);
-  return obj.rfind("# dla3d ", 0) == 0 && obj.back() == '\n' ? "" : name + " is not whole";
+  SolidMesh mesh;
+  if (obj.rfind("# dla3d ", 0) != 0 || obj.empty() || obj.back() != '\n') {
+    fault = name + " is not whole";
+    return mesh;
+  }
+  std::vector<std::uint32_t> welded;  // each v line's vertex
+  std::map<std::array<float, 3>, std::uint32_t> index;
+  std::istringstream lines(obj);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream words(line);
+    std::string kind;
+    words >> kind;
+    if (kind == "v") {
+      std::array<float, 3> p;
+      if (!(words >> p[0] >> p[1] >> p[2]) || !std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
+        fault = name + ": a vertex that is not 3 finite numbers: " + line;
+        return mesh;
+      }
+      const auto [at, added] = index.emplace(p, static_cast<std::uint32_t>(mesh.vertices.size()));
+      if (added) mesh.vertices.emplace_back(p[0], p[1], p[2]);
+      welded.push_back(at->second);
+    } else if (kind == "f") {
+      std::array<std::uint32_t, 3> triangle;
+      std::string corner;
+      for (std::size_t k = 0; k < 3; ++k) {
+        const long v = words >> corner ? std::atol(corner.c_str()) : 0;  // v, v/vt or v/vt/vn
+        if (v < 1 || static_cast<std::size_t>(v) > welded.size()) {
+          fault = name + ": a face names a vertex it has not given: " + line;
+          return mesh;
+        }
+        triangle[k] = welded[static_cast<std::size_t>(v - 1)];
+      }
+      if (words >> corner) {
+        fault = name + ": a face that is not a triangle: " + line;
+        return mesh;
+      }
+      mesh.triangles.push_back(triangle);
+    }
+  }
+  return mesh;
+}
+
+//! What is wrong with the OBJ `name` in `dir`: "" if it is whole and every tube (or the solid)
+//! in it is closed. Tubes may be none (every branch shorter than --tube-min-branch).
+std::string obj_fault(const ScratchDir& dir, const std::string& name, bool may_be_empty) {
+  std::string fault;
+  const SolidMesh mesh = read_obj(dir, name, fault);
+  if (!fault.empty()) return fault;
+  if (mesh.triangles.empty()) return may_be_empty ? "" : name + " has no triangles";
+  const std::string faults = edge_faults(mesh);
+  return faults.empty() ? "" : name + " is not closed: " + faults;
+}
+
+//! The meshes of the 3MF `path`, read by lib3mf, as one mesh; `fault` says why if it cannot.
+SolidMesh read_3mf(const std::string& path, std::string& fault) {
+  SolidMesh mesh;
+  NMR::PLib3MFModel* model = nullptr;
+  NMR::PLib3MFModelReader* reader = nullptr;
+  NMR::PLib3MFModelResourceIterator* objects = nullptr;
+  const auto release = [&] {
+    for (NMR::PLib3MFBase* owned : {static_cast<NMR::PLib3MFBase*>(objects), static_cast<NMR::PLib3MFBase*>(reader),
+                                    static_cast<NMR::PLib3MFBase*>(model)})
+      if (owned) NMR::lib3mf_release(owned);
+  };
+  if (NMR::lib3mf_createmodel(&model) != LIB3MF_OK || NMR::lib3mf_model_queryreader(model, "3mf", &reader) != LIB3MF_OK ||
+      NMR::lib3mf_reader_readfromfileutf8(reader, path.c_str()) != LIB3MF_OK ||
+      NMR::lib3mf_model_getmeshobjects(model, &objects) != LIB3MF_OK) {
+    fault = path + " is not a 3MF that lib3mf reads";
+    release();
+    return mesh;
+  }
+  BOOL more = false;
+  while (NMR::lib3mf_resourceiterator_movenext(objects, &more) == LIB3MF_OK && more) {
+    NMR::PLib3MFModelResource* object = nullptr;
+    DWORD vertices = 0, triangles = 0;
+    NMR::lib3mf_resourceiterator_getcurrent(objects, &object);
+    NMR::lib3mf_meshobject_getvertexcount(object, &vertices);
+    NMR::lib3mf_meshobject_gettrianglecount(object, &triangles);
+    std::vector<NMR::MODELMESHVERTEX> v(vertices);
+    std::vector<NMR::MODELMESHTRIANGLE> t(triangles);
+    if (vertices) NMR::lib3mf_meshobject_getvertices(object, v.data(), vertices, nullptr);
+    if (triangles) NMR::lib3mf_meshobject_gettriangleindices(object, t.data(), triangles, nullptr);
+    NMR::lib3mf_release(object);
+    const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
+    for (const NMR::MODELMESHVERTEX& p : v) mesh.vertices.emplace_back(p.m_fPosition[0], p.m_fPosition[1], p.m_fPosition[2]);
+    for (const NMR::MODELMESHTRIANGLE& f : t)
+      mesh.triangles.push_back({base + f.m_nIndices[0], base + f.m_nIndices[1], base + f.m_nIndices[2]});
+  }
+  release();
+  return mesh;
+}
+
+//! The PLY `name` in `dir` read back whole, ASCII or binary: its particles (positions as
+//! floats, parents and seeds) with its tree edges as their parents, and its links; `fault`
+//! says what is wrong, if anything.
+Cluster read_ply_tree(const ScratchDir& dir, const std::string& name, std::string& fault) {
+  const std::string ply = read_file(dir / name);
+  const auto [header, body] = ply_parts(ply);
+  Cluster tree;
+  const std::size_t at_vertex = header.find("element vertex "), at_edge = header.find("element edge ");
+  if (header.empty() || at_vertex == std::string::npos || at_edge == std::string::npos) {
+    fault = name + " has no header";
+    return tree;
+  }
+  const auto vertices = static_cast<std::size_t>(std::atoll(header.c_str() + at_vertex + 15));
+  const auto edges = static_cast<std::size_t>(std::atoll(header.c_str() + at_edge + 13));
+  const bool linked = header.find("property uchar link") != std::string::npos;
+  const bool binary = header.find("format binary_little_endian") != std::string::npos;
+  if (binary && body != 38 * vertices + (linked ? 9 : 8) * edges) {
+    fault = name + "'s body is not its header's size";
+    return tree;
+  }
+  std::vector<float> floats;  // x, y, z, radius, age of each vertex
+  std::vector<std::int32_t> seeds, parents;
+  std::vector<std::array<std::int32_t, 3>> edge_list;  // vertex1, vertex2, link
+  if (binary) {
+    const char* data = ply.data() + header.size();
+    for (std::size_t v = 0; v < vertices; ++v, data += 38) {
+      float five[5];
+      std::memcpy(five, data, 20);
+      floats.insert(floats.end(), five, five + 5);
+      std::int32_t seed = 0, parent = 0;
+      std::memcpy(&seed, data + 30, 4);
+      std::memcpy(&parent, data + 34, 4);
+      seeds.push_back(seed);
+      parents.push_back(parent);
+    }
+    for (std::size_t e = 0; e < edges; ++e, data += linked ? 9 : 8) {
+      std::array<std::int32_t, 3> edge{0, 0, 0};
+      std::memcpy(edge.data(), data, 8);
+      if (linked) edge[2] = static_cast<unsigned char>(data[8]);
+      edge_list.push_back(edge);
+    }
+  } else {
+    std::istringstream lines(ply.substr(header.size()));
+    std::string line;
+    for (std::size_t v = 0; v < vertices; ++v) {
+      double x[5], depth, descendants, order, tip, seed, parent;
+      if (!std::getline(lines, line) || !(std::istringstream(line) >> x[0] >> x[1] >> x[2] >> x[3] >> x[4] >> depth >>
+                                          descendants >> order >> tip >> seed >> parent)) {
+        fault = name + ": vertex " + std::to_string(v) + " is not 11 numbers";
+        return tree;
+      }
+      for (const double value : x) floats.push_back(static_cast<float>(value));
+      seeds.push_back(static_cast<std::int32_t>(seed));
+      parents.push_back(static_cast<std::int32_t>(parent));
+    }
+    for (std::size_t e = 0; e < edges; ++e) {
+      std::array<std::int32_t, 3> edge{0, 0, 0};
+      std::istringstream row(std::getline(lines, line) ? line : "");
+      if (!(row >> edge[0] >> edge[1]) || (linked && !(row >> edge[2]))) {
+        fault = name + ": edge " + std::to_string(e) + " is not " + (linked ? "3" : "2") + " numbers";
+        return tree;
+      }
+      edge_list.push_back(edge);
+    }
+    if (std::getline(lines, line)) {
+      fault = name + " goes on past its header's counts";
+      return tree;
+    }
+  }
+  for (const float value : floats)
+    if (!std::isfinite(value)) {
+      fault = name + " holds a float that is not finite";
+      return tree;
+    }
+  for (std::size_t v = 0; v < vertices; ++v) {
+    tree.particles.push_back({Vec3(floats[5 * v], floats[5 * v + 1], floats[5 * v + 2]), parents[v], seeds[v]});
+    tree.seed_count += parents[v] < 0;
+  }
+  // Each tree edge joins a particle's parent to it, once; the rest are links.
+  std::size_t tree_edges = 0;
+  for (const auto& [from, to, link] : edge_list) {
+    if (from < 0 || to < 0 || static_cast<std::size_t>(from) >= vertices || static_cast<std::size_t>(to) >= vertices) {
+      fault = name + ": an edge names a vertex it does not have";
+      return tree;
+    }
+    if (link) {
+      tree.links.push_back({std::min(from, to), std::max(from, to)});
+    } else if (parents[static_cast<std::size_t>(to)] != from) {
+      fault = name + ": the edge " + std::to_string(from) + "-" + std::to_string(to) + " is not a parent's";
+      return tree;
+    } else {
+      ++tree_edges;
+    }
+  }
+  if (tree_edges != vertices - tree.seed_count) fault = name + " has " + std::to_string(tree_edges) + " tree edges for " +
+                                                        std::to_string(vertices - tree.seed_count) + " attached particles";
+  return tree;
+}
+
+//! The files a run that exited 0 ought to leave under `prefix`: `formats` (a --formats value),
+//! the glb's `lods` levels, the links' CSV beside the CSV when there are `links`, and the
+//! scene's mesh when the scene shows one.
+std::set<std::string> expected_files(const std::string& prefix, const std::string& formats, int lods, bool links,
+                                     bool scene_mesh) {
+  OutputOptions files;
+  files.output = prefix;
+  files.formats = parse_formats(formats);
+  files.lods = lods;
+  const std::vector<std::string> names = file_names(files);
+  std::set<std::string> expected(names.begin(), names.end());
+  if (files.formats.pov && files.formats.tips) expected.insert(prefix + "_tips.inc");
+  if (files.formats.csv && links) expected.insert(prefix + "_links.csv");
+  if (files.formats.pov && scene_mesh) expected.insert(prefix + "_mesh.inc");
+  return expected;
 }
 
 //! Checks the files of a run that exited 0 under `prefix` in `dir`, writing `formats` (a
-//! --formats value); returns what is wrong.
-std::string check_files(const ScratchDir& dir, const std::string& prefix, const std::string& formats) {
+//! --formats value) with `lods` levels of the glb: exactly those files, each read back whole,
+//! and, with the JSON, against its counts; returns what is wrong.
+std::string check_files(const ScratchDir& dir, const std::string& prefix, const std::string& formats, int lods) {
   const auto wants = [&](const char* format) { return ("," + formats + ",").find(std::string(",") + format + ",") != std::string::npos; };
+  // The counts: the JSON's, else the CSV's, else the PLY's.
+  std::size_t particles = 0, edges = 0, links = 0;
+  double spacing = 0.0, noise = 0.0, reach = 1.0;
+  bool collided = false, counted = false;
   const std::string json = read_file(dir / (prefix + ".json"));
-  if (!wants("json")) return json.empty() ? "" : prefix + ".json was not asked for";
-  if (json.empty() || json.front() != '{' || json.substr(json.size() - 2) != "}\n" || !balanced(json, '{', '}') ||
-      !balanced(json, '[', ']'))
-    return prefix + ".json is not whole";
-  if (json.find("nan") != std::string::npos || json.find("inf,") != std::string::npos)
-    return prefix + ".json holds a number JSON cannot";
-  if (json.find("\"complete\": true") == std::string::npos) return "exit 0 but the JSON says incomplete";
-  const auto particles = static_cast<std::size_t>(json_value(json, "particles", "\"counts\""));
-  const auto edges = static_cast<std::size_t>(json_value(json, "attached", "\"counts\""));
-  const auto links = static_cast<std::size_t>(json_value(json, "links", "\"counts\""));
-  const double spacing = json_value(json, "spacing");
-  // Space colonization's noise moves each node by up to its amplitude in each coordinate, and
-  // a collision mesh moves it as far as its surface.
-  const double noise = std::max(0.0, json_value(json, "noise_amplitude"));
-  const bool collided = json.find("\"collide\": ") != std::string::npos;
-  // An Eden site hangs from the nearest occupied site of its mask, up to 8 sites away along
-  // each axis.
-  const double reach = json.find("\"model\": \"eden\"") != std::string::npos ? 8 * std::sqrt(3.0) : 1.0;
+  if (!wants("json") && !json.empty()) return prefix + ".json was not asked for";
+  if (wants("json")) {
+    if (json.empty() || json.front() != '{' || json.substr(json.size() - 2) != "}\n" || !balanced(json, '{', '}') ||
+        !balanced(json, '[', ']'))
+      return prefix + ".json is not whole";
+    if (json.find("nan") != std::string::npos || json.find("inf,") != std::string::npos)
+      return prefix + ".json holds a number JSON cannot";
+    if (json.find("\"complete\": true") == std::string::npos) return "exit 0 but the JSON says incomplete";
+    particles = static_cast<std::size_t>(json_value(json, "particles", "\"counts\""));
+    edges = static_cast<std::size_t>(json_value(json, "attached", "\"counts\""));
+    links = static_cast<std::size_t>(json_value(json, "links", "\"counts\""));
+    spacing = json_value(json, "spacing");
+    // Space colonization's noise moves each node by up to its amplitude in each coordinate,
+    // and a collision mesh moves it as far as its surface.
+    noise = std::max(0.0, json_value(json, "noise_amplitude"));
+    collided = json.find("\"collide\": ") != std::string::npos;
+    // An Eden site hangs from the nearest occupied site of its mask, up to 8 sites away along
+    // each axis.
+    if (json.find("\"model\": \"eden\"") != std::string::npos) reach = 8 * std::sqrt(3.0);
+    counted = true;
+  }
 
   if (wants("csv")) {
     std::istringstream csv(read_file(dir / (prefix + ".csv")));
@@ -377,13 +596,21 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
       if (parent < 0) ++grown.seed_count;
       grown.particles.push_back({Vec3(x, y, z), static_cast<std::int32_t>(parent), static_cast<std::int32_t>(seed)});
     }
-    // Branches clipped at a mesh are shorter; a collision mesh moves a node as far as its surface.
-    const double longest = collided ? std::numeric_limits<double>::infinity() : reach + std::sqrt(3.0) * noise;
+    // Branches clipped at a mesh are shorter; a collision mesh moves a node as far as its
+    // surface. Without the JSON's spacing, the tree's shape alone.
+    const double longest = collided || !counted ? std::numeric_limits<double>::infinity() : reach + std::sqrt(3.0) * noise;
+    if (!counted) grown.spacing = 1.0;
     const std::string fault = dla::testing::tree_fault(grown, {0.0, longest, false});
     if (!fault.empty()) return prefix + ".csv is not a tree: " + fault;
-    if (grown.particles.size() != particles) return prefix + ".csv has another count than the JSON";
     // The links: as many as the JSON counts, each two particles, none a tree edge or twice.
     const std::string links_csv = read_file(dir / (prefix + "_links.csv"));
+    if (counted && grown.particles.size() != particles) return prefix + ".csv has another count than the JSON";
+    if (!counted) {
+      particles = grown.particles.size();
+      edges = particles - grown.seed_count;
+      links = links_csv.empty() ? 0 : static_cast<std::size_t>(std::count(links_csv.begin(), links_csv.end(), '\n')) - 1;
+      counted = true;
+    }
     if (links == 0 && !links_csv.empty()) return prefix + "_links.csv is there without links";
     if (links > 0) {
       try {
@@ -401,37 +628,40 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
   }
 
   if (wants("ply")) {
-    const auto [header, body] = ply_parts(read_file(dir / (prefix + ".ply")));
-    if (header.empty()) return prefix + ".ply has no header";
-    if (header.find("element vertex " + std::to_string(particles) + "\n") == std::string::npos)
-      return prefix + ".ply counts another number of vertices";
-    const std::string ply = read_file(dir / (prefix + ".ply"));
-    // Each vertex's floats (x, y, z, radius, age) are finite floats.
-    std::vector<double> floats;
-    if (header.find("format binary_little_endian") != std::string::npos) {
-      if (body != 38 * particles + (links ? 9 : 8) * (edges + links)) return prefix + ".ply's body is not its header's size";
-      for (std::size_t v = 0; v < particles; ++v)
-        for (std::size_t k = 0; k < 5; ++k) {
-          float value;
-          std::memcpy(&value, ply.data() + header.size() + 38 * v + 4 * k, 4);
-          floats.push_back(value);
-        }
-    } else if (static_cast<std::size_t>(std::count(ply.begin() + static_cast<std::ptrdiff_t>(header.size()), ply.end(), '\n')) !=
-               particles + edges + links) {
-      return prefix + ".ply's body has another number of lines than its header says";
-    } else {
-      std::istringstream lines(ply.substr(header.size()));
-      std::string line;
-      for (std::size_t v = 0; v < particles && std::getline(lines, line); ++v) {
-        std::istringstream values(line);
-        std::string value;
-        for (std::size_t k = 0; k < 5 && values >> value; ++k) floats.push_back(std::strtod(value.c_str(), nullptr));
-      }
+    std::string fault;
+    Cluster tree = read_ply_tree(dir, prefix + ".ply", fault);
+    if (!fault.empty()) return fault;
+    tree.spacing = 1.0;
+    tree.dimensions = 3;
+    fault = dla::testing::tree_fault(tree, {0.0, std::numeric_limits<double>::infinity(), false});
+    if (!fault.empty()) return prefix + ".ply is not a tree: " + fault;
+    if (counted && (tree.particles.size() != particles || tree.particles.size() - tree.seed_count != edges ||
+                    tree.links.size() != links))
+      return prefix + ".ply counts another structure than the JSON or the CSV";
+    if (!counted) {
+      particles = tree.particles.size();
+      edges = particles - tree.seed_count;
+      links = tree.links.size();
+      counted = true;
     }
-    for (const double value : floats)
-      if (!(std::abs(value) <= std::numeric_limits<float>::max()))
-        return prefix + ".ply holds " + std::to_string(value) + ", which is not a finite float";
   }
+
+  // The files on disk are those asked for, and no other.
+  std::set<std::string> written;
+  const std::filesystem::path folder = dir.path() / std::filesystem::path(prefix).parent_path();
+  const std::string stem = std::filesystem::path(prefix).filename().string();
+  for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(stem, 0) == 0 && name.size() > stem.size() && (name[stem.size()] == '.' || name[stem.size()] == '_'))
+      written.insert((std::filesystem::path(prefix).parent_path() / name).string());
+  }
+  const std::string stem_pov = read_file(dir / (prefix + ".pov"));
+  const bool scene_mesh = stem_pov.find("#include \"" + stem + "_mesh.inc\"") != std::string::npos;
+  const std::set<std::string> expected = expected_files(prefix, formats, lods, links > 0, scene_mesh);
+  for (const std::string& name : expected)
+    if (!written.count(name)) return name + " was asked for but not written";
+  for (const std::string& name : written)
+    if (!expected.count(name)) return name + " was written but not asked for";
 
   if (wants("tips")) {
     const std::string tips = read_file(dir / (prefix + "_tips.ply"));
@@ -459,7 +689,7 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
     if (!fault.empty()) return fault;
   }
   if (wants("obj")) {
-    const std::string fault = obj_fault(dir, prefix + ".obj");
+    const std::string fault = obj_fault(dir, prefix + ".obj", true);
     if (!fault.empty()) return fault;
   }
 
@@ -474,7 +704,14 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
     const std::string faults = edge_faults(stl);
     if (!faults.empty()) return prefix + ".stl is not closed: " + faults;
   }
-  if (wants("3mf") && read_file(dir / (prefix + ".3mf")).rfind("PK\x03\x04", 0) != 0) return prefix + ".3mf is not a zip";
+  if (wants("3mf")) {
+    std::string fault;
+    const SolidMesh mesh = read_3mf(dir / (prefix + ".3mf"), fault);
+    if (!fault.empty()) return fault;
+    if (mesh.triangles.empty()) return prefix + ".3mf holds no triangles";
+    fault = edge_faults(mesh);
+    if (!fault.empty()) return prefix + ".3mf is not closed: " + fault;
+  }
   if (wants("vdb") && read_file(dir / (prefix + ".vdb")).rfind(std::string(" BDV\0\0\0\0", 8), 0) != 0)
     return prefix + ".vdb is not OpenVDB's";
   if (wants("solid-glb")) {
@@ -482,7 +719,7 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
     if (!fault.empty()) return fault;
   }
   if (wants("solid-obj")) {
-    const std::string fault = obj_fault(dir, prefix + "_solid.obj");
+    const std::string fault = obj_fault(dir, prefix + "_solid.obj", false);
     if (!fault.empty()) return fault;
   }
 
@@ -520,20 +757,20 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
   if (!balanced(inc, '{', '}') || !balanced(pov, '{', '}') ||
       !balanced(read_file(dir / (prefix + "_growth.inc")), '{', '}'))
     return "the POV-Ray files' braces do not pair";
-  // POV-Ray's command line does not take every file name: the scene is copied to a plain one.
-  const std::filesystem::path folder = dir.path() / std::filesystem::path(prefix).parent_path();
+  // POV-Ray renders the scene, and a frame of its growth (the scene's own code builds it from
+  // PREFIX_growth.inc). Its command line does not take every file name: the scene is copied
+  // to a plain one.
+  if (std::string(POVRAY_PATH).find("NOTFOUND") != std::string::npos || std::string(POVRAY_PATH).empty())
+    return "POV-Ray is not installed (the README's setup installs povray): " + prefix + ".pov cannot be rendered";
   std::filesystem::copy_file(folder / (name + ".pov"), folder / "render_scene.pov");
   const std::string render = "cd '" + folder.string() + "' && '" + std::string(POVRAY_PATH) +
                              "' +Irender_scene.pov +Orender.png +W32 +H24 -D -V > povray.log 2>&1";
-  if (std::string(POVRAY_PATH).find("NOTFOUND") == std::string::npos) {
-    if (std::system(render.c_str()) != 0)
-      return "POV-Ray cannot render " + prefix + ".pov: " + read_file((folder / "povray.log").string());
-    // A frame of growth: the scene's own code builds it from PREFIX_growth.inc.
-    const std::string growth = "cd '" + folder.string() + "' && '" + std::string(POVRAY_PATH) +
-                               "' +Irender_scene.pov +Ogrowth.png +W32 +H24 -D -V Declare=DLA_Show=0.5 > povray.log 2>&1";
-    if (std::system(growth.c_str()) != 0)
-      return "POV-Ray cannot render half the growth of " + prefix + ".pov: " + read_file((folder / "povray.log").string());
-  }
+  if (std::system(render.c_str()) != 0)
+    return "POV-Ray cannot render " + prefix + ".pov: " + read_file((folder / "povray.log").string());
+  const std::string growth = "cd '" + folder.string() + "' && '" + std::string(POVRAY_PATH) +
+                             "' +Irender_scene.pov +Ogrowth.png +W32 +H24 -D -V Declare=DLA_Show=0.5 > povray.log 2>&1";
+  if (std::system(growth.c_str()) != 0)
+    return "POV-Ray cannot render half the growth of " + prefix + ".pov: " + read_file((folder / "povray.log").string());
   return "";
 }
 
@@ -676,7 +913,8 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
                                  last_value(command, "--formats", "glb")), "");
           break;
         }
-        ASSERT_EQ(check_files(dir, prefix, last_value(command, "--formats", "pov,csv,ply,json")), "");
+        ASSERT_EQ(check_files(dir, prefix, last_value(command, "--formats", "pov,csv,ply,json"),
+                              std::atoi(last_value(command, "--lod", "0").c_str())), "");
         break;
       }
       case 2:

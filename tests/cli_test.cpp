@@ -149,17 +149,20 @@ TEST(Cli, TheMainJobReachesIntoTheBustsHorns) {
 }
 
 //! `dla3d ARGS` (words split at spaces), stopped by `signal` once it catches it.
-int interrupted(const ScratchDir& dir, const std::string& args, int signal, double work = 0.0) {
+int interrupted(const ScratchDir& dir, const std::string& args, int signal, double work = 0.0,
+                const std::string& exists = "") {
   std::vector<std::string> words;
   std::istringstream in(args);
   for (std::string word; in >> word;) words.push_back(word);
-  return dla::testing::interrupted(dir, words, signal, work);
+  return dla::testing::interrupted(dir, words, signal, work, exists);
 }
 
 TEST(Cli, CtrlCKeepsTheWorkAndResumeEndsAsAnUninterruptedRun) {
   ScratchDir dir;
   const std::string run = "-n 150000 -q --rng-seed 3";
-  const int code = interrupted(dir, run + " -o part --checkpoint part.ck --checkpoint-every 0.2", SIGINT, 0.3);
+  // Interrupted once the first checkpoint is saved: growth is under way (a finished run
+  // removes its checkpoint).
+  const int code = interrupted(dir, run + " -o part --checkpoint part.ck --checkpoint-every 0.2", SIGINT, 0.0, "part.ck");
   ASSERT_EQ(code, 130) << read_file(dir / "err.txt");
   const std::string err = read_file(dir / "err.txt");
   EXPECT_NE(err.find("stopped by SIGINT after "), std::string::npos) << err;
@@ -180,9 +183,10 @@ TEST(Cli, CtrlCKeepsTheWorkAndResumeEndsAsAnUninterruptedRun) {
 
 TEST(Cli, CtrlCWhileTheSolidBuildsKeepsTheOtherFilesAndLeavesNoSolidFile) {
   ScratchDir dir;
-  // Growth takes a few hundredths of a second; the solid, at a fine voxel, seconds.
-  const int code =
-      interrupted(dir, "-n 3000 -q --radius pipe --solid-voxel 0.03 --formats csv,json,stl,vdb -o part", SIGINT, 1.0);
+  // Interrupted once the CSV is in place: growth has ended and the files are being written,
+  // the solid, at a fine voxel, for seconds beside the CSV's hundredths.
+  const int code = interrupted(dir, "-n 3000 -q --radius pipe --solid-voxel 0.03 --formats csv,json,stl,vdb -o part",
+                               SIGINT, 0.0, "part.csv");
   const std::string err = read_file(dir / "err.txt");
   ASSERT_EQ(code, 130) << err;
   EXPECT_NE(err.find("stopped by SIGINT while the solid was built; the other files are written, no solid file"),
@@ -212,7 +216,8 @@ TEST(Cli, ASolidThatCannotFitIsRefusedBeforeGrowth) {
 
 TEST(Cli, SigtermWritesPartialFiles) {
   ScratchDir dir;
-  const int code = interrupted(dir, "-n 300000 -o part", SIGTERM, 1.0);
+  // Once the first checkpoint is saved, a fifth of a second into growth of some seconds.
+  const int code = interrupted(dir, "-n 300000 -o part --checkpoint part.ck --checkpoint-every 0.2", SIGTERM, 0.0, "part.ck");
   EXPECT_EQ(code, 143) << read_file(dir / "err.txt");
   EXPECT_NE(read_file(dir / "part.json").find("\"complete\": false"), std::string::npos);
   const std::string csv = read_file(dir / "part.csv");

@@ -55,10 +55,12 @@ inline double cpu_seconds(pid_t pid) {
 }
 
 //! Starts `dla3d WORDS` in `dir` (stderr to err.txt) and sends it `signal` once it catches that
-//! signal (its handler is installed just before growth) and has done `work` seconds of
-//! processor time, which load on the machine does not shorten. Returns its exit code: 128 +
+//! signal (its handler is installed just before growth), has done `work` seconds of processor
+//! time, which load on the machine does not shorten, and, if `exists` is named, once that file
+//! is in `dir` (a file the run writes: the event of its stage). Returns its exit code: 128 +
 //! the signal when it stopped as asked, or -1 if it did not exit by itself.
-inline int interrupted(const ScratchDir& dir, const std::vector<std::string>& words, int signal, double work = 0.0) {
+inline int interrupted(const ScratchDir& dir, const std::vector<std::string>& words, int signal, double work = 0.0,
+                       const std::string& exists = "") {
   std::vector<std::string> argv_words{DLA3D_PATH};
   argv_words.insert(argv_words.end(), words.begin(), words.end());
   std::vector<char*> argv;
@@ -77,7 +79,7 @@ inline int interrupted(const ScratchDir& dir, const std::vector<std::string>& wo
   posix_spawn_file_actions_destroy(&files);
   if (spawned != 0) return -1;
   int status = 0;
-  while (!catches(pid, signal) || cpu_seconds(pid) < work) {
+  while (!catches(pid, signal) || cpu_seconds(pid) < work || (!exists.empty() && !std::filesystem::exists(dir / exists))) {
     if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     usleep(2000);
   }

@@ -50,10 +50,18 @@ inline std::string validate_glb(const std::string& glb) {
   return status == 0 ? "" : report;
 }
 
+//! The Chromium that view_page.mjs launches: $CHROMIUM, else Debian's /usr/bin/chromium; "" if
+//! it is not there.
+inline std::string chromium() {
+  const char* chosen = std::getenv("CHROMIUM");
+  const std::string path = chosen && *chosen ? chosen : "/usr/bin/chromium";
+  return access(path.c_str(), X_OK) == 0 ? path : "";
+}
+
 //! The web viewer's runner (Playwright driving Debian's Chromium), or "" if node, the npm
-//! package or Chromium is missing.
+//! package or that Chromium is missing.
 inline std::string page_viewer() {
-  if (find_program("node").empty() || find_program("chromium").empty() ||
+  if (find_program("node").empty() || chromium().empty() ||
       !std::filesystem::exists(TEST_CLIENTS_DIR "/node_modules/playwright-core"))
     return "";
   return TEST_CLIENTS_DIR "/view_page.mjs";

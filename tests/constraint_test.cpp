@@ -29,8 +29,10 @@ Checked expect_constrained(const Cluster& cluster, const MeshConstraint& constra
   const Side side = constraint.options().side;
   Checked checked;
   checked.per_seed.assign(cluster.seed_count, 0);
-  // A branch is a spacing long, or clipped at the surface to half of one or more.
-  EXPECT_EQ(testing::tree_fault(cluster, {0.5, 1.0, false}), "");
+  // Rejecting, a branch is a spacing long and no particle nearer another; clipping, a branch
+  // may be clipped at the surface to half of one or more.
+  const bool clipping = constraint.options().mode == ConstraintMode::clip;
+  EXPECT_EQ(testing::tree_fault(cluster, {clipping ? 0.5 : 1.0, 1.0, !clipping}), "");
   for (std::size_t i = 0; i < cluster.particles.size(); ++i) {
     const Particle& p = cluster.particles[i];
     ++checked.per_seed[static_cast<std::size_t>(p.seed)];
@@ -484,7 +486,7 @@ TEST(Constraint, ShellBandMatchesBruteForceDistances) {
   int held = 0;
   for (int i = 0; i < 3000; ++i) {
     const Vec3 p(-11 + 22 * rng.uniform(), -11 + 22 * rng.uniform(), -11 + 22 * rng.uniform());
-    const double d = constraint.distance_to_surface(p);
+    const double d = testing::brute_distance(constraint.mesh(), p);
     const bool out = testing::generalized_winding_number(constraint.mesh(), p) < 0.5;
     if (band.holds(p)) {
       ++held;
@@ -541,9 +543,10 @@ TEST(Constraint, ShellKeepsGrowthOverTheSurface) {
   o.spawn = SpawnMode::inside;
   o.seeds = {Vec3(-5, 0, 0.25), Vec3(5, 0, -0.25)};  // one on each side: branches cannot cross the sheet
   const Cluster frosted = grow(o, leaf);
+  expect_constrained(frosted, leaf);  // no branch meets the sheet
   int above = 0, below = 0;
   for (const Particle& p : frosted.particles) {
-    ASSERT_LE(leaf.distance_to_surface(p.position), 1.5 + 1e-9) << p.position.transpose();
+    ASSERT_LE(testing::brute_distance(sheet, p.position), 1.5 + 1e-9) << p.position.transpose();
     above += p.position.z() > 0.25;
     below += p.position.z() < -0.25;
   }

@@ -10,7 +10,6 @@
 
 #include <cstdlib>
 
-#include <chrono>
 #include <thread>
 
 #include <atomic>
@@ -310,17 +309,42 @@ TEST(Threads, SameResultWithSeedsFarApart) {
 }
 
 TEST(Threads, StoppedAndResumedGrowthIsTheOneThreadRun) {
-  DlaOptions o = small(4000);
-  o.threads = 2;
-  expect_resumed_runs_are_whole(o, 1536);
+  for (const int threads : {1, 2, 3, 4}) {
+    SCOPED_TRACE(std::to_string(threads) + " threads");
+    DlaOptions o = small(4000);
+    o.threads = threads;
+    expect_resumed_runs_are_whole(o, 1536);
+  }
 }
 
+// Growth that cannot go on fails on any thread count as on one: the same message, after the
+// same particles.
 TEST(Threads, ErrorsAreTheOneThreadErrors) {
-  DlaOptions o = small(10);
-  o.spawn = SpawnMode::box;
-  o.spawn_box = Box{Vec3(-0.5, -0.5, -0.5), Vec3(0.5, 0.5, 0.5)};
-  o.threads = 2;
-  EXPECT_THROW(grow(o), GrowthError);
+  const auto failure = [](int threads) {
+    DlaOptions o = small(1000);
+    o.spawn = SpawnMode::box;
+    o.spawn_box = Box{Vec3(-2, -2, -2), Vec3(2, 2, 2)};  // the structure fills it after a few dozen
+    o.threads = threads;
+    try {
+      grow(o);
+    } catch (const PartialGrowth& e) {
+      return std::make_pair(std::string(e.what()), e.partial());
+    }
+    ADD_FAILURE() << threads << " threads: the box held 1000 particles";
+    return std::make_pair(std::string(), Cluster{});
+  };
+  const auto [one_message, one_part] = failure(1);
+  ASSERT_FALSE(one_message.empty());
+  for (const int threads : {2, 3, 4}) {
+    SCOPED_TRACE(std::to_string(threads) + " threads");
+    const auto [message, part] = failure(threads);
+    EXPECT_EQ(message, one_message);
+    ASSERT_EQ(part.particles.size(), one_part.particles.size());
+    for (std::size_t i = 0; i < part.particles.size(); ++i) {
+      ASSERT_EQ(part.particles[i].position, one_part.particles[i].position) << i;
+      ASSERT_EQ(part.particles[i].parent, one_part.particles[i].parent) << i;
+    }
+  }
 }
 
 TEST(Growth, RotationTurnsTheDriftAndSoTheGrowth) {
@@ -432,25 +456,27 @@ void expect_ensemble_dimension(int dimensions, double expected, double tolerance
 TEST(Slow, EnsembleDimension3D) { expect_ensemble_dimension(3, 2.50, 0.03); }
 TEST(Slow, EnsembleDimension2D) { expect_ensemble_dimension(2, 1.71, 0.02); }
 
-// A stop request reaches walkers inside their walk: walkers that touch the structure ten
-// thousand times before they stick take seconds for 256 particles, and the flag stops them
-// long before, on one thread and on two.
+// A stop request reaches walkers inside their walk, on one thread and on two: set while
+// growth goes on, it ends the walk under way before its particle attaches.
 TEST(Growth, AStopFlagEndsGrowthInsideAWalk) {
   for (const int threads : {1, 2}) {
     DlaOptions o;
     o.particles = 100000;
-    o.stickiness = 1e-4;
+    o.stickiness = 1e-4;  // a walk takes thousands of contacts: far more steps than between looks at the flag
     o.threads = threads;
     StopFlag stop{false};
-    std::thread stopper([&] {
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-      stop.store(true);
-    });
-    const Cluster part = grow(o, {}, &stop);
-    stopper.join();
+    // The first progress call sets the flag and lets growth go on: only the flag can stop it.
+    std::size_t when_set = 0;
+    const ProgressFn set_the_flag = [&](const Cluster& so_far) {
+      if (!stop.load()) when_set = attached(so_far), stop.store(true);
+      return true;
+    };
+    const Cluster part = grow(o, set_the_flag, &stop);
     EXPECT_FALSE(part.complete);
-    EXPECT_LT(attached(part), 256u) << threads << " threads: the flag waited for walks to end";
-    EXPECT_LT(attached(part), o.particles);
+    // One thread: the walk under way when the flag was set ends inside it, unattached. Two: the
+    // walk being committed then may attach.
+    if (threads == 1) EXPECT_EQ(attached(part), when_set) << "the flag waited for the walk to end";
+    else EXPECT_LE(attached(part), when_set + 1) << "the flag waited for walks to end";
     // What grew is a prefix of the whole run: it resumes to the same structure.
     o.particles = attached(part) + 20;
     const Cluster whole = grow(o), resumed = resume(o, part);

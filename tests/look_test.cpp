@@ -147,8 +147,9 @@ TEST(Attributes, MatchTheirDefinitions) {
   }
 }
 
-TEST(Attributes, AMillionParticlesInWellUnderASecond) {
-  // Not a timing (bench/ times it): the arrays are linear, and a chain is the deepest tree.
+TEST(Attributes, TheDeepestTreeAChainOf100000IsMeasuredWithoutRecursion) {
+  // A chain is the deepest tree: a recursive walk would overflow the stack here (bench/ times
+  // the attributes; this only checks what they say of it).
   const Cluster c = chain(100000);
   const Attributes a = compute_attributes(c);
   EXPECT_EQ(a.depth.back(), 99999);

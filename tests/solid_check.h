@@ -1,6 +1,6 @@
 #pragma once
 // Checks of a solid's mesh that do not trust solid.cpp: edges, self-intersections (CGAL, in
-// solid_check.cpp), the winding number and the enclosed volume.
+// solid_check.cpp), shells, the winding number and the enclosed volume.
 
 #include "dla/look/solid.h"
 
@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace dla {
 
@@ -47,6 +48,27 @@ inline double winding_number(const SolidMesh& mesh, const Vec3& p) {
     total += 2.0 * std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb);
   }
   return total / (4.0 * M_PI);
+}
+
+//! The mesh's shells: its faces' connected components, two faces joined where they share an
+//! edge (not solid.cpp's count).
+inline std::size_t face_components(const SolidMesh& mesh) {
+  std::vector<std::size_t> parent(mesh.triangles.size());
+  for (std::size_t f = 0; f < parent.size(); ++f) parent[f] = f;
+  const auto find = [&](std::size_t f) {
+    while (parent[f] != f) f = parent[f] = parent[parent[f]];
+    return f;
+  };
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> first_face;
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = mesh.triangles[f][k], b = mesh.triangles[f][(k + 1) % 3];
+      const auto [at, added] = first_face.emplace(std::make_pair(std::min(a, b), std::max(a, b)), f);
+      if (!added) parent[find(f)] = find(at->second);
+    }
+  std::size_t components = 0;
+  for (std::size_t f = 0; f < parent.size(); ++f) components += find(f) == f;
+  return components;
 }
 
 inline double mesh_volume(const SolidMesh& mesh) {

@@ -2,6 +2,7 @@
 // union of tapered capsules, the mesh's volume is a Monte Carlo estimate's, every particle lies
 // inside it, every vertex on the analytic surface; the mesh is closed, oriented and free of
 // self-intersections, with one shell a tree; print sizing, refusals and determinism.
+#include "mesh_util.h"
 #include "solid_check.h"
 #include "test_util.h"
 #include "tree_check.h"
@@ -15,6 +16,8 @@
 #include "dla/models/dla.h"
 #include "dla/models/eden.h"
 #include "look/solid_grid.h"
+
+#include <openvdb/tools/Interpolation.h>
 
 #include <gtest/gtest.h>
 
@@ -138,15 +141,29 @@ TEST(Solid, EveryVoxelHoldsTheDistanceToTheUnionOfCapsules) {
     ++checked;
   }
   EXPECT_GT(checked, 1000u);
-  // Voxels outside the band are off and hold +band outside, -band inside.
+  // Every voxel outside the band is off and holds +band outside, -band inside; a tile (a block
+  // of voxels of one value) is checked at its corners and centre.
   std::size_t off = 0;
-  for (auto it = grid.cbeginValueOff(); it && off < 20000; ++it) {
-    if (!it.isVoxelValue()) continue;
-    const openvdb::Vec3d w = grid.indexToWorld(it.getCoord());
+  const auto expect_beyond = [&](const openvdb::Vec3d& w, float value) {
     const double expected = reference(Vec3(w.x(), w.y(), w.z()));
-    ASSERT_TRUE(*it > 0 ? expected >= band - 1e-5 : expected <= -band + 1e-5) << *it << " " << expected;
-    ++off;
+    ASSERT_TRUE(value > 0 ? expected >= band - 1e-5 : expected <= -band + 1e-5) << value << " " << expected;
+  };
+  for (auto it = grid.cbeginValueOff(); it; ++it) {
+    if (it.isVoxelValue()) {
+      expect_beyond(grid.indexToWorld(it.getCoord()), *it);
+      ++off;
+      continue;
+    }
+    openvdb::CoordBBox tile;
+    it.getBoundingBox(tile);
+    const openvdb::Coord lo = tile.min(), hi = tile.max();
+    for (int corner = 0; corner < 8; ++corner)
+      expect_beyond(grid.indexToWorld(openvdb::Coord(corner & 1 ? hi.x() : lo.x(), corner & 2 ? hi.y() : lo.y(),
+                                                     corner & 4 ? hi.z() : lo.z())),
+                    *it);
+    expect_beyond(grid.indexToWorld(tile.getCenter()), *it);
   }
+  EXPECT_GT(off, 0u);
 }
 
 TEST(Solid, VolumeMatchesMonteCarloAndEveryParticleIsInside) {
@@ -188,7 +205,8 @@ TEST(Solid, IsClosedOrientedFreeOfSelfIntersectionsAndOneShellATree) {
     const Solid solid = build_solid(c, radii, o);
     EXPECT_EQ(edge_faults(solid.mesh), "");
     EXPECT_FALSE(self_intersects(solid.mesh));
-    EXPECT_EQ(solid.measures.shells, join ? 1u : 3u);
+    EXPECT_EQ(face_components(solid.mesh), join ? 1u : 3u);
+    EXPECT_EQ(solid.measures.shells, face_components(solid.mesh));
     EXPECT_GT(solid.measures.volume, 0.0);
   }
 }
@@ -223,6 +241,7 @@ TEST(Solid, EveryModelAndShapeGivesAClosedSolid) {
     const Solid solid = build_solid(k.cluster, radii, o);
     EXPECT_EQ(edge_faults(solid.mesh), "");
     EXPECT_FALSE(self_intersects(solid.mesh));
+    EXPECT_EQ(face_components(solid.mesh), 1u);
     EXPECT_EQ(solid.measures.shells, 1u);
     for (const Particle& p : k.cluster.particles) ASSERT_GT(winding_number(solid.mesh, p.position), 0.5);
   }
@@ -240,12 +259,18 @@ TEST(Solid, SmoothingOnlyAddsToTheSolid) {
   EXPECT_LT(smooth.measures.volume, 1.6 * sharp.measures.volume);
   const double voxel = sharp.measures.voxel;
   const openvdb::FloatGrid& grid = *smooth.grid->surface;
+  // Every vertex of the sharp mesh is inside the smooth surface or within a voxel of it: the
+  // smooth grid's distance, interpolated at the vertex.
   auto access = grid.getConstAccessor();
-  for (std::size_t v = 0; v < sharp.mesh.vertices.size(); v += 7) {
+  double worst = -std::numeric_limits<double>::infinity();
+  for (std::size_t v = 0; v < sharp.mesh.vertices.size(); ++v) {
     const Eigen::Vector3f& p = sharp.mesh.vertices[v];
-    const openvdb::Coord ijk = grid.transform().worldToIndexNodeCentered(openvdb::Vec3d(p.x(), p.y(), p.z()));
-    ASSERT_LT(access.getValue(ijk), 2.0 * voxel);
+    const openvdb::Vec3d at = grid.transform().worldToIndex(openvdb::Vec3d(p.x(), p.y(), p.z()));
+    const double distance = openvdb::tools::BoxSampler::sample(access, at);
+    worst = std::max(worst, distance);
+    ASSERT_LT(distance, voxel) << "vertex " << v;
   }
+  std::printf("the sharp mesh lies at most %.2f voxels outside the smooth surface\n", worst / voxel);
 }
 
 TEST(Solid, PrintSizeGivesTheLongestSideAndTheThinnestWall) {
@@ -258,8 +283,23 @@ TEST(Solid, PrintSizeGivesTheLongestSideAndTheThinnestWall) {
     o.min_wall = 1.2;
     const Solid solid = build_solid(c, radii, o);
     EXPECT_NEAR(solid.measures.size.maxCoeff(), size, 1e-4 * size);
-    EXPECT_GE(solid.measures.thinnest_wall, o.min_wall);
     EXPECT_EQ(edge_faults(solid.mesh), "");
+    // The walls, measured on the mesh: every particle's centre lies at least half min_wall and
+    // its own radius deep (within a voxel, where facets cut inside), and the shallowest is
+    // half the thinnest wall the measures give.
+    const double voxel = solid.measures.voxel, scale = solid.measures.scale;
+    TriangleMesh written;
+    for (const Eigen::Vector3f& v : solid.mesh.vertices) written.vertices.push_back(v.cast<double>());
+    written.triangles = solid.mesh.triangles;
+    double shallowest = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < c.particles.size(); ++i) {
+      const Vec3 at = (c.particles[i].position - solid.origin) * scale;
+      ASSERT_GT(winding_number(solid.mesh, at), 0.5) << "particle " << i << " is outside";
+      const double depth = testing::brute_distance(written, at);
+      shallowest = std::min(shallowest, depth);
+      ASSERT_GT(depth, std::max(o.min_wall / 2.0, radii[i] * c.spacing * scale) - voxel) << "particle " << i;
+    }
+    EXPECT_NEAR(2.0 * shallowest, solid.measures.thinnest_wall, 2.0 * voxel);
     Eigen::AlignedBox3f box;
     for (const Eigen::Vector3f& v : solid.mesh.vertices) box.extend(v);
     EXPECT_NEAR(box.sizes().maxCoeff(), size, 1e-4 * size);
@@ -289,7 +329,7 @@ TEST(Solid, RefusesWhatWouldNotFitAndNamesAVoxelThatDoes) {
   o.voxel = std::stod(message.substr(at + 14));
   EXPECT_GT(o.voxel, 0.01);
   const Solid solid = build_solid(c, radii, o);  // the named voxel fits under the same limit
-  EXPECT_EQ(solid.measures.shells, 1u);
+  EXPECT_EQ(face_components(solid.mesh), 1u);
   EXPECT_GT(solid.measures.estimated_bytes, 0.0);
   EXPECT_LE(solid.measures.estimated_bytes, o.memory * 1e6);
   EXPECT_GT(solid.measures.estimated_seconds, 0.0);

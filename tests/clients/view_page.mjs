@@ -39,9 +39,12 @@ try {
   await frames();
   const quarter = await count();
   await shot('quarter.png');
-  // Play replays from where the slider is.
+  // Play replays from where the slider is: the event waited for is the count passing the
+  // quarter's (a page that does not replay times out here, and the test sees the same count).
+  const shown = (text) => Number(text.split(' of ')[0].replace(/,/g, ''));
   await page.locator('#dla-play').click();
-  await page.waitForTimeout(1500);
+  await page.waitForFunction((before) => Number(document.querySelector('#dla-count').textContent.split(' of ')[0]
+    .replace(/,/g, '')) > before, shown(quarter), { timeout: 60000 }).catch(() => {});
   const playing = await count();
   let mesh_toggles = null;
   if (!(await page.locator('#dla-mesh').isDisabled())) {

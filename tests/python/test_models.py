@@ -46,8 +46,10 @@ def grown(model, options):
     return getattr(dla3d, model)(**options)
 
 
-def expect_tree(result):
-    """Parents come earlier, seeds first; every particle is in its parent's seed's tree."""
+def expect_tree(result, model="grow", options=None):
+    """Parents come earlier, seeds first; every particle is in its parent's seed's tree; each
+    branch is as long as `model` makes it (with `options`, its keywords); and DLA's, drop's and
+    ballistic's particles stick at contact, a spacing from the parent and no nearer any other."""
     n = len(result)
     parent, seed = result.parent, result.seed
     assert result.positions.shape == (n, 3) and parent.shape == seed.shape == (n,)
@@ -61,13 +63,42 @@ def expect_tree(result):
     assert links.shape == (len(links), 2)
     assert ((0 <= links[:, 0]) & (links[:, 0] < links[:, 1]) & (links[:, 1] < n)).all()
     assert not (parent[links[:, 1]] == links[:, 0]).any()
+    expect_branch_lengths(result, model, options or {})
+
+
+def expect_branch_lengths(result, model, options):
+    n, k, spacing = len(result), result.seed_count, result.spacing
+    if n == k:
+        return
+    positions, parent = result.positions, result.parent
+    length = np.linalg.norm(positions[k:] - positions[parent[k:]], axis=1)
+    slack = 1e-6 * spacing
+    if model in ("grow", "drop", "ballistic"):
+        if options.get("constraint") == "clip":  # a clipped branch ends short of the mesh
+            assert ((length > 0) & (length <= spacing + slack)).all(), length.max()
+        else:
+            assert np.allclose(length, spacing, rtol=1e-6, atol=0), (length.min(), length.max())
+        # No grown particle nearer than a spacing to any other (a sample of 2,000 beyond 4,000).
+        grown_ids = np.arange(k, n)
+        if len(grown_ids) > 4000:
+            grown_ids = np.random.default_rng(1).choice(grown_ids, 2000, replace=False)
+        for chunk in np.array_split(grown_ids, max(1, len(grown_ids) // 500)):
+            d = np.linalg.norm(positions[chunk, None, :] - positions[None, :, :], axis=2)
+            d[np.arange(len(chunk)), chunk] = np.inf
+            assert d.min() >= spacing - slack, d.min()
+    elif model == "eden":  # a site hangs from the nearest occupied site of its mask
+        assert ((length >= spacing - slack) & (length <= 8 * np.sqrt(3) * spacing + slack)).all()
+    elif model == "colonize" and "collide" not in options:  # a step, moved by the noise
+        noise = options.get("noise", (0.0, 0.0))
+        amplitude = noise[0] if isinstance(noise, tuple) else 0.0
+        assert ((length > 0) & (length <= spacing + np.sqrt(3) * amplitude + slack)).all(), length.max()
 
 
 @pytest.mark.parametrize("model,options", MODELS)
 def test_every_model_grows_a_tree(model, options):
     result = grown(model, options)
     assert result.complete and result.stopped_by == ""
-    expect_tree(result)
+    expect_tree(result, model, options)
     # The attributes agree with the tree.
     n, k = len(result), result.seed_count
     depth = result.depth
@@ -231,15 +262,16 @@ def test_a_mesh_as_arrays_grows_as_the_same_mesh_from_a_file(sphere_mesh, tmp_pa
 # drop and colonize take DLA's mesh controls as keywords: seeds (colonize: roots) on the mesh,
 # and DLA's fill and shell refused with why.
 def test_drop_and_colonize_take_the_mesh_controls(sphere_mesh):
-    for model, options in [(dla3d.drop, {"particles": 100}),
-                           (dla3d.colonize, {"attractors_in": "mesh", "attractors": 400, "max_nodes": 50000})]:
+    for name, options in [("drop", {"particles": 100}),
+                          ("colonize", {"attractors_in": "mesh", "attractors": 400, "max_nodes": 50000})]:
+        model = getattr(dla3d, name)
         three = model(stl=sphere_mesh, spacing=0.5, seeds=3, **options)
         assert three.seed_count == 3
         surface = model(stl=sphere_mesh, spacing=0.5, seed_surface=True, **options)
         assert surface.seed_count > 100
         radii = np.linalg.norm(surface.positions[:surface.seed_count], axis=1)
         assert (radii < 10).all() and (radii > 9).all()  # half a spacing inside the surface
-        expect_tree(three)
+        expect_tree(three, name, options)
     with pytest.raises(ValueError, match="^fill grows DLA until a mesh is full; drop grows to its count, particles$"):
         dla3d.drop(fill=0.5)
     with pytest.raises(ValueError, match="^shell keeps DLA's walkers near a surface; colonization"):
@@ -322,24 +354,34 @@ def test_growth_that_fails_part_way_returns_what_grew_with_a_warning(tmp_path):
 
 
 def test_other_python_threads_run_while_it_grows():
-    ticks = []
-    stop = threading.Event()
+    # A thread that counts as fast as it can. Between two progress calls, while the C++ grows,
+    # only a released GIL lets it count: growth stops once it has counted between three pairs.
+    count = [0]
+    done = threading.Event()
 
-    def tick():
-        while not stop.is_set():
-            ticks.append(1)
-            stop.wait(0.001)
+    def counter():
+        while not done.is_set():
+            count[0] += 1
 
-    thread = threading.Thread(target=tick)
+    between = []
+    last = [None]
+
+    def progress(grown, total):
+        if last[0] is not None and count[0] > last[0]:
+            between.append(count[0] - last[0])
+        going_on = len(between) < 3
+        last[0] = count[0]  # as this call returns to the growth
+        return going_on
+
+    thread = threading.Thread(target=counter)
     thread.start()
     try:
-        before = len(ticks)
-        dla3d.grow(particles=100000)
-        during = len(ticks) - before
+        result = dla3d.grow(particles=10**8, progress=progress)
     finally:
-        stop.set()
+        done.set()
         thread.join()
-    assert during > 50  # the GIL was released for the growth's second or so
+    assert len(between) == 3, between
+    assert result.stopped_by == "callback"
 
 
 def test_ctrl_c_returns_what_grew(tmp_path):
@@ -429,7 +471,7 @@ def test_random_keyword_sets_grow_or_refuse_in_one_line():
             assert text and "\n" not in text and len(text) < 400, (model, options, text)
             refused += 1
             continue
-        expect_tree(result)
+        expect_tree(result, model, options)
         grown_count += 1
     assert grown_count > 20 and refused > 20, (grown_count, refused)
 
