@@ -71,12 +71,13 @@ Subcommand add_colonize_command(CLI::App& app, const Model& model) {
                                                                          "in spacings, [1, 1e6]")
       ->capture_default_str()->group(colonizing);
   command->add_option("--influence", c->colonization.influence, "an attractor pulls its nearest node only this close, "
-                                                                 "in spacings, above the kill distance; default: any")
+                                                                 "in spacings, above the kill distance; default: any, and for --venation closed 4 "
+                                                                 "times --kill-distance")
       ->group(colonizing);
   w->venation = std::string(to_string(c->colonization.venation));
   command->add_option("--venation", w->venation, "open: an attractor pulls its nearest node, a tree; closed: every "
                                                  "node of its relative neighbourhood, and veins that reach it join: "
-                                                 "loops (Runions et al.; needs --influence)")
+                                                 "loops (Runions et al.)")
       ->capture_default_str()->group(colonizing);
   command->add_option("--noise", w->noise, "each new node moves by up to A spacings, in features S spacings wide; "
                                            "A in [0, 10], S > 0")->type_name("A,S")->group(colonizing);

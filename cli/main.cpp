@@ -9,6 +9,7 @@
 #include "commands.h"
 
 #include "dla/io/checkpoint.h"
+#include "dla/io/input_file.h"
 
 #include <csignal>
 #include <cstdio>
@@ -53,6 +54,7 @@ int run(const std::vector<std::string>& args) {
   }
   // The checkpoint's own command, with this thread count and -q: the count changes how fast it
   // goes on, never what it grows.
+  dla::require_regular_file(line.resume_path, "resume");
   const dla::Checkpoint checkpoint = dla::read_checkpoint(line.resume_path);
   std::vector<std::string> command;
   for (std::size_t i = 0; i < checkpoint.command.size(); ++i) {

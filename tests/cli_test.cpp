@@ -9,6 +9,7 @@
 #include "test_util.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -543,6 +544,62 @@ TEST(Cli, ColonizeWritesTheSameFilesAsGrowth) {
                        "--influence 6 --formats svg,csv,json").exit_code, 0);
   for (const dla::Particle& p : dla::read_csv(dir / "leaf.csv").particles) ASSERT_EQ(p.position.z(), 0.0);
   EXPECT_TRUE(std::filesystem::exists(dir / "leaf.svg"));
+}
+
+// Every file option refuses a folder, a FIFO (which a reader would wait on for ever) and a
+// device that never ends, in one line naming the option, before anything is written; an
+// endless device is never read to its end. The `timeout` is only a bound against a hang.
+TEST(Cli, SpecialFilesAreRefusedInOneLineNamingTheOption) {
+  ScratchDir dir;
+  dla::write_stl(dla::make_sphere(dla::Vec3::Zero(), 10.0, 12, 24), dir / "ball.stl");
+  std::filesystem::create_directory(dir / "folder.stl");
+  ASSERT_EQ(mkfifo((dir / "pipe.stl").c_str(), 0644), 0);
+  std::filesystem::create_symlink("/dev/zero", dir / "zero.stl");
+  const struct {
+    const char* file;
+    const char* kind;
+  } specials[] = {{"folder.stl", "a folder"}, {"pipe.stl", "a pipe (FIFO)"}, {"zero.stl", "a device"}};
+  const struct {
+    const char* args;  // with F for the special file
+    const char* names;
+  } options[] = {
+      {"--stl F -n 10 -o out", "--stl"},
+      {"--stl ball.stl --seed-mesh F -n 10 -o out", "--seed-mesh"},
+      {"--leaf F --formats glb -n 10 -o out", "--leaf"},
+      {"--text A --font F -n 10 -o out", "--font"},
+      {"colonize --attractors-from F -n 10 -o out", "--attractors-from"},
+      {"colonize --collide F --attractors 50 -n 10 -o out", "--collide"},
+      {"colonize --stl F --attractors 50 -n 10 -o out", "--stl"},
+      {"drop --stl F -n 10 -o out", "--stl"},
+      {"eden --mode drop --mask F -n 10 -o out", "--mask"},
+      {"--resume F", "--resume"},
+      {"frames F -o out", ""},
+      {"analyze F", ""},
+  };
+  for (const auto& special : specials)
+    for (const auto& option : options) {
+      std::string args = option.args;
+      args.replace(args.find('F'), 1, special.file);
+      SCOPED_TRACE("dla3d " + args);
+      const CliRun run = dla3d(dir, args, "timeout -s KILL 60");
+      ASSERT_EQ(run.exit_code, 2) << run.err;
+      const std::string says = std::string(option.names) + (*option.names ? " '" : "'") + special.file + "' is " +
+                               special.kind + ", not a file";
+      EXPECT_NE(run.err.find(says), std::string::npos) << run.err;
+      EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+      EXPECT_FALSE(std::filesystem::exists(dir / "out.json"));
+    }
+}
+
+// Closed venation grows without --influence: 4 times the kill distance, which the JSON records.
+TEST(Cli, ClosedVenationGrowsWithADefaultInfluence) {
+  ScratchDir dir;
+  const CliRun run = dla3d(dir, "colonize --venation closed -q -n 2000 --formats csv,json -o veins");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string json = read_file(dir / "veins.json");
+  EXPECT_NE(json.find("\"influence\": 8,"), std::string::npos) << json;  // the kill distance is 2
+  EXPECT_NE(json.find("\"venation\": \"closed\""), std::string::npos) << json;
+  EXPECT_GT(dla::read_csv(dir / "veins.csv").particles.size(), 1000u);
 }
 
 TEST(Cli, ColonizeGrowsInAVesselAndReadsItsAttractorsFromAFile) {

@@ -223,7 +223,8 @@ TEST(Links, ClosedVenationMatchesABruteForceRescanNodeForNode) {
   }
 }
 
-TEST(Links, ClosedVenationGrowsOtherwiseThanOpenAndNeedsAReach) {
+// Closed venation's reach: the influence given, or 4 kill distances without one.
+TEST(Links, ClosedVenationGrowsOtherwiseThanOpenWithinItsReach) {
   ColonizationOptions o;
   o.dimensions = 2;
   o.influence = 8;
@@ -237,8 +238,18 @@ TEST(Links, ClosedVenationGrowsOtherwiseThanOpenAndNeedsAReach) {
   const Cluster closed = colonize(o, sources, {Vec3(0, -20, 0)});
   EXPECT_GT(closed.links.size(), 0u);
   EXPECT_NE(closed.particles.size(), open.particles.size());
+  // Without an influence: that of 4 kill distances, the same veins.
+  EXPECT_DOUBLE_EQ(influence_of(o), 8.0);
   o.influence = std::numeric_limits<double>::infinity();
-  EXPECT_THROW(colonize(o, sources, {Vec3(0, -20, 0)}), InvalidInput);
+  o.kill_distance = 2.0;
+  EXPECT_DOUBLE_EQ(influence_of(o), kClosedInfluence * 2.0);
+  const Cluster by_default = colonize(o, sources, {Vec3(0, -20, 0)});
+  ASSERT_EQ(by_default.particles.size(), closed.particles.size());
+  for (std::size_t i = 0; i < closed.particles.size(); ++i)
+    ASSERT_EQ(by_default.particles[i].position, closed.particles[i].position) << i;
+  EXPECT_EQ(by_default.links.size(), closed.links.size());
+  o.venation = Venation::open;
+  EXPECT_TRUE(std::isinf(influence_of(o))) << "open venation keeps an unbounded influence";
   EXPECT_EQ(parse_venation("closed"), Venation::closed);
   EXPECT_THROW(parse_venation("shut"), InvalidInput);
 }

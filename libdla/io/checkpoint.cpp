@@ -4,6 +4,8 @@
 
 #include "dla/io/checkpoint.h"
 
+#include "dla/io/input_file.h"
+
 #include "output_file.h"
 
 #include <algorithm>
@@ -57,7 +59,7 @@ class Writer {
 //! hash): memory stays that of the structure read, not of the file besides.
 class Reader {
  public:
-  explicit Reader(const std::string& path) : in_(path, std::ios::binary), path_(path) {
+  explicit Reader(const std::string& path) : in_((require_regular_file(path, ""), path), std::ios::binary), path_(path) {
     if (!in_) throw IOError("cannot read '" + path + "': " + std::strerror(errno));
     in_.seekg(0, std::ios::end);
     const std::streamoff size = in_.tellg();

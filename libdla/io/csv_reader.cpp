@@ -1,5 +1,7 @@
 #include "dla/io/csv_reader.h"
 
+#include "dla/io/input_file.h"
+
 #include "dla/io/csv_writer.h"
 
 #include <algorithm>
@@ -102,20 +104,10 @@ void parse_links_csv(std::string_view text, const std::string& name, Cluster& cl
   std::stable_sort(cluster.links.begin(), cluster.links.end(), [](const Link& a, const Link& b) { return a.later < b.later; });
 }
 
-namespace {
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IOError("cannot read '" + path + "': " + std::strerror(errno));
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-}  // namespace
-
 Cluster read_csv(const std::string& path) {
-  Cluster cluster = parse_csv(read_text(path), path);
+  Cluster cluster = parse_csv(read_input_file(path, ""), path);
   const std::string links = links_csv_path(path);
-  if (std::ifstream(links).good()) parse_links_csv(read_text(links), links, cluster);
+  if (std::ifstream(links).good()) parse_links_csv(read_input_file(links, ""), links, cluster);
   return cluster;
 }
 

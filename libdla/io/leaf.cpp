@@ -5,6 +5,8 @@
 
 #include "leaf_parts.h"
 
+#include "dla/io/input_file.h"
+
 #include "dla/core/errors.h"
 
 #include <nlohmann/json.hpp>
@@ -271,12 +273,6 @@ Leaf parse_leaf(const std::string& bytes, const std::string& path) {
 
 }  // namespace detail
 
-Leaf read_leaf(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IOError("cannot read '" + path + "': " + std::strerror(errno));
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw IOError("cannot read '" + path + "': " + std::strerror(errno));
-  return detail::parse_leaf(bytes, path);
-}
+Leaf read_leaf(const std::string& path) { return detail::parse_leaf(read_input_file(path, "leaf"), path); }
 
 }  // namespace dla

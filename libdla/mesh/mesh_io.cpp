@@ -5,6 +5,7 @@
 #include "dla/mesh/mesh.h"
 
 #include "dla/core/hash.h"
+#include "dla/io/input_file.h"
 #include "io/output_file.h"
 
 #include <algorithm>
@@ -592,20 +593,12 @@ std::string extension_of(const std::string& path) {
   return dot == std::string::npos || (slash != std::string::npos && dot < slash) ? "" : path.substr(dot + 1);
 }
 
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IOError("cannot read '" + path + "': " + std::strerror(errno));
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw IOError("cannot read '" + path + "': " + std::strerror(errno));
-  return bytes;
-}
-
 }  // namespace
 
 TriangleMesh read_mesh(const std::string& path, std::uint64_t* file_hash) {
   const std::string extension = extension_of(path);
   if (extension.empty()) throw InvalidInput(path + ": no file extension to tell the mesh format (.stl, .off, .obj, .ply)");
-  const std::string bytes = read_bytes(path);
+  const std::string bytes = read_input_file(path, "");
   if (file_hash) *file_hash = fnv1a(bytes);
   return parse_mesh(bytes, extension, path);
 }
@@ -622,7 +615,7 @@ std::vector<Vec3> parse_points(std::string_view bytes, std::string_view extensio
 }
 
 std::vector<Vec3> read_points(const std::string& path) {
-  return parse_points(read_bytes(path), extension_of(path), path);
+  return parse_points(read_input_file(path, ""), extension_of(path), path);
 }
 
 void write_stl(const TriangleMesh& mesh, const std::string& path) {

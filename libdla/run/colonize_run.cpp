@@ -221,7 +221,7 @@ class ColonizeRun : public Run {
         .count("max_iterations", o.max_iterations)
         .number("spacing", o.spacing)
         .number("kill_distance", o.kill_distance)
-        .number("influence", o.influence)
+        .number("influence", influence_of(o))
         .text("venation", to_string(o.venation))
         .number("noise_amplitude", o.noise_amplitude)
         .number("noise_scale", o.noise_scale)

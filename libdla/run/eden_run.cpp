@@ -3,9 +3,9 @@
 
 #include "model_runs.h"
 
+#include "dla/io/input_file.h"
+
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 namespace dla {
 
@@ -33,11 +33,9 @@ class EdenRun : public Run {
     total = options_.sites;
     solid_forecast = {options_.sites, 1.0};  // lattice sites, a spacing apart
     if (!mask_file_.empty()) {
-      std::ifstream in(mask_file_, std::ios::binary);
-      std::ostringstream text;
-      if (!in || !(text << in.rdbuf())) throw IOError("cannot read the mask '" + mask_file_ + "'");
+      const std::string text = read_input_file(mask_file_, "mask");
       try {
-        options_.mask_offsets = parse_mask(text.str());
+        options_.mask_offsets = parse_mask(text);
         validate(options_);
       } catch (const InvalidInput& e) {
         throw InvalidInput(mask_file_ + ": " + e.what());

@@ -4,6 +4,7 @@
 #include "model_runs.h"
 
 #include "dla/core/particle_feed.h"
+#include "dla/io/input_file.h"
 #include "dla/look/attributes.h"
 #include "dla/mesh/mesh.h"
 
@@ -124,8 +125,38 @@ const Model* find_model(std::string_view name) {
   return nullptr;
 }
 
+namespace {
+
+//! Every file `options` name that their run reads, each refused in one line naming its option
+//! when it is a folder, a device or a FIFO (which a reader would wait on or read for ever).
+void require_input_files(const RunOptions& options) {
+  std::vector<std::pair<const std::string*, const char*>> files;
+  const auto mesh_seeds = [&](const MeshSeeds& seeds) {
+    for (const std::string& path : seeds.meshes) files.emplace_back(&path, "seed_mesh");
+  };
+  if (const auto* o = std::get_if<DlaRunOptions>(&options)) {
+    files.emplace_back(&o->stl, "stl");
+    if (o->text) files.emplace_back(&o->text->font, "font");
+    mesh_seeds(o->seeds);
+  } else if (const auto* o = std::get_if<ColonizeRunOptions>(&options)) {
+    files.insert(files.end(), {{&o->stl, "stl"}, {&o->collide, "collide"}, {&o->attractors_from, "attractors_from"}});
+    mesh_seeds(o->seeds);
+  } else if (const auto* o = std::get_if<EdenRunOptions>(&options)) {
+    files.emplace_back(&o->mask_file, "mask");
+  } else if (const auto* o = std::get_if<DropRunOptions>(&options)) {
+    files.emplace_back(&o->stl, "stl");
+    mesh_seeds(o->seeds);
+  }
+  files.emplace_back(&output_of(options).leaf, "leaf");
+  for (const auto& [path, option] : files)
+    if (!path->empty()) require_regular_file(*path, option);
+}
+
+}  // namespace
+
 std::unique_ptr<Run> prepare_run(const RunOptions& options, const MeshReader& read, const Resumed& resumed) {
   validate(options);
+  require_input_files(options);
   const Model& model = model_of(options);
   if (resumed.cluster && model.name != "grow") throw InvalidInput("only DLA runs go on from a checkpoint");
   const MeshReader reader =

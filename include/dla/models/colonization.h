@@ -226,7 +226,9 @@ struct ColonizationOptions {
                                  //!< spacings, in [1, 1e6]: at least a step, so a tip cannot
                                  //!< step over its attractor and back for ever
   //! An attractor pulls its closest node only within this distance, spacings, above the kill
-  //! distance; infinity (the default, the Hyphae write-up's version): every attractor pulls.
+  //! distance; infinity (the default, the Hyphae write-up's version): every attractor pulls,
+  //! and with closed venation, whose neighbourhoods need a bound, 4 times the kill distance
+  //! (kClosedInfluence; influence_of()).
   double influence = std::numeric_limits<double>::infinity();
   std::size_t max_nodes = 100000;       //!< nodes, roots included, at most; 1 to 2e9
   std::size_t max_iterations = 1000000; //!< growth steps at most, >= 1
@@ -235,7 +237,8 @@ struct ColonizationOptions {
   Vec3 tropism = Vec3::Zero();   //!< added to each step's unit direction (gravity, light),
                                  //!< each coordinate in [-10, 10]
   int dimensions = 3;            //!< 2: attractors, roots and steps in z = 0 (leaf venation)
-  //! Closed venation needs a finite `influence`: an attractor's neighbourhood is the nodes within it.
+  //! Closed venation bounds an attractor's neighbourhood by the influence (4 times the kill
+  //! distance unless given).
   Venation venation = Venation::open;
   std::uint64_t rng_seed = 1;    //!< seeds the noise
   //! A collision object (3D only), not owned: each new node is pushed out of it or stuck to
@@ -247,6 +250,17 @@ struct ColonizationOptions {
   //! ConstraintMode::clip cut short of the surface.
   const MeshConstraint* vessel = nullptr;
 };
+
+//! Closed venation's influence when none is given, in kill distances: Runions et al.'s
+//! neighbourhoods reach a few kill distances.
+inline constexpr double kClosedInfluence = 4.0;
+
+//! The influence growth uses, in spacings: `influence`, or for closed venation without one
+//! kClosedInfluence kill distances.
+inline double influence_of(const ColonizationOptions& o) {
+  return o.venation == Venation::closed && !std::isfinite(o.influence) ? kClosedInfluence * o.kill_distance
+                                                                        : o.influence;
+}
 
 inline void validate(const ColonizationOptions& o) {
   detail::require_in("spacing", o.spacing, kMinSpacing, kMaxSpacing);
@@ -265,9 +279,6 @@ inline void validate(const ColonizationOptions& o) {
     throw InvalidInput("dimensions " + std::to_string(o.dimensions) + " is not 2 or 3");
   if (o.collide && o.dimensions != 3) throw InvalidInput("a collision mesh needs 3 dimensions");
   if (o.vessel && o.dimensions != 3) throw InvalidInput("a vessel needs 3 dimensions");
-  if (o.venation == Venation::closed && !std::isfinite(o.influence))
-    throw InvalidInput("`venation` closed needs a finite `influence`: the nodes within it are an attractor's "
-                       "neighbourhood (try 4 times the kill distance)");
 }
 
 namespace detail {
@@ -316,7 +327,8 @@ inline std::array<std::int64_t, 3> fixed_direction(const Vec3& from, const Vec3&
 //! The squared kill distance and influence radius in scene units (infinity: unbounded).
 inline double kill_distance2(const ColonizationOptions& o) { return std::pow(o.kill_distance * o.spacing, 2); }
 inline double reach2(const ColonizationOptions& o) {
-  return std::isfinite(o.influence) ? std::pow(o.influence * o.spacing, 2) : std::numeric_limits<double>::infinity();
+  const double influence = influence_of(o);
+  return std::isfinite(influence) ? std::pow(influence * o.spacing, 2) : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace detail
