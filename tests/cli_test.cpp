@@ -17,6 +17,7 @@
 #include <fstream>
 #include <initializer_list>
 #include <string>
+#include <utility>
 
 namespace {
 
@@ -555,14 +556,10 @@ TEST(Cli, SpecialFilesAreRefusedInOneLineNamingTheOption) {
   std::filesystem::create_directory(dir / "folder.stl");
   ASSERT_EQ(mkfifo((dir / "pipe.stl").c_str(), 0644), 0);
   std::filesystem::create_symlink("/dev/zero", dir / "zero.stl");
-  const struct {
-    const char* file;
-    const char* kind;
-  } specials[] = {{"folder.stl", "a folder"}, {"pipe.stl", "a pipe (FIFO)"}, {"zero.stl", "a device"}};
-  const struct {
-    const char* args;  // with F for the special file
-    const char* names;
-  } options[] = {
+  // Each special file and what it is; each command line (F for the file) and the option it names.
+  const std::pair<const char*, const char*> specials[] = {
+      {"folder.stl", "a folder"}, {"pipe.stl", "a pipe (FIFO)"}, {"zero.stl", "a device"}};
+  const std::pair<const char*, std::string> options[] = {
       {"--stl F -n 10 -o out", "--stl"},
       {"--stl ball.stl --seed-mesh F -n 10 -o out", "--seed-mesh"},
       {"--leaf F --formats glb -n 10 -o out", "--leaf"},
@@ -576,15 +573,14 @@ TEST(Cli, SpecialFilesAreRefusedInOneLineNamingTheOption) {
       {"frames F -o out", ""},
       {"analyze F", ""},
   };
-  for (const auto& special : specials)
-    for (const auto& option : options) {
-      std::string args = option.args;
-      args.replace(args.find('F'), 1, special.file);
+  for (const auto& [file, kind] : specials)
+    for (const auto& [command, option] : options) {
+      std::string args = command;
+      args.replace(args.find('F'), 1, file);
       SCOPED_TRACE("dla3d " + args);
       const CliRun run = dla3d(dir, args, "timeout -s KILL 60");
       ASSERT_EQ(run.exit_code, 2) << run.err;
-      const std::string says = std::string(option.names) + (*option.names ? " '" : "'") + special.file + "' is " +
-                               special.kind + ", not a file";
+      const std::string says = (option.empty() ? "" : option + " ") + "'" + file + "' is " + kind + ", not a file";
       EXPECT_NE(run.err.find(says), std::string::npos) << run.err;
       EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
       EXPECT_FALSE(std::filesystem::exists(dir / "out.json"));
