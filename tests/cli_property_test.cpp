@@ -727,8 +727,8 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
     if (!fault.empty()) return fault;
   }
 
-  // The solid: closed and oriented, its shells counted in the JSON.
-  if (wants("stl") || wants("3mf") || wants("vdb") || wants("solid-glb") || wants("solid-obj")) {
+  // The solid: closed and oriented, and with the JSON, its shells counted there.
+  if (wants("json") && (wants("stl") || wants("3mf") || wants("vdb") || wants("solid-glb") || wants("solid-obj"))) {
     if (json.find("\"solid\": {") == std::string::npos) return prefix + ".json records no solid";
     if (!(json_value(json, "shells", "\"solid\"") >= 1)) return prefix + ".json's solid has no shell";
   }
