@@ -70,10 +70,24 @@ Subcommand add_frames_command(CLI::App& app) {
           }};
 }
 
-int frames(const FramesCommand& command, bool quiet, const StopFlag& stop, const volatile std::sig_atomic_t& stop_signal) {
+int frames(const FramesCommand& command, bool quiet, const StopSignals& stop) {
   Cluster whole = read_csv(command.csv_path);
-  if (command.links.any())
-    whole.links = neighbour_links(whole, command.links, static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 16u)));
+  const bool terminal = !quiet && isatty(STDERR_FILENO);
+  const auto stopped_by = [&](std::size_t whole_frames) {
+    std::fprintf(stderr, "dla3d: stopped by %s after %zu of %zu frames; they are whole\n", signal_name(stop.signal),
+                 whole_frames, command.count);
+    return 128 + stop.signal;
+  };
+  if (command.links.any()) {
+    StageBar links_bar("links", terminal);
+    try {
+      whole.links = neighbour_links(whole, command.links, static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 16u)),
+                                    {}, kLoopSteps, {&stop.first, links_bar.progress()});
+    } catch (const Interrupted&) {
+      links_bar.clear();
+      return stopped_by(0);
+    }
+  }
   if ((command.files.formats.svg || command.files.formats.png) && whole.dimensions != 2)
     throw InvalidInput(command.csv_path + " holds 3D growth: --formats svg and png draw 2D growth");
   OutputOptions files = command.files;
@@ -85,22 +99,26 @@ int frames(const FramesCommand& command, bool quiet, const StopFlag& stop, const
     plan_solid(whole, make_look(whole, files.look, {nullptr, nullptr, 1, false}).radii, files.solid);
 
   const std::size_t others = attached(whole);
-  ProgressBar bar(command.count, !quiet && isatty(STDERR_FILENO));
+  ProgressBar bar(command.count, terminal);
   for (std::size_t k = 1; k <= command.count; ++k) {
-    if (stop.load()) {
+    if (stop.first.load()) {
       bar.clear();
-      std::fprintf(stderr, "dla3d: stopped by %s after %zu of %zu frames; they are whole\n", signal_name(stop_signal),
-                   k - 1, command.count);
-      return 128 + stop_signal;
+      return stopped_by(k - 1);
     }
     // Frame k: the seeds and the first k/K of the rest, rounded to the nearest particle.
     const auto shown = static_cast<std::size_t>(std::llround(static_cast<double>(others) * static_cast<double>(k) /
                                                              static_cast<double>(command.count)));
     const Cluster frame = first_particles(whole, whole.seed_count + shown);
     files.output = frame_prefix(command.files.output, k, command.count);
-    write_files(frame, files, {1, nullptr, nullptr,
-                               "frame " + std::to_string(k) + " of " + std::to_string(command.count) + " of " + command.csv_path,
-                               nullptr, {}});
+    try {
+      write_files(frame, files, {1, nullptr, nullptr,
+                                 "frame " + std::to_string(k) + " of " + std::to_string(command.count) + " of " + command.csv_path,
+                                 &stop.first, {}});
+    } catch (const Interrupted&) {
+      for (const std::string& name : file_names(files)) std::remove(name.c_str());  // the frame's finished files
+      bar.clear();
+      return stopped_by(k - 1);
+    }
     bar.update(k);
   }
   bar.clear();

@@ -19,16 +19,17 @@
 
 namespace {
 
-//! Set by the first SIGINT or SIGTERM: growth stops within milliseconds and the files are
-//! written. A second one ends the process at once.
-dla::StopFlag stop_requested{false};
-volatile std::sig_atomic_t stop_signal = 0;
+//! Set by SIGINT and SIGTERM: the first ends the stage under way within milliseconds, a second
+//! the writing of what grew; a third ends the process at once.
+dla::cli::StopSignals stop_signals;
 static_assert(dla::StopFlag::is_always_lock_free, "a signal handler may only store to a lock-free atomic");
 
 extern "C" void on_stop_signal(int signal) {
-  stop_signal = signal;
-  stop_requested.store(true);
-  std::signal(signal, SIG_DFL);
+  stop_signals.signal = signal;
+  if (stop_signals.first.exchange(true)) {
+    stop_signals.second.store(true);
+    std::signal(signal, SIG_DFL);
+  }
 }
 
 //! Every growth run, of every model, stops on Ctrl-C and SIGTERM and writes what grew.
@@ -46,10 +47,10 @@ int run(const std::vector<std::string>& args) {
     case Kind::analyze: return dla::cli::analyze(line.analyze_csv);
     case Kind::frames:
       catch_stop_signals();
-      return dla::cli::frames(line.frames, line.quiet, stop_requested, stop_signal);
+      return dla::cli::frames(line.frames, line.quiet, stop_signals);
     case Kind::run:
       catch_stop_signals();
-      return dla::cli::run(line, args, {}, stop_requested, stop_signal);
+      return dla::cli::run(line, args, {}, stop_signals);
     case Kind::resume: break;
   }
   // The checkpoint's own command, with this thread count and -q: the count changes how fast it
@@ -68,8 +69,7 @@ int run(const std::vector<std::string>& args) {
   if (resumed.kind != Kind::run || resumed.run.index() != 0)
     throw dla::InvalidInput(line.resume_path + ": its command is not a growth run");
   catch_stop_signals();
-  return dla::cli::run(resumed, command, {&checkpoint.cluster, &checkpoint.walk, checkpoint.input_hash}, stop_requested,
-                       stop_signal);
+  return dla::cli::run(resumed, command, {&checkpoint.cluster, &checkpoint.walk, checkpoint.input_hash}, stop_signals);
 }
 
 }  // namespace

@@ -8,6 +8,8 @@
 #include <csignal>
 #include <cstdio>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 namespace dla::cli {
@@ -58,6 +60,43 @@ class ProgressBar {
   bool drawn_ = false;
   Clock::time_point start_;
   Clock::time_point last_{};
+};
+
+//! A stage after growth (the links, the solid) on a terminal, once it has taken a second: its
+//! name, its share done, what it does now and an ETA. Called as a StageProgress.
+class StageBar {
+ public:
+  StageBar(std::string name, bool enabled) : name_(std::move(name)), enabled_(enabled), start_(Clock::now()) {}
+  StageBar(const StageBar&) = delete;
+  StageBar& operator=(const StageBar&) = delete;
+  ~StageBar() { clear(); }
+
+  void operator()(double fraction, std::string_view doing) {
+    const Clock::time_point now = Clock::now();
+    if (!enabled_ || now - start_ < std::chrono::seconds(1) || now - drawn_at_ < std::chrono::milliseconds(100)) return;
+    drawn_at_ = now;
+    drawn_ = true;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const int left = fraction > 0.0 ? static_cast<int>(elapsed * (1.0 - fraction) / fraction) : 0;
+    const std::string what = doing == name_ ? "" : " " + std::string(doing);
+    std::fprintf(stderr, "\r\033[Kdla3d: %s: %3d%%%s  ETA %d:%02d", name_.c_str(), static_cast<int>(fraction * 100.0),
+                 what.c_str(), left / 60, left % 60);
+  }
+  //! This stage's progress, for a library call.
+  StageProgress progress() {
+    return [this](double fraction, std::string_view doing) { (*this)(fraction, doing); };
+  }
+  void clear() {
+    if (drawn_) std::fprintf(stderr, "\r\033[K");
+    drawn_ = false;
+  }
+
+ private:
+  std::string name_;
+  bool enabled_;
+  bool drawn_ = false;
+  Clock::time_point start_;
+  Clock::time_point drawn_at_{};
 };
 
 inline const char* signal_name(int signal) {

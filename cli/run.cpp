@@ -13,8 +13,7 @@
 
 namespace dla::cli {
 
-int run(const CommandLine& line, const std::vector<std::string>& args, const Resumed& resumed, const StopFlag& stop,
-        const volatile std::sig_atomic_t& stop_signal) {
+int run(const CommandLine& line, const std::vector<std::string>& args, const Resumed& resumed, const StopSignals& stop) {
   const OutputOptions& asked = output_of(line.run);
   check_glb_options(asked);
   check_writable(file_names(asked).front());  // before a mesh's set-up and a long run
@@ -24,8 +23,11 @@ int run(const CommandLine& line, const std::vector<std::string>& args, const Res
   Run& run = *prepared;
   // Only once every option is known good: bad input gets its one line and nothing else.
   if (!line.quiet && !run.mesh_line.empty()) std::fprintf(stderr, "dla3d: %s\n", run.mesh_line.c_str());
+  if (!line.quiet && !run.forecast_line.empty())
+    std::fprintf(stderr, "dla3d: %s\n", spell_options(run.forecast_line, OptionSpelling::cli).c_str());
 
-  ProgressBar bar(run.total, !line.quiet && isatty(STDERR_FILENO));
+  const bool terminal = !line.quiet && isatty(STDERR_FILENO);
+  ProgressBar bar(run.total, terminal);
   Clock::time_point saved = Clock::now();
   // A save that fails (a full disk) is reported once and does not stop the run.
   bool save_failed = false;
@@ -41,7 +43,7 @@ int run(const CommandLine& line, const std::vector<std::string>& args, const Res
   };
   const auto progress = [&](const Cluster& so_far) {
     bar.update(run.done(so_far), run.filled(), run.fill);
-    if (stop.load()) return false;
+    if (stop.first.load()) return false;
     if (!checkpoint.empty() && Clock::now() - saved >= std::chrono::duration<double>(line.checkpoint_every)) {
       save(so_far);
       saved = Clock::now();
@@ -50,40 +52,29 @@ int run(const CommandLine& line, const std::vector<std::string>& args, const Res
   };
   RunRecord record;
   record.command = command_line(args);
-  const Cluster cluster = grow_recorded(run, progress, &stop, record);
+  StageBar links_bar("links", terminal);
+  const Cluster cluster = grow_recorded(run, progress, &stop.first, record, links_bar.progress());
   bar.clear();
-  const int signal = stop_signal;
+  links_bar.clear();
   const bool failed = !record.stopped_by.empty();  // part way, by an error
+  // A stop in growth or links: what grew is written, but not the solid or the levels of detail,
+  // which take seconds to minutes; a second signal stops the writing too. Otherwise the first
+  // stops the writing.
+  const bool stopped_early = !record.stopped_in.empty();
   record.stopped_by = failed ? spell_options(record.stopped_by, OptionSpelling::cli)
-                      : cluster.complete ? "" : signal_name(signal);
-  // The solid's stage and share done, on a terminal, once it has taken a second.
-  const bool show_solid = !line.quiet && isatty(STDERR_FILENO) && run.files.formats.solid();
-  const Clock::time_point writing = Clock::now();
-  Clock::time_point drawn{};
-  bool solid_drawn = false;
-  const SolidProgress solid_bar = [&](double fraction, std::string_view stage) {
-    const Clock::time_point now = Clock::now();
-    if (!show_solid || now - writing < std::chrono::seconds(1) || now - drawn < std::chrono::milliseconds(100)) return;
-    drawn = now;
-    solid_drawn = true;
-    const double elapsed = std::chrono::duration<double>(now - writing).count();
-    const int left = fraction > 0.0 ? static_cast<int>(elapsed * (1.0 - fraction) / fraction) : 0;
-    std::fprintf(stderr, "\r\033[Kdla3d: the solid: %3d%% %.*s  ETA %d:%02d", static_cast<int>(fraction * 100.0),
-                 static_cast<int>(stage.size()), stage.data(), left / 60, left % 60);
-  };
+                      : stopped_early ? signal_name(stop.signal) : "";
+  OutputOptions files = run.files;
+  const bool solid_left_out = stopped_early && files.formats.solid(), lods_left_out = stopped_early && files.lods > 0;
+  if (solid_left_out) files.formats.leave_out_solid();
+  if (lods_left_out) files.lods = 0;
   try {
-    // A first Ctrl-C while the solid builds stops it; after one that stopped growth, a second
-    // ends dla3d (the signal's default), and the files already renamed into place stay.
-    write_run(run, cluster, record, cluster.complete ? &stop : nullptr, solid_bar);
-    if (solid_drawn) std::fprintf(stderr, "\r\033[K");
+    StageBar solid_bar("the solid", terminal && files.formats.solid());
+    write_run(run, cluster, files, record, stopped_early ? &stop.second : &stop.first, solid_bar.progress());
   } catch (const Interrupted&) {
-    if (solid_drawn) std::fprintf(stderr, "\r\033[K");
-    std::fprintf(stderr, "dla3d: stopped by %s while the solid was built; the other files are written, no solid file\n",
-                 signal_name(stop_signal));
-    return 128 + stop_signal;
-  } catch (...) {
-    if (solid_drawn) std::fprintf(stderr, "\r\033[K");
-    throw;
+    std::fprintf(stderr, "dla3d: stopped by %s while the files were written; those finished are whole, no other is "
+                 "written\n", signal_name(stop.signal));
+    if (stopped_early) save(cluster);
+    return 128 + stop.signal;
   }
   if (!cluster.complete) save(cluster);  // after the files: they matter more
 
@@ -96,7 +87,7 @@ int run(const CommandLine& line, const std::vector<std::string>& args, const Res
   }
   if (!line.quiet) {
     std::string written;
-    for (const std::string& name : file_names(run.files)) written += (written.empty() ? "" : " ") + name;
+    for (const std::string& name : file_names(files)) written += (written.empty() ? "" : " ") + name;
     const std::string render = run.files.formats.pov ? "; render: povray +W1280 +H960 +A " + output + ".pov" : "";
     std::fprintf(stderr, "dla3d: %s\n", run.summary(cluster, record).c_str());
     if (!cluster.links.empty())
@@ -117,12 +108,19 @@ int run(const CommandLine& line, const std::vector<std::string>& args, const Res
                    spell_options(describe(*record.solid, record.printed), OptionSpelling::cli).c_str());
     std::fprintf(stderr, "dla3d: wrote %s%s\n", written.c_str(), render.c_str());
   }
-  if (!cluster.complete) {
+  if (stopped_early) {
     const std::string of = run.model == "grow" ? " of " + with_commas(static_cast<double>(run.total)) : "";
     const std::string resume_hint = checkpoint.empty() ? "" : "; go on with: dla3d --resume " + checkpoint;
-    std::fprintf(stderr, "dla3d: stopped by %s after %s%s %s; the files hold them%s\n", signal_name(signal),
-                 grown.c_str(), of.c_str(), run.unit, resume_hint.c_str());
-    return 128 + signal;
+    const std::string when = record.stopped_in == "links" ? "while the links were made, " : "";
+    const std::string without = std::string(run.links.any() ? ", without links" : "") +
+                                (solid_left_out || lods_left_out
+                                     ? std::string(", and no ") + (solid_left_out ? "solid" : "") +
+                                           (solid_left_out && lods_left_out ? " or " : "") +
+                                           (lods_left_out ? "levels of detail" : "") + ": they are made for a whole run"
+                                     : "");
+    std::fprintf(stderr, "dla3d: stopped by %s %safter %s%s %s; the files hold them%s%s\n", signal_name(stop.signal),
+                 when.c_str(), grown.c_str(), of.c_str(), run.unit, without.c_str(), resume_hint.c_str());
+    return 128 + stop.signal;
   }
   if (!checkpoint.empty()) std::remove(checkpoint.c_str());  // whole: nothing to resume
   return 0;

@@ -38,6 +38,7 @@
 
 #include <Model/COM/NMR_DLLInterfaces.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -77,16 +78,16 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--index", {"grid", "kdtree", "brute", "octree"}},
       {"--links", {"2", "1.5,3", "4,8", "1", "0", "-1", "2,0", "2,65", "101", "lattice", "x", "2,"}},
       {"--threads", {"1", "2", "3", "0", "300", "-1"}},
-      {"--stl", {"box.off", "ball.stl", "paint.ply", "missing.stl", "noise.stl", "out.csv", "folder.stl", "pipe.stl", "zero.stl", "empty.stl"}},
-      {"--mesh", {"ball.stl", "box.off", "paint.ply", "missing.stl", "folder.stl", "pipe.stl", "zero.stl", "empty.stl"}},
+      {"--stl", {"box.off", "ball.stl", "paint.ply", "missing.stl", "noise.stl", "out.csv", "folder.stl", "pipe.stl", "zero.stl", "empty.stl", "cut.stl"}},
+      {"--mesh", {"ball.stl", "box.off", "paint.ply", "missing.stl", "folder.stl", "pipe.stl", "zero.stl", "empty.stl", "cut.stl"}},
       {"--side", {"inside", "outside", "both", "surface", "sideways"}},
       {"--shell", {"3", "1", "2.5", "1000", "0.5", "0", "nan", "x"}},
       {"--constraint", {"reject", "clip", "bend"}},
       {"--seeds", {"1", "2", "3", "all", "0", "-1", "1000", "x"}},
       {"--seed-paint", {"red", "ff0000", "'#ff0000,0.5'", "red,0", "blue", "pink", "red,1", "red,x", "''"}},
-      {"--seed-mesh", {"rod.stl", "box.off", "ball.stl", "missing.stl", "noise.stl", "folder.stl", "pipe.stl", "zero.stl", "empty.stl"}},
+      {"--seed-mesh", {"rod.stl", "box.off", "ball.stl", "missing.stl", "noise.stl", "folder.stl", "pipe.stl", "zero.stl", "empty.stl", "cut.stl"}},
       {"--text", {"DLA", "'A B'", "O", "'L\\nI'", "''", "' '"}},
-      {"--font", {"/usr/share/fonts/truetype/dejavu/DejaVuSerif-Bold.ttf", "missing.ttf", "noise.stl", "folder.stl", "pipe.stl", "zero.stl", "empty.stl"}},
+      {"--font", {"/usr/share/fonts/truetype/dejavu/DejaVuSerif-Bold.ttf", "missing.ttf", "noise.stl", "folder.stl", "pipe.stl", "zero.stl", "empty.stl", "cut.stl"}},
       {"--scene-mesh", {}},
       {"--no-scene-mesh", {}},
       {"--spawn", {"sphere", "disk", "box", "inside", "radial", "surface", "cube"}},
@@ -124,7 +125,7 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--tube-min-branch", {"1", "16", "1000", "0", "1001", "x"}},
       {"--uv-scale", {"0", "2.5", "1e-9", "-1", "1e10", "nan"}},
       {"--lod", {"0", "2", "8", "-1", "9", "x"}},
-      {"--leaf", {"leaf.glb", "leaf.glb", "nested/leaf.glb", "noise.stl", "missing.glb", "''", "folder.stl", "pipe.stl", "zero.stl", "empty.stl"}},
+      {"--leaf", {"leaf.glb", "leaf.glb", "nested/leaf.glb", "noise.stl", "missing.glb", "''", "folder.stl", "pipe.stl", "zero.stl", "empty.stl", "cut.glb"}},
       {"--instances", {"tips", "all", "some"}},
       {"--tips-within", {"2", "0", "1e300", "-1", "nan"}},
       {"--tips-every", {"1", "3", "1000000", "0", "1000001", "x"}},
@@ -133,7 +134,7 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--quiet", {}},
       {"--checkpoint", {"run.ck", "nofolder/run.ck"}},
       {"--checkpoint-every", {"0", "0.5", "60", "-1", "nan", "inf"}},
-      {"--resume", {"saved.ck", "missing.ck", "out.csv", "noise.stl", "folder.stl", "pipe.stl", "zero.stl", "empty.stl"}},
+      {"--resume", {"saved.ck", "missing.ck", "out.csv", "noise.stl", "folder.stl", "pipe.stl", "zero.stl", "empty.stl", "cut.ck"}},
       {"--help", {}},
       {"--version", {}},
   };
@@ -168,7 +169,7 @@ const std::map<std::string, std::vector<std::string>>& colonize_table() {
       {"--rng-seed", {"1", "7", "18446744073709551615", "-1"}},
       {"--attractors", {"300", "2000", "1", "0", "-3", "200000000", "x"}},
       {"--attractors-in", {"sphere", "box", "mesh", "surface", "cone"}},
-      {"--attractors-from", {"points.csv", "points.ply", "out.csv", "ball.stl", "noise.stl", "missing.csv", "folder.stl", "pipe.stl", "zero.stl", "empty.stl"}},
+      {"--attractors-from", {"points.csv", "points.ply", "out.csv", "ball.stl", "noise.stl", "missing.csv", "folder.stl", "pipe.stl", "zero.stl", "empty.stl", "cut.stl"}},
       {"--attractor-center", {"0,0,0", "10,0,0", "0,0,5", "1e300,0,0", "nan,0,0"}},
       {"--attractor-radius", {"20", "5", "1e-3", "0", "-1", "1e300", "inf"}},
       {"--attractor-box", {"-20,-20,-20,20,20,20", "0,0,0,10,10,0", "1,1,1,0,0,0", "0,0,0,1"}},
@@ -178,7 +179,7 @@ const std::map<std::string, std::vector<std::string>>& colonize_table() {
       {"--roots-in", {"sphere", "mesh", "surface", "cube"}},
       {"--roots-scale", {"1.5", "1", "0.01", "100", "0", "-1", "nan", "1e300"}},
       {"--stl", {"ball.stl", "box.off", "paint.ply", "missing.stl", "noise.stl"}},
-      {"--collide", {"ball.stl", "box.off", "missing.stl", "noise.stl", "out.csv", "folder.stl", "pipe.stl", "zero.stl", "empty.stl"}},
+      {"--collide", {"ball.stl", "box.off", "missing.stl", "noise.stl", "out.csv", "folder.stl", "pipe.stl", "zero.stl", "empty.stl", "cut.stl"}},
       {"--collision", {"push", "stick", "bounce"}},
   });
   return table;
@@ -192,7 +193,7 @@ const std::map<std::string, std::vector<std::string>>& eden_table() {
       {"--dimensions", {"2", "3", "1", "x"}},
       {"--lattice", {"square4", "hex", "square8", "cubic6", "cubic18", "cubic26", "square5"}},
       {"--mode", {"drop", "perimeter", "random"}},
-      {"--mask", {"B", "mask.txt", "A", "C", "D", "missing.txt", "noise.stl", "E", "''", "folder.stl", "pipe.stl", "zero.stl", "empty.stl"}},
+      {"--mask", {"B", "mask.txt", "A", "C", "D", "missing.txt", "noise.stl", "E", "''", "folder.stl", "pipe.stl", "zero.stl", "empty.stl", "cut.stl"}},
       {"--mask-threshold", {"1", "2", "3", "0", "-1", "200", "x"}},
       {"--seed-radius", {"2", "0", "100", "-1", "101", "nan", "inf"}},
       {"--spacing", {"1", "0.5", "1e-6", "1e6", "1e-25", "1e25", "0", "-1", "nan", "1e-300", "1e100"}},
@@ -288,6 +289,13 @@ void make_inputs(const ScratchDir& dir) {
   EXPECT_EQ(mkfifo((dir / "pipe.stl").c_str(), 0644), 0);
   std::filesystem::create_symlink("/dev/zero", dir / "zero.stl");
   std::ofstream(dir / "empty.stl").flush();
+  // Truncated files: each format's first part, saying more than follows.
+  const auto cut = [&](const std::filesystem::path& whole, const char* name) {
+    const std::string bytes = read_file(whole);
+    std::ofstream(dir / name, std::ios::binary) << bytes.substr(0, bytes.size() * 2 / 3);
+  };
+  cut(dir / "ball.stl", "cut.stl");
+  cut(dir / "leaf.glb", "cut.glb");
   std::ofstream(dir / "points.ply") << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                                        "property float z\nend_header\n1 2 0\n-4 5 0\n0 -9 0\n";
   DlaOptions o;
@@ -296,6 +304,7 @@ void make_inputs(const ScratchDir& dir) {
   write_csv(part, dir / "grown.csv");  // for dla3d frames
   part.complete = false;
   write_checkpoint({{"-n", "120", "-q", "-o", "resumed"}, 0, part, {}}, dir / "saved.ck");
+  cut(dir / "saved.ck", "cut.ck");
 }
 
 //! What make_inputs puts in the folder of a run.
@@ -303,7 +312,7 @@ const std::set<std::string>& input_names() {
   static const std::set<std::string> names = {"ball.stl",   "box.off",   "noise.stl", "out.csv",   "points.csv",
                                               "paint.ply",  "points.ply", "saved.ck", "mask.txt",  "rod.stl",
                                               "dir",        "grown.csv", "leaf.glb",  "folder.stl", "pipe.stl",
-                                              "zero.stl",   "empty.stl"};
+                                              "zero.stl",   "empty.stl", "cut.stl",   "cut.glb",   "cut.ck"};
   return names;
 }
 
@@ -822,6 +831,43 @@ std::string check_frames(const ScratchDir& dir, const std::string& prefix, std::
   return "";
 }
 
+//! What is wrong with the files a run stopped by a signal left in `dir` (`inputs` aside), or
+//! "": none half-written (no temporary left, each glb and binary STL as long as it says, the
+//! JSON whole), the CSV a tree, and the JSON saying where it stopped when the run did not end.
+std::string stopped_files_fault(const ScratchDir& dir, const std::set<std::string>& inputs, bool ended) {
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir.path())) {
+    const std::string name = entry.path().lexically_relative(dir.path()).string();
+    if (inputs.count(name) || name == "err.txt" || !entry.is_regular_file()) continue;
+    const auto ends_with = [&](const char* suffix) {
+      const std::size_t n = std::strlen(suffix);
+      return name.size() >= n && name.compare(name.size() - n, n, suffix) == 0;
+    };
+    const std::string bytes = read_file(entry.path());
+    if (ends_with(".tmp")) return name + " was left";
+    if (ends_with(".glb")) {
+      std::uint32_t length = 0;
+      if (bytes.size() >= 12) std::memcpy(&length, bytes.data() + 8, 4);
+      if (bytes.size() < 12 || length != bytes.size()) return name + " is not whole";
+    } else if (ends_with(".stl") && bytes.size() >= 84 && bytes.compare(0, 5, "solid") != 0) {
+      std::uint32_t triangles = 0;
+      std::memcpy(&triangles, bytes.data() + 80, 4);
+      if (84 + 50 * static_cast<std::uint64_t>(triangles) != bytes.size()) return name + " is not whole";
+    } else if (ends_with(".json")) {
+      if (bytes.size() < 2 || bytes.substr(bytes.size() - 2) != "}\n" || !balanced(bytes, '{', '}')) return name + " is not whole";
+      if (!ended && bytes.find("\"stopped_in\": ") == std::string::npos && bytes.find("\"generator\"") != std::string::npos)
+        return name + " does not say where the run stopped";
+    } else if (ends_with(".csv") && !ends_with("_links.csv") && name.find("frame") == std::string::npos) {
+      try {
+        const std::string fault = testing::tree_fault(read_csv(entry.path().string()), {0.0, 1e300, false});
+        if (!fault.empty()) return name + " is not a tree: " + fault;
+      } catch (const std::exception& e) {
+        return name + " does not read back: " + e.what();
+      }
+    }
+  }
+  return "";
+}
+
 TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
   ScratchDir root;
   // The table knows every option of --help: a new option must join it.
@@ -874,7 +920,7 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
   std::vector<std::string> flags;
   for (const auto& [flag, values] : option_table()) flags.push_back(flag);
 
-  std::map<int, int> exits;
+  std::map<int, int> exits, stops;  // stops: the exits of runs stopped by a signal (0: ended before it)
   for (int run = 0; run < runs; ++run) {
     // A few options, mostly valid values: an invalid one ends most runs at once.
     std::size_t share = pick(16);
@@ -901,8 +947,8 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
     if (!particles_given && !framing && args.find("--resume") == std::string::npos)
       args = " -n " + std::to_string(20 + pick(150)) + args;
     if (framing) {
-      static const char* const csvs[] = {"out.csv", "folder.stl", "pipe.stl", "zero.stl"};
-      args = " frames " + std::string(pick(8) == 0 ? csvs[pick(4)] : "grown.csv") + args;
+      static const char* const csvs[] = {"out.csv", "folder.stl", "pipe.stl", "zero.stl", "cut.stl"};
+      args = " frames " + std::string(pick(8) == 0 ? csvs[pick(5)] : "grown.csv") + args;
     }
     if (colonizing && args.find("--attractors ") == std::string::npos)
       args = " --attractors " + std::to_string(50 + pick(1000)) + args;
@@ -915,7 +961,13 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
     const std::set<std::string>& inputs = input_names();
     // The bound: far above what any of these takes (under the sanitizers too); `timeout`
     // kills a hang with 137 and the assertion below names the command.
+    rusage before{}, after{};
+    getrusage(RUSAGE_CHILDREN, &before);
     const testing::CliRun result = testing::dla3d(dir, command, "timeout -s KILL 120");
+    getrusage(RUSAGE_CHILDREN, &after);
+    const auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+    const double cpu_seconds = seconds(after.ru_utime) + seconds(after.ru_stime) - seconds(before.ru_utime) -
+                               seconds(before.ru_stime);
     ++exits[result.exit_code];
     SCOPED_TRACE("dla3d " + command + "\nstderr: " + result.err);
     const bool one_error_line = result.err.rfind("dla3d: error: ", 0) == 0 &&
@@ -927,6 +979,26 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
     }
     ASSERT_NE(result.exit_code, 137) << "no exit within the bound";
     ASSERT_GE(result.exit_code, 0) << "ended by a signal";
+    // A run that grew, again, stopped by Ctrl-C or SIGTERM at a moment drawn from its
+    // processor time: in any of its stages (growth, links, the look, each writer, frames).
+    const auto stop_again = [&] {
+      if (pick(3) == 0 && command.find("--resume") == std::string::npos) {
+        const int signal = pick(2) ? SIGINT : SIGTERM;
+        const double moment = cpu_seconds * static_cast<double>(pick(1001)) / 1000.0;
+        ScratchDir again;
+        make_inputs(again);
+        std::filesystem::create_directory(again.path() / "dir");
+        const testing::InterruptedRun stopped = testing::interrupt_run(again, {command}, signal, moment, "", true);
+        SCOPED_TRACE("stopped by signal " + std::to_string(signal) + " after " + std::to_string(moment) +
+                     " s of processor time; stderr: " + read_file(again / "err.txt"));
+        ++stops[stopped.signalled ? stopped.exit_code : 0];
+        if (stopped.signalled) {
+          ASSERT_TRUE(stopped.exit_code == 0 || stopped.exit_code == 128 + signal) << "exit " << stopped.exit_code;
+          EXPECT_LT(stopped.exit_seconds, 2.0) << "the signal was not obeyed within 2 s";
+        }
+        ASSERT_EQ(stopped_files_fault(again, inputs, !stopped.signalled || stopped.exit_code == 0), "");
+      }
+    };
     switch (result.exit_code) {
       case 0: {
         if (command.find("--help") != std::string::npos || command.find("--version") != std::string::npos) break;
@@ -941,10 +1013,12 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
           ASSERT_EQ(check_frames(dir, prefix, std::stoul(last_value(command, "--count", "30")),
                                  last_value(command, "--formats", "glb"), std::atoi(last_value(command, "--lod", "0").c_str())),
                     "");
+          stop_again();
           break;
         }
         ASSERT_EQ(check_files(dir, prefix, last_value(command, "--formats", "pov,csv,ply,json"),
                               std::atoi(last_value(command, "--lod", "0").c_str())), "");
+        stop_again();
         break;
       }
       case 2:
@@ -971,6 +1045,10 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
   std::string summary;
   for (const auto& [code, n] : exits) summary += " exit " + std::to_string(code) + ": " + std::to_string(n) + ";";
   std::printf("%d command lines:%s\n", runs, summary.c_str());
+  summary.clear();
+  for (const auto& [code, n] : stops) summary += " exit " + std::to_string(code) + ": " + std::to_string(n) + ";";
+  std::printf("runs stopped again by a signal:%s\n", summary.c_str());
+  EXPECT_GT(stops[130] + stops[143], exits[0] / 12) << "too few runs were stopped by their signal";
   EXPECT_GT(exits[0], runs / 10) << "too few command lines grew anything: the table draws too many faults";
   EXPECT_GT(exits[2], runs / 10) << "too few faults drawn";
 }

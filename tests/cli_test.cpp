@@ -13,9 +13,11 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -26,6 +28,9 @@ using dla::testing::read_file;
 
 using dla::testing::CliRun;
 using dla::testing::dla3d;
+using dla::testing::InterruptedRun;
+using dla::testing::cpu_seconds_of_run;
+using dla::testing::interrupt_run;
 
 TEST(Cli, WritesEveryFile) {
   ScratchDir dir;
@@ -191,15 +196,105 @@ TEST(Cli, CtrlCWhileTheSolidBuildsKeepsTheOtherFilesAndLeavesNoSolidFile) {
                                SIGINT, 0.0, "part.csv");
   const std::string err = read_file(dir / "err.txt");
   ASSERT_EQ(code, 130) << err;
-  EXPECT_NE(err.find("stopped by SIGINT while the solid was built; the other files are written, no solid file"),
+  EXPECT_NE(err.find("stopped by SIGINT while the files were written; those finished are whole, no other is written"),
             std::string::npos) << err;
-  EXPECT_NE(read_file(dir / "part.json").find("\"complete\": true"), std::string::npos);
+  const std::string json = read_file(dir / "part.json");
+  EXPECT_NE(json.find("\"complete\": true"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"stopped_in\": \"files\""), std::string::npos) << json;
   EXPECT_TRUE(std::filesystem::exists(dir / "part.csv"));
   for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
     const std::string name = entry.path().filename().string();
     EXPECT_TRUE(name.find(".stl") == std::string::npos && name.find(".vdb") == std::string::npos &&
                 name.find(".tmp") == std::string::npos) << name << " was left";
   }
+}
+
+//! The words of `args`, split at spaces.
+std::vector<std::string> words_of(const std::string& args) {
+  std::vector<std::string> words;
+  std::istringstream in(args);
+  for (std::string word; in >> word;) words.push_back(word);
+  return words;
+}
+
+// Issue 67's case: SIGTERM while the links are made. Growth alone is timed first, so the
+// signal comes well after it on any build; the links of 50,000 particles within 100 spacings,
+// every pair of them, take many times longer.
+TEST(Cli, SigtermWhileTheLinksAreMadeEndsAtOnceAndKeepsTheTree) {
+  ScratchDir timed, dir;
+  const std::string run = "ballistic -n 50000 -q -o part";
+  const double growth = cpu_seconds_of_run(timed, words_of(run + " --formats csv"));
+  const InterruptedRun ended =
+      interrupt_run(dir, words_of(run + " --formats csv,json,stl --links 100,64"), SIGTERM, 1.5 * growth + 1.0);
+  const std::string err = read_file(dir / "err.txt");
+  ASSERT_TRUE(ended.signalled) << "the links ended before the signal: " << err;
+  ASSERT_EQ(ended.exit_code, 143) << err;
+  EXPECT_LT(ended.exit_seconds, 2.0);
+  EXPECT_NE(err.find("stopped by SIGTERM while the links were made, after 50,001 particles; the files hold them, "
+                     "without links, and no solid: they are made for a whole run"), std::string::npos) << err;
+  const std::string json = read_file(dir / "part.json");
+  EXPECT_NE(json.find("\"stopped_in\": \"links\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"complete\": false"), std::string::npos) << json;
+  const dla::Cluster kept = dla::read_csv(dir / "part.csv");
+  EXPECT_EQ(kept.particles.size(), 50001u);
+  EXPECT_TRUE(kept.links.empty());
+  EXPECT_FALSE(std::filesystem::exists(dir / "part.stl")) << "a stopped run builds no solid";
+}
+
+// Issue 67's case: closed venation with a vast influence, SIGTERM while nodes are taken in.
+TEST(Cli, SigtermInClosedVenationEndsAtOnceAndKeepsTheTree) {
+  ScratchDir dir;
+  const InterruptedRun ended = interrupt_run(
+      dir, words_of("colonize --venation closed --influence 1000 --attractors 200000 -q --formats csv,json -o part"),
+      SIGTERM, 2.0);
+  const std::string err = read_file(dir / "err.txt");
+  ASSERT_TRUE(ended.signalled) << err;
+  ASSERT_EQ(ended.exit_code, 143) << err;
+  EXPECT_LT(ended.exit_seconds, 2.0);
+  EXPECT_NE(read_file(dir / "part.json").find("\"stopped_in\": \"growth\""), std::string::npos);
+  EXPECT_GT(dla::read_csv(dir / "part.csv").particles.size(), 1u);
+}
+
+// SIGTERM while a whole run's glb and its levels of detail are written: the writers stop at
+// once; those finished stay whole, the others are not there, and nothing half-written is.
+TEST(Cli, SigtermWhileTheFilesAreWrittenKeepsOnlyWholeOnes) {
+  ScratchDir dir;
+  const InterruptedRun ended =
+      interrupt_run(dir, words_of("-n 200000 -q --formats csv,glb,json --lod 4 -o part"), SIGTERM, 0.0, "part.csv");
+  const std::string err = read_file(dir / "err.txt");
+  ASSERT_TRUE(ended.signalled) << err;
+  ASSERT_EQ(ended.exit_code, 143) << err;
+  EXPECT_LT(ended.exit_seconds, 2.0);
+  EXPECT_EQ(dla::read_csv(dir / "part.csv").particles.size(), 200001u);
+  EXPECT_FALSE(std::filesystem::exists(dir / "part_lod4.glb")) << "the last level was written, after the signal";
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_EQ(name.find(".tmp"), std::string::npos) << name << " was left";
+    if (name.size() > 4 && name.compare(name.size() - 4, 4, ".glb") == 0) {
+      const std::string glb = read_file(entry.path());
+      std::uint32_t length = 0;
+      ASSERT_GE(glb.size(), 12u) << name;
+      std::memcpy(&length, glb.data() + 8, 4);
+      EXPECT_EQ(length, glb.size()) << name << " is not whole";
+    }
+  }
+}
+
+// The estimates before growth: tubes past a glb's 4.29 GB, and links past the memory free.
+TEST(Cli, TubesAndLinksThatCannotFitAreRefusedBeforeGrowth) {
+  ScratchDir dir;
+  const CliRun glb = dla3d(dir, "-n 10000000 --formats glb -o big", "ulimit -t 20 &&");
+  ASSERT_EQ(glb.exit_code, 2) << glb.err;
+  EXPECT_EQ(glb.err.rfind("dla3d: error: --formats glb: the tubes of 10,000,000 particles take at least 6.3 GB, past a "
+                          "glb's 4.29 GB: 6,882,960 particles fit with these --tube-sides", 0), 0u) << glb.err;
+  EXPECT_EQ(std::count(glb.err.begin(), glb.err.end(), '\n'), 1) << glb.err;
+  // 10^9 particles with 64 links each could take a terabyte: no machine of ours has that free.
+  const CliRun links = dla3d(dir, "ballistic -n 1000000000 --links 2,64 -o big", "ulimit -t 20 &&");
+  ASSERT_EQ(links.exit_code, 2) << links.err;
+  EXPECT_EQ(links.err.rfind("dla3d: error: --links 2,64 may make 64 links for each of 1,000,000,001 particles, "
+                            "1024.1 GB, past the ", 0), 0u) << links.err;
+  EXPECT_EQ(std::count(links.err.begin(), links.err.end(), '\n'), 1) << links.err;
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
 }
 
 // A solid that no structure of the count asked for can fit is refused before growth: 2 x 10^7

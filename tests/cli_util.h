@@ -6,10 +6,12 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -54,15 +56,13 @@ inline double cpu_seconds(pid_t pid) {
   return (user + system) / static_cast<double>(sysconf(_SC_CLK_TCK));
 }
 
-//! Starts `dla3d WORDS` in `dir` (stderr to err.txt) and sends it `signal` once it catches that
-//! signal (its handler is installed just before growth), has done `work` seconds of processor
-//! time, which load on the machine does not shorten, and, if `exists` is named, once that file
-//! is in `dir` (a file the run writes: the event of its stage). Returns its exit code: 128 +
-//! the signal when it stopped as asked, or -1 if it did not exit by itself.
-inline int interrupted(const ScratchDir& dir, const std::vector<std::string>& words, int signal, double work = 0.0,
-                       const std::string& exists = "") {
+//! Starts `dla3d WORDS` in `dir`, stderr to err.txt, stdout dropped: its process id, or -1.
+//! With `shell`, WORDS are one line of arguments as /bin/sh reads them, and the shell execs
+//! dla3d with them (its process id is dla3d's).
+inline pid_t start_dla3d(const ScratchDir& dir, const std::vector<std::string>& words, bool shell = false) {
   std::vector<std::string> argv_words{DLA3D_PATH};
   argv_words.insert(argv_words.end(), words.begin(), words.end());
+  if (shell) argv_words = {"/bin/sh", "-c", "exec '" DLA3D_PATH "' " + (words.empty() ? "" : words.front())};
   std::vector<char*> argv;
   for (std::string& word : argv_words) argv.push_back(word.data());
   argv.push_back(nullptr);
@@ -77,16 +77,59 @@ inline int interrupted(const ScratchDir& dir, const std::vector<std::string>& wo
   const int spawned = posix_spawn(&pid, argv[0], &files, nullptr, argv.data(), environ);
   std::filesystem::current_path(before);
   posix_spawn_file_actions_destroy(&files);
-  if (spawned != 0) return -1;
+  return spawned == 0 ? pid : -1;
+}
+
+//! The processor time, in seconds, `dla3d WORDS` takes to run to its end in `dir`: how far
+//! into a run its stages lie, on this build and machine.
+inline double cpu_seconds_of_run(const ScratchDir& dir, const std::vector<std::string>& words) {
+  const pid_t pid = start_dla3d(dir, words);
+  int status = 0;
+  rusage usage{};
+  while (wait4(pid, &status, 0, &usage) < 0 && errno == EINTR) {
+  }
+  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+//! How an interrupted run ended.
+struct InterruptedRun {
+  int exit_code = -1;        //!< 128 + the signal when it stopped as asked; -1: not by exit()
+  bool signalled = false;    //!< the signal was sent (the run had not ended before)
+  double exit_seconds = 0;   //!< from the signal to the exit, wall-clock
+};
+
+//! Starts `dla3d WORDS` in `dir` (stderr to err.txt) and sends it `signal` once it catches that
+//! signal (its handler is installed just before growth), has done `work` seconds of processor
+//! time, which load on the machine does not shorten, and, if `exists` is named, once that file
+//! is in `dir` (a file the run writes: the event of its stage). `shell`: as start_dla3d.
+inline InterruptedRun interrupt_run(const ScratchDir& dir, const std::vector<std::string>& words, int signal,
+                                 double work = 0.0, const std::string& exists = "", bool shell = false) {
+  InterruptedRun ended;
+  const pid_t pid = start_dla3d(dir, words, shell);
+  if (pid < 0) return ended;
   int status = 0;
   while (!catches(pid, signal) || cpu_seconds(pid) < work || (!exists.empty() && !std::filesystem::exists(dir / exists))) {
-    if (waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    if (waitpid(pid, &status, WNOHANG) == pid) {
+      ended.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+      return ended;
+    }
     usleep(2000);
   }
+  const auto sent = std::chrono::steady_clock::now();
   kill(pid, signal);
+  ended.signalled = true;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  ended.exit_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+  ended.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return ended;
+}
+
+//! interrupt_run's exit code.
+inline int interrupted(const ScratchDir& dir, const std::vector<std::string>& words, int signal, double work = 0.0,
+                       const std::string& exists = "") {
+  return interrupt_run(dir, words, signal, work, exists).exit_code;
 }
 
 }  // namespace dla::testing

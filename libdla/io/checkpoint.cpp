@@ -10,8 +10,9 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
-#include <fstream>
+#include <memory>
 #include <string_view>
 #include <vector>
 
@@ -59,12 +60,10 @@ class Writer {
 //! hash): memory stays that of the structure read, not of the file besides.
 class Reader {
  public:
-  explicit Reader(const std::string& path) : in_((require_regular_file(path, ""), path), std::ios::binary), path_(path) {
-    if (!in_) throw IOError("cannot read '" + path + "': " + std::strerror(errno));
-    in_.seekg(0, std::ios::end);
-    const std::streamoff size = in_.tellg();
-    in_.seekg(0);
-    body_ = size < 8 ? 0 : static_cast<std::uint64_t>(size) - 8;  // too short: no magic
+  explicit Reader(const std::string& path) : path_(path) {
+    std::uint64_t size = 0;
+    in_.reset(open_input_file(path, "", size));
+    body_ = size < 8 ? 0 : size - 8;  // too short: no magic
   }
   template <class T>
   T get() {
@@ -73,9 +72,7 @@ class Reader {
     return value;
   }
   void read(char* to, std::size_t n) {
-    if (n > body_ - at_) damaged();
-    in_.read(to, static_cast<std::streamsize>(n));
-    if (!in_) damaged();
+    if (n > body_ - at_ || std::fread(to, 1, n, in_.get()) != n) damaged();
     hash_ = fnv1a(std::string_view(to, n), hash_);
     at_ += n;
   }
@@ -88,12 +85,12 @@ class Reader {
   //! Checks that the body is all read and its hash is the one stored after it.
   void finish() {
     std::uint64_t stored = 0;
-    if (at_ != body_ || !in_.read(reinterpret_cast<char*>(&stored), sizeof stored) || stored != hash_) damaged();
+    if (at_ != body_ || std::fread(&stored, 1, sizeof stored, in_.get()) != sizeof stored || stored != hash_) damaged();
   }
   [[noreturn]] void damaged() const { throw InvalidInput(path_ + ": the checkpoint is cut short or damaged"); }
 
  private:
-  std::ifstream in_;
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> in_{nullptr, &std::fclose};
   const std::string& path_;
   std::uint64_t body_ = 0;  // bytes before the stored hash
   std::uint64_t at_ = 0;

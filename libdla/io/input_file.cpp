@@ -1,5 +1,6 @@
 // Input files read within bounds (input_file.h).
 
+#include "dla/core/memory.h"
 #include "dla/io/input_file.h"
 
 #include "dla/core/errors.h"
@@ -11,6 +12,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <memory>
 
 namespace dla {
 
@@ -46,16 +48,25 @@ void require_regular_file(const std::string& path, std::string_view option) {
   if (const char* kind = not_a_file(status.st_mode)) throw InvalidInput(named(path, option) + " is " + kind + ", not a file");
 }
 
-std::string read_input_file(const std::string& path, std::string_view option) {
+std::FILE* open_input_file(const std::string& path, std::string_view option, std::uint64_t& size) {
   // Opened without blocking (a FIFO put in its place since would wait for a writer), then
   // judged by what was opened.
-  const Descriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
+  Descriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
   if (file.fd < 0) throw IOError("cannot read '" + path + "': " + std::strerror(errno));
   struct stat status;
   if (::fstat(file.fd, &status) != 0) throw IOError("cannot read '" + path + "': " + std::strerror(errno));
   if (const char* kind = not_a_file(status.st_mode)) throw InvalidInput(named(path, option) + " is " + kind + ", not a file");
-  const auto size = static_cast<std::uint64_t>(status.st_size);
-  const double free_bytes = static_cast<double>(sysconf(_SC_AVPHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  size = static_cast<std::uint64_t>(status.st_size);
+  std::FILE* stream = ::fdopen(file.fd, "rb");
+  if (!stream) throw IOError("cannot read '" + path + "': " + std::strerror(errno));
+  file.fd = -1;  // the stream's now
+  return stream;
+}
+
+std::string read_input_file(const std::string& path, std::string_view option) {
+  std::uint64_t size = 0;
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(open_input_file(path, option, size), &std::fclose);
+  const double free_bytes = available_memory();
   if (free_bytes > 0 && static_cast<double>(size) > free_bytes / 2)
     throw InvalidInput(named(path, option) + " is " + detail::format_number(static_cast<double>(size) / 1e9) +
                        " GB, more than the " + detail::format_number(free_bytes / 2e9) +
@@ -63,11 +74,10 @@ std::string read_input_file(const std::string& path, std::string_view option) {
   std::string bytes(size, '\0');
   std::size_t read = 0;
   while (read < size) {
-    const ssize_t n = ::read(file.fd, bytes.data() + read, size - read);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) throw IOError("cannot read '" + path + "': " + std::strerror(errno));
+    const std::size_t n = std::fread(bytes.data() + read, 1, size - read, file.get());
+    if (n == 0 && std::ferror(file.get())) throw IOError("cannot read '" + path + "': " + std::strerror(errno));
     if (n == 0) break;  // the file shrank since: what it holds now
-    read += static_cast<std::size_t>(n);
+    read += n;
   }
   bytes.resize(read);
   return bytes;

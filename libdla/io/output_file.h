@@ -2,6 +2,7 @@
 // Files written whole or not at all, formatted locale-free, large ones on several threads.
 
 #include "dla/core/errors.h"
+#include "dla/core/stop.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -149,7 +150,8 @@ class Text {
 };
 
 //! A file written under a temporary name and renamed into place on commit(), so a failed or
-//! interrupted write never leaves a half-written file under the final name.
+//! interrupted write never leaves a half-written file under the final name. Throws Interrupted
+//! once the flag of this thread's StopScope (stop.h) is set.
 class OutputFile : public Text {
  public:
   explicit OutputFile(std::string path) : path_(std::move(path)), temp_(path_ + ".tmp") {
@@ -215,7 +217,10 @@ class OutputFile : public Text {
     flush();
     reserve(bytes);
   }
+  //! Where the writing of every format stops once its StopScope's flag is set: before each
+  //! 64 kB written, and before the rename.
   void flush() {
+    throw_if_stopped("writing " + path_);
     if (used_ > 0 && std::fwrite(bytes_.get(), 1, used_, file_) != used_) fail();
     used_ = 0;
   }

@@ -16,6 +16,7 @@ void write_run_report(const Cluster& cluster, const ModelRecord& model, const Lo
   if (!record.command.empty()) out.text("command", record.command);
   out.flag("complete", cluster.complete);
   if (!record.stopped_by.empty()) out.text("stopped_by", record.stopped_by);
+  if (!record.stopped_in.empty()) out.text("stopped_in", record.stopped_in);
   out.text("model", model.model).count("rng_seed", model.rng_seed);
   out.open("options");
   if (model.options) model.options(out);

@@ -9,6 +9,7 @@
 
 #include "solid_grid.h"
 
+#include "dla/core/memory.h"
 #include "dla/core/errors.h"
 #include "dla/index/detail/nanoflann.h"
 
@@ -113,16 +114,8 @@ double chord_depth(double voxel, double radius, bool sphere) {
 
 namespace {
 
-//! Half of what the machine has available (MemAvailable), in bytes.
-double default_memory_limit() {
-  std::ifstream meminfo("/proc/meminfo");
-  std::string key;
-  double kib = 0.0;
-  std::string unit;
-  while (meminfo >> key >> kib >> unit)
-    if (key == "MemAvailable:") return kib * 1024.0 / 2.0;
-  return 4e9;  // no /proc: a laptop's half
-}
+//! Half of what the machine has available, in bytes.
+double default_memory_limit() { return available_memory() / 2.0; }
 
 std::string megabytes(double bytes) {
   return bytes >= 1e9 ? detail::format_number(std::ceil(bytes / 1e8) / 10.0) + " GB"
@@ -302,7 +295,7 @@ FloatLeaf* fill_leaf(const openvdb::Coord& origin, const LeafPiece* begin, const
 //! The grid of `pieces`: their union's narrow-band level set. Leaves are filled on `threads`
 //! threads and added in leaf order.
 openvdb::FloatGrid::Ptr rasterize(const std::vector<Piece>& pieces, const std::vector<LeafPiece>& pairs, double voxel,
-                                  int threads, const StopFlag* stop, const SolidProgress& progress) {
+                                  int threads, const StopFlag* stop, const StageProgress& progress) {
   const float band = static_cast<float>(kBandVoxels * voxel);
   // Where each leaf's pieces begin in `pairs`.
   std::vector<std::size_t> starts;
@@ -819,7 +812,7 @@ SolidPlan plan_solid(const Cluster& cluster, const std::vector<float>& radii, co
   return plan;
 }
 
-Solid build_solid(const SolidPlan& plan, const StopFlag* stop, const SolidProgress& progress) {
+Solid build_solid(const SolidPlan& plan, const StopFlag* stop, const StageProgress& progress) {
   detail::initialize_openvdb();
   Solid solid;
   solid.nearest = std::make_shared<detail::SolidNearest>();

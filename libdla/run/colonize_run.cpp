@@ -3,13 +3,15 @@
 
 #include "model_runs.h"
 
+#include "dla/core/memory.h"
 #include "dla/core/random.h"
 #include "dla/mesh/mesh.h"
 
-#include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace dla {
 
@@ -132,12 +134,28 @@ namespace {
 //! its neighbourhood and its cells, about 200 bytes with its share of the nodes.
 void check_closed_memory(std::size_t attractors) {
   constexpr double kBytesPerAttractor = 200.0;
-  const double memory = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  const double memory = installed_memory();
   const double needed = kBytesPerAttractor * static_cast<double>(attractors);
   if (memory > 0 && needed > memory)
     throw InvalidInput("`venation` closed among " + format_count(attractors) + " attractors needs about " +
                        format_number(needed / 1e9) + " GB of memory; this machine has " + format_number(memory / 1e9) +
                        " GB: " + format_count(static_cast<std::size_t>(memory / kBytesPerAttractor)) + " attractors fit");
+}
+
+//! What closed venation will take, where it is long: each node taken in looks at every source
+//! within the influence, a share of the attractors' box as the influence's ball is of it.
+std::string closed_forecast(const std::vector<Vec3>& attractors, const ColonizationOptions& o) {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const Vec3& a : attractors) lo = lo.cwiseMin(a), hi = hi.cwiseMax(a);
+  const double reach = influence_of(o) * o.spacing;
+  const Vec3 extent = (hi - lo).cwiseMax(Vec3::Constant(o.spacing));
+  const double box = o.dimensions == 2 ? extent.x() * extent.y() : extent.prod();
+  const double ball = o.dimensions == 2 ? 3.14159 * reach * reach : 4.18879 * reach * reach * reach;
+  const double pairs = static_cast<double>(o.max_nodes) * static_cast<double>(attractors.size()) * std::min(1.0, ball / box);
+  if (attractors.empty() || pairs < 1e10) return "";
+  return "`venation` closed may look at up to " + format_number(std::round(pairs / 1e8) / 10.0) +
+         " billion node-source pairs within the `influence` of " + format_number(influence_of(o)) + " spacings, " +
+         time_for_pairs(pairs) + "; a smaller `influence` looks at fewer";
 }
 
 //! Space colonization among attractors scattered or read from a file.
@@ -183,7 +201,10 @@ class ColonizeRun : public Run {
     } else {
       roots_ = colonize_roots(o, attractors_, mesh);
     }
-    if (options_.venation == Venation::closed) check_closed_memory(attractors_.size());
+    if (options_.venation == Venation::closed) {
+      check_closed_memory(attractors_.size());
+      forecast_line = closed_forecast(attractors_, options_);
+    }
     attractors_from_ = o.attractors_from;
     attractor_count_ = attractors_.size();
     vessel_file_ = o.stl;

@@ -4,10 +4,10 @@
 #include "model_runs.h"
 
 #include "dla/core/hash.h"
+#include "dla/core/memory.h"
 #include "dla/mesh/mesh.h"
 #include "dla/mesh/text.h"
 
-#include <unistd.h>
 
 #include <cstdio>
 
@@ -55,10 +55,9 @@ namespace {
 //! about 45 bytes a particle while it grows (docs/performance.md).
 void check_memory(std::size_t particles) {
   constexpr double bytes_per_particle = 48.0;
-  const double pages = static_cast<double>(sysconf(_SC_PHYS_PAGES));
-  const double memory = pages * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  const double memory = installed_memory();
   const double needed = bytes_per_particle * static_cast<double>(particles);
-  if (pages > 0 && needed > memory)
+  if (memory > 0 && needed > memory)
     throw InvalidInput("`particles` " + format_count(particles) + " needs about " + format_number(needed / 1e9) +
                        " GB of memory; this machine has " + format_number(memory / 1e9) + " GB");
 }
@@ -97,8 +96,8 @@ class DlaRun : public Run {
                        : dla::grow(options_, progress, stop, &stats_);
   }
 
-  std::vector<Link> make_links(const Cluster& cluster) const override {
-    return links_inside(cluster, links, threads, constraint_.get());
+  std::vector<Link> make_links(const Cluster& cluster, const StageWatch& watch) const override {
+    return links_inside(cluster, links, threads, constraint_.get(), watch);
   }
 
   bool feed_to(ParticleFeed* feed) override {

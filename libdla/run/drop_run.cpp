@@ -77,8 +77,8 @@ class DropRun : public Run {
     return line;
   }
 
-  std::vector<Link> make_links(const Cluster& cluster) const override {
-    return links_inside(cluster, links, threads, constraint_.get());
+  std::vector<Link> make_links(const Cluster& cluster, const StageWatch& watch) const override {
+    return links_inside(cluster, links, threads, constraint_.get(), watch);
   }
 
   ModelRecord record() const override {

@@ -45,8 +45,8 @@ class EdenRun : public Run {
 
   Cluster grow(const ProgressFn& progress, const StopFlag* stop) override { return dla::eden(options_, progress, stop); }
 
-  std::vector<Link> make_links(const Cluster& cluster) const override {
-    return links.lattice ? lattice_links(cluster, options_.lattice, threads) : Run::make_links(cluster);
+  std::vector<Link> make_links(const Cluster& cluster, const StageWatch& watch) const override {
+    return links.lattice ? lattice_links(cluster, options_.lattice, threads, watch) : Run::make_links(cluster, watch);
   }
 
   std::string summary(const Cluster& cluster, const RunRecord& record) const override {

@@ -41,7 +41,7 @@ void validate_links(const LinkOptions& links);
 
 //! The links of a structure grown in a constraint mesh: none that leaves its growing side.
 std::vector<Link> links_inside(const Cluster& cluster, const LinkOptions& links, int threads,
-                               const MeshConstraint* constraint);
+                               const MeshConstraint* constraint, const StageWatch& watch);
 
 //! What `make` makes, with `name` (the mesh's) before what it refuses.
 template <class Make>
@@ -58,5 +58,17 @@ template <class Make>
 auto with_mesh(const MeshReader& read, const std::string& path, Make&& make) {
   return named(path, [&] { return make(read(path, nullptr)); });
 }
+
+//! Refuses, before growth, a run whose links or tubes would pass this machine's memory, its
+//! disk or a glb's 4.29 GB, in one line naming what fits (forecast.cpp); says in
+//! `run.forecast_line` when the links will take long.
+void refuse_or_foretell(Run& run);
+
+//! Pairs of points looked at (links' neighbours, closed venation's node-source pairs) a second,
+//! on a few cores: what a forecast of their time assumes.
+inline constexpr double kPairsPerSecond = 1e8;
+
+//! "up to 20 minutes": how long looking at `pairs` may take.
+std::string time_for_pairs(double pairs);
 
 }  // namespace dla::detail

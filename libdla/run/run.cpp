@@ -63,12 +63,15 @@ void validate_links(const LinkOptions& links) {
 }
 
 std::vector<Link> links_inside(const Cluster& cluster, const LinkOptions& links, int threads,
-                               const MeshConstraint* constraint) {
-  if (!constraint) return neighbour_links(cluster, links, threads);
-  return neighbour_links(cluster, links, threads, [constraint](const Vec3& earlier, const Vec3& later) {
-    const BranchCheck check = constraint->check_branch(earlier, later);
-    return check.accepted && !check.clipped;
-  });
+                               const MeshConstraint* constraint, const StageWatch& watch) {
+  if (!constraint) return neighbour_links(cluster, links, threads, {}, kLoopSteps, watch);
+  return neighbour_links(
+      cluster, links, threads,
+      [constraint](const Vec3& earlier, const Vec3& later) {
+        const BranchCheck check = constraint->check_branch(earlier, later);
+        return check.accepted && !check.clipped;
+      },
+      kLoopSteps, watch);
 }
 
 std::vector<TriangleMesh> read_all(const MeshReader& read, const std::vector<std::string>& paths) {
@@ -173,6 +176,7 @@ std::unique_ptr<Run> prepare_run(const RunOptions& options, const MeshReader& re
     run->solid_forecast.most_radius = std::max(radius.tip_radius, radius.base_radius);
     refuse_solid_before_growth(run->solid_forecast, run->files.solid);
   }
+  detail::refuse_or_foretell(*run);
   // Refused before growing, not when the files are written.
   if (run->files.instances.exclude_paint && run->constraint)
     run->constraint->require_paint(*run->files.instances.exclude_paint, "tips_exclude_paint");
@@ -261,7 +265,8 @@ class SurfaceFollower {
 
 }  // namespace
 
-Cluster grow_recorded(Run& run, const ProgressFn& progress, const StopFlag* stop, RunRecord& record) {
+Cluster grow_recorded(Run& run, const ProgressFn& progress, const StopFlag* stop, RunRecord& record,
+                      const StageProgress& links_progress) {
   const auto start = std::chrono::steady_clock::now();
   Cluster cluster;
   {
@@ -274,7 +279,16 @@ Cluster grow_recorded(Run& run, const ProgressFn& progress, const StopFlag* stop
     }
     run.measured_while_growing = follower.finish();
   }
-  if (run.links.any()) cluster.links = run.make_links(cluster);
+  if (!cluster.complete && record.stopped_by.empty()) {
+    record.stopped_in = "growth";  // by a stop, not an error: the links would delay the files
+  } else if (run.links.any()) {
+    try {
+      cluster.links = run.make_links(cluster, {stop, links_progress});
+    } catch (const Interrupted&) {
+      cluster.complete = false;
+      record.stopped_in = "links";
+    }
+  }
   record.grow_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return cluster;
 }

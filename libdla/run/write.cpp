@@ -103,8 +103,10 @@ SolidMeasures write_solid(const SolidPlan& plan, const WriteJob& job, const Writ
   for (const SolidWriterEntry& writer : kSolidWriters) {
     if (!(job.files.formats.*(writer.wanted))) continue;
     const std::string path = job.files.output + writer.suffix;
-    writers.push_back(
-        std::async(std::launch::async, [&solid, &job, &writer, path] { writer.write(solid, job, path); }));
+    writers.push_back(std::async(std::launch::async, [&solid, &job, &writer, &context, path] {
+      const detail::StopScope watched(context.stop);
+      writer.write(solid, job, path);
+    }));
   }
   detail::finish_all(writers);
   return solid.measures;
@@ -113,6 +115,7 @@ SolidMeasures write_solid(const SolidPlan& plan, const WriteJob& job, const Writ
 }  // namespace
 
 FilesWritten write_files(const Cluster& cluster, const OutputOptions& files, const WriteContext& context) {
+  const detail::StopScope watched(context.stop);  // the look's measures and the scene, on this thread
   PovOptions pov = files.pov;
   pov.comment = context.comment;
   pov.tips = files.formats.tips;    // the scene reads its tips from PREFIX_tips.inc
@@ -148,7 +151,10 @@ FilesWritten write_files(const Cluster& cluster, const OutputOptions& files, con
       continue;
     }
     const std::string path = files.output + writer.suffix;
-    writers.push_back(std::async(std::launch::async, [&job, &writer, path] { writer.write(job, path); }));
+    writers.push_back(std::async(std::launch::async, [&job, &writer, &context, path] {
+      const detail::StopScope watched(context.stop);
+      writer.write(job, path);
+    }));
   }
   if (files.formats.solid())
     writers.push_back(std::async(std::launch::async, [&] { written.solid = write_solid(plan, job, context); }));
@@ -163,7 +169,7 @@ FilesWritten write_files(const Cluster& cluster, const OutputOptions& files, con
 }
 
 void write_run(const Run& run, const Cluster& cluster, const OutputOptions& files, RunRecord& record,
-               const StopFlag* stop, const SolidProgress& solid_progress) {
+               const StopFlag* stop, const StageProgress& solid_progress) {
   const auto start = std::chrono::steady_clock::now();
   record.printed = files.solid.print_size > 0.0;
   // The record is written even when a file fails (Ctrl-C while the solid builds), but not for
@@ -179,6 +185,9 @@ void write_run(const Run& run, const Cluster& cluster, const OutputOptions& file
     if (!files.leaf.empty() && files.formats.glb) record.leaves = written.glb.leaves;
   } catch (const InvalidInput&) {
     throw;
+  } catch (const Interrupted&) {
+    record.stopped_in = "files";
+    failure = std::current_exception();
   } catch (...) {
     failure = std::current_exception();
   }

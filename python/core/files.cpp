@@ -2,6 +2,7 @@
 // solid, and the files.
 
 #include "files.h"
+#include "interrupt.h"
 #include "keywords.h"
 
 #include "dla/look/instances.h"
@@ -25,12 +26,11 @@ py::tuple tubes(Result& result, std::optional<int> sides, std::optional<double> 
   if (min_branch) options.min_branch = *min_branch;
   if (uv_scale) options.uv_scale = *uv_scale;
   validate(options);
-  const Look& look = result.look();
   std::vector<float> positions, normals, uvs, tangents;
   std::vector<std::uint32_t> triangles;
   std::vector<std::int32_t> particles;
-  {
-    py::gil_scoped_release released;
+  interruptible([&] {
+    const Look& look = result.look();
     for_each_tube(result.cluster, look.attributes, look.radii, options, [&](const TubePiece& piece) {
       const auto base = static_cast<std::uint32_t>(particles.size());
       for (std::size_t k = 0; k < piece.positions.size(); ++k) {
@@ -42,7 +42,7 @@ py::tuple tubes(Result& result, std::optional<int> sides, std::optional<double> 
       particles.insert(particles.end(), piece.particles.begin(), piece.particles.end());
       for (const auto& t : piece.triangles) triangles.insert(triangles.end(), {base + t[0], base + t[1], base + t[2]});
     });
-  }
+  });
   const auto array = [](auto& values, py::ssize_t columns) {
     using T = typename std::decay_t<decltype(values)>::value_type;
     const auto rows = static_cast<py::ssize_t>(values.size()) / columns;
@@ -60,15 +60,14 @@ py::tuple instances(Result& result) {
   const Run& run = *result.run;
   const OutputOptions& files = run.files;
   std::vector<Instance> points;
-  {
-    py::gil_scoped_release released;
+  interruptible([&] {
     const Look look = make_look(result.cluster, files.look,
                                 {run.constraint ? &run.constraint->surface() : nullptr, nullptr, run.threads,
                                  picks_every_tip(files.instances),
                                  files.instances.exclude_paint ? &*files.instances.exclude_paint : nullptr,
                                  run.constraint ? &run.constraint->mesh() : nullptr});
     points = instancing_points(result.cluster, look.attributes, files.instances);
-  }
+  });
   const auto rows = static_cast<py::ssize_t>(points.size());
   py::array_t<double> positions({rows, py::ssize_t{3}}), directions({rows, py::ssize_t{3}}), scales(rows);
   py::array_t<std::int32_t> particles(rows);
@@ -87,7 +86,7 @@ py::tuple instances(Result& result) {
 //! The strands (strands.h) as one array of particle ids and the offsets where each starts (one
 //! more offset at the end): a Blender curve's poly splines, a Houdini primitive each.
 py::tuple strands(Result& result) {
-  const Look& look = result.look();
+  const Look& look = result.look_for_python();
   std::vector<std::int32_t> ids;
   std::vector<std::int64_t> starts{0};
   for_each_strand(
@@ -111,14 +110,12 @@ py::tuple solid(Result& result, const py::dict& given) {
     if (setter == solid_keywords().end()) throw InvalidInput(name + " is not an option of solid()");
     setter->second(options, value, unused);
   }
-  const Look& look = result.look();
   Solid built;
   std::vector<std::int32_t> nearest;
-  {
-    py::gil_scoped_release released;
-    built = build_solid(result.cluster, look.radii, options);
+  interruptible([&] {
+    built = build_solid(result.cluster, result.look().radii, options, detail::scoped_stop());
     nearest = nearest_particles(result.cluster, built, built.mesh.vertices);
-  }
+  });
   py::array_t<float> vertices({static_cast<py::ssize_t>(built.mesh.vertices.size()), py::ssize_t{3}});
   py::array_t<std::uint32_t> faces({static_cast<py::ssize_t>(built.mesh.triangles.size()), py::ssize_t{3}});
   py::array_t<std::int32_t> particle(static_cast<py::ssize_t>(nearest.size()));
@@ -151,8 +148,7 @@ void write(Result& result, const std::string& prefix, const std::vector<std::str
   check_glb_options(files);
   check_writable(file_names(files).front());
   RunRecord record = result.record;  // the growth's time, command and end; the writing's own time
-  py::gil_scoped_release released;
-  write_run(*result.run, result.cluster, files, record);
+  interruptible([&] { write_run(*result.run, result.cluster, files, record, detail::scoped_stop()); });
 }
 
 

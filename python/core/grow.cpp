@@ -67,7 +67,19 @@ std::shared_ptr<Result> grow_run(const std::string& model, const py::dict& keywo
       if (!call_python(so_far)) stop.store(true);
       return !stop.load();
     };
-    result->cluster = grow_recorded(run, watch, &stop, result->record);
+    // The links are made on this thread, which hears Ctrl-C between their parts.
+    const StageProgress links_watch = [&](double, std::string_view) {
+      const Clock::time_point now = Clock::now();
+      if (now < next_call) return;
+      next_call = now + std::chrono::milliseconds(100);
+      py::gil_scoped_acquire gil;
+      if (PyErr_CheckSignals() == 0) return;
+      auto error = std::make_unique<py::error_already_set>();
+      if (error->matches(PyExc_KeyboardInterrupt)) stopped_by = "SIGINT";
+      else raised = std::move(error);
+      stop.store(true);
+    };
+    result->cluster = grow_recorded(run, watch, &stop, result->record, links_watch);
   }
   if (raised) throw std::move(*raised);
   RunRecord& record = result->record;

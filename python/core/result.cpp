@@ -44,19 +44,19 @@ void bind_result(py::module_& m) {
                              "independent loops the links close")
       .def_property_readonly("depth", [](py::object self) {
         Result& r = self.cast<Result&>();
-        const std::vector<std::int32_t>& depth = r.look().attributes.depth;
+        const std::vector<std::int32_t>& depth = r.look_for_python().attributes.depth;
         return shared_array(depth.data(), {static_cast<py::ssize_t>(depth.size())}, {sizeof(std::int32_t)}, self);
       }, "(N,) int32: particles on the path to the seed")
       .def_property_readonly("descendants", [](py::object self) {
         Result& r = self.cast<Result&>();
-        const std::vector<std::int32_t>& d = r.look().attributes.descendants;
+        const std::vector<std::int32_t>& d = r.look_for_python().attributes.descendants;
         return shared_array(d.data(), {static_cast<py::ssize_t>(d.size())}, {sizeof(std::int32_t)}, self);
       }, "(N,) int32: particles in the subtree, itself not counted");
   // One value a particle from its attributes, in a new array.
   const auto attribute = [&result](const char* name, auto value, const char* doc) {
     using T = decltype(value(std::declval<const Attributes&>(), std::size_t{}));
     result.def_property_readonly(name, [value](Result& r) {
-      const Attributes& a = r.look().attributes;
+      const Attributes& a = r.look_for_python().attributes;
       return per_particle<T>(r, [&](std::size_t i) { return value(a, i); });
     }, doc);
   };
@@ -67,7 +67,7 @@ void bind_result(py::module_& m) {
   attribute("tip", [](const Attributes& a, std::size_t i) { return a.tip(i); }, "(N,) bool: no child");
   result
       .def_property_readonly("radius", [](Result& r) {
-        const Look& look = r.look();
+        const Look& look = r.look_for_python();
         return per_particle<float>(r, [&](std::size_t i) { return static_cast<float>(look.radius(r.cluster, i)); });
       }, "(N,) float32: the branch radius of the look, in scene units")
       .def_property_readonly("seed_count", [](const Result& r) { return r.cluster.seed_count; })

@@ -3,6 +3,7 @@
 
 #include "dla/look/look.h"
 #include "dla/run/run.h"
+#include "interrupt.h"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -24,7 +25,14 @@ struct Result {
   //! "SIGINT", "callback", "stopped" or "error: ...".
   RunRecord record;
 
-  //! Computed on first use: growth alone costs no more than the C++ call.
+  //! look() for Python, which holds the GIL: computed with it released, Ctrl-C heard.
+  const Look& look_for_python() {
+    interruptible([this] { look(); });
+    return look_;
+  }
+
+  //! Computed on first use: growth alone costs no more than the C++ call. Throws Interrupted,
+  //! computing nothing, when the StopScope's flag is set (the next call tries again).
   const Look& look() {
     std::call_once(look_once, [&] {
       const std::unique_ptr<SurfaceDistance> surface =

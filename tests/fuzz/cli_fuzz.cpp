@@ -131,7 +131,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     dla::Cluster cluster = grow_briefly(*run);
     if (!dla::testing::tree_fault(cluster, rules_of(line.run)).empty()) std::abort();
     // Its links: two particles each, earlier first, none a tree edge, in order of the later.
-    if (run->links.any()) cluster.links = run->make_links(cluster);
+    if (run->links.any()) cluster.links = run->make_links(cluster, {});
     for (std::size_t k = 0; k < cluster.links.size(); ++k) {
       const dla::Link& link = cluster.links[k];
       if (!(0 <= link.earlier && link.earlier < link.later &&

@@ -5,10 +5,16 @@
 
 #include "dla/core/analysis.h"
 #include "dla/io/csv_reader.h"
+#include "special_files.h"
 
 #include <cstdint>
 #include <cstdlib>
 #include <string_view>
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  dla::fuzz::read_special_files(".csv", [](const std::string& path) { dla::read_csv(path); });
+  return 0;
+}
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);

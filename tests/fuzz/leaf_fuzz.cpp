@@ -3,12 +3,20 @@
 // its own before them, without a fault. Build with -DDLA_FUZZ=ON (clang); see docs/testing.md.
 
 #include "io/leaf_parts.h"
+#include "special_files.h"
+
+#include "dla/io/leaf.h"
 
 #include "dla/core/errors.h"
 
 #include <cstdint>
 #include <cstdlib>
 #include <string>
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  dla::fuzz::read_special_files(".glb", [](const std::string& path) { dla::read_leaf(path); });
+  return 0;
+}
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {

@@ -5,10 +5,20 @@
 // Build with -DDLA_FUZZ=ON (clang); see docs/testing.md.
 
 #include "dla/mesh/mesh.h"
+#include "special_files.h"
 
 #include <cstdint>
 #include <cstdlib>
 #include <string_view>
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  const bool points = std::string_view(DLA_FUZZ_FORMAT) == "points";
+  dla::fuzz::read_special_files(points ? ".csv" : "." DLA_FUZZ_FORMAT, [&](const std::string& path) {
+    if (points) dla::read_points(path);
+    else dla::read_mesh(path);
+  });
+  return 0;
+}
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);

@@ -3,11 +3,13 @@ seed, argument checking, meshes as arrays, the look, progress, Ctrl-C and the GI
 
 import json
 import os
+import resource
 import signal
 import subprocess
 import sys
 import textwrap
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -406,6 +408,67 @@ def test_ctrl_c_returns_what_grew(tmp_path):
     assert complete == "False" and stopped_by == "SIGINT" and 1000 < int(count) < 10**8
     assert sum(1 for _ in open(tmp_path / "stopped.csv")) == int(count) + 1
     assert '"stopped_by": "SIGINT"' in (tmp_path / "stopped.json").read_text()
+
+
+def _cpu_seconds(pid):
+    """The processor time process `pid` has used (/proc's utime and stime)."""
+    fields = open(f"/proc/{pid}/stat").read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def _interrupted(script, when):
+    """Runs `script` in a Python of its own and sends it SIGINT once when(process) is true;
+    returns its stdout and exit code."""
+    process = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
+    while process.poll() is None and not when(process):
+        time.sleep(0.002)  # polling for the event, which decides nothing but when to look again
+    process.send_signal(signal.SIGINT)
+    out, _ = process.communicate(timeout=60)
+    return out, process.returncode
+
+
+def test_ctrl_c_while_the_links_are_made_returns_the_tree_without_them(tmp_path):
+    # Growth alone is timed first: the signal comes well after it, while every pair of 30,000
+    # particles within 100 spacings is looked at for links.
+    def children_seconds():
+        usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+        return usage.ru_utime + usage.ru_stime
+    before = children_seconds()
+    subprocess.run([sys.executable, "-c", "import dla3d; dla3d.ballistic(particles=30000)"], check=True)
+    growth = children_seconds() - before
+    script = textwrap.dedent("""
+        import signal, dla3d
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+        r = dla3d.ballistic(particles=30000, links="100,64")
+        print(len(r), r.complete, r.stopped_by, len(r.links), flush=True)
+        """)
+    out, code = _interrupted(script, lambda p: _cpu_seconds(p.pid) > 1.5 * growth + 1.0)
+    assert code == 0, out
+    count, complete, stopped_by, links = out.split()
+    assert (count, complete, stopped_by, links) == ("30001", "False", "SIGINT", "0")
+
+
+def test_ctrl_c_while_files_are_written_raises_and_keeps_only_whole_ones(tmp_path):
+    prefix = tmp_path / "part"
+    script = textwrap.dedent(f"""
+        import signal, dla3d
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+        r = dla3d.grow(particles=100000, lod=4)
+        try:
+            r.write({str(prefix)!r}, formats=["csv", "glb"])
+            print("written", flush=True)
+        except KeyboardInterrupt:
+            print("interrupted", flush=True)
+        """)
+    out, code = _interrupted(script, lambda p: os.path.exists(str(prefix) + ".csv"))
+    assert code == 0 and out.strip() == "interrupted", out
+    assert sum(1 for _ in open(str(prefix) + ".csv")) == 100002  # the header, the seed and each particle
+    assert not os.path.exists(str(prefix) + "_lod4.glb")
+    for name in os.listdir(tmp_path):
+        assert not name.endswith(".tmp"), name
+        if name.endswith(".glb"):
+            data = open(tmp_path / name, "rb").read()
+            assert int.from_bytes(data[8:12], "little") == len(data), name
 
 
 # Random keyword sets, good values and bad: each grows a valid tree or raises one clear line,

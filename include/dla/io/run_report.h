@@ -28,6 +28,8 @@ struct RunRecord {
   double write_seconds = 0.0;
   std::string command;     //!< the command line that made the run, if any
   std::string stopped_by;  //!< why growth ended before the count (a signal, an error), if it did
+  //! The stage a stop (a signal, a callback) ended: "growth", "links" or "files"; empty if none.
+  std::string stopped_in;
   std::optional<SolidMeasures> solid;  //!< what the solid measures, when one was written
   bool printed = false;                //!< the solid was sized for print: its units are mm
   std::vector<std::size_t> lod_triangles;  //!< each level of detail's triangles (`lod`), from level 1

@@ -5,6 +5,7 @@
 //! the instancing points and the files' extra columns are made of. See docs/look.md.
 
 #include "dla/core/cluster.h"
+#include "dla/core/stop.h"
 #include "dla/index/nearest_points.h"
 #include "dla/look/strands.h"
 #include "dla/mesh/paint.h"
@@ -247,8 +248,9 @@ inline Attributes compute_attributes(const Cluster& cluster, const AttributeOpti
     // many among the first, so halves would leave one thread working alone.
     constexpr std::size_t kRun = 1024;
     std::atomic<std::size_t> next_run{0};
+    const StopFlag* const stop = detail::scoped_stop();  // the helpers watch the caller's flag
     const auto measure_runs = [&] {
-      for (std::size_t from; (from = next_run.fetch_add(kRun, std::memory_order_relaxed)) < n;)
+      for (std::size_t from; !stopped(stop) && (from = next_run.fetch_add(kRun, std::memory_order_relaxed)) < n;)
         measure(from, std::min(n, from + kRun));
     };
     const auto threads = std::min<std::size_t>(static_cast<std::size_t>(options.threads), n / 4096 + 1);
@@ -256,6 +258,7 @@ inline Attributes compute_attributes(const Cluster& cluster, const AttributeOpti
     for (std::size_t t = 1; t < threads; ++t) helpers.emplace_back(measure_runs);
     measure_runs();
     for (std::thread& helper : helpers) helper.join();
+    detail::throw_if_stopped("measuring the distances to the mesh");
     if (n > 0) a.boundary_reach = *std::max_element(a.boundary_distance.begin(), a.boundary_distance.end());
   }
   return a;

@@ -8,6 +8,7 @@
 
 #include "dla/core/cluster.h"
 #include "dla/core/options.h"
+#include "dla/core/stop.h"
 
 #include <Eigen/Core>
 
@@ -151,13 +152,10 @@ void refuse_solid_before_growth(const SolidForecast& forecast, const SolidOption
 //! would take more than `solid_memory`: before anything is allocated by the voxel.
 SolidPlan plan_solid(const Cluster& cluster, const std::vector<float>& radii, const SolidOptions& options);
 
-//! Called as the solid builds, from one thread, with the fraction done (0 to 1) and the stage:
-//! "filling the grid", "smoothing", "meshing", "fitting the surface", "built".
-using SolidProgress = std::function<void(double fraction, std::string_view stage)>;
-
 //! Builds a planned solid on its options' threads (the same solid on any number). Throws
-//! Interrupted when `stop` is set while it builds.
-Solid build_solid(const SolidPlan& plan, const StopFlag* stop = nullptr, const SolidProgress& progress = {});
+//! Interrupted when `stop` is set while it builds. `progress` hears the stages "filling the
+//! grid", "smoothing", "meshing", "fitting the surface", "built".
+Solid build_solid(const SolidPlan& plan, const StopFlag* stop = nullptr, const StageProgress& progress = {});
 
 inline Solid build_solid(const Cluster& cluster, const std::vector<float>& radii, const SolidOptions& options,
                          const StopFlag* stop = nullptr) {

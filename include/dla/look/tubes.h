@@ -199,6 +199,7 @@ void for_each_tube(const Cluster& cluster, const Attributes& attributes, const s
   const auto k = static_cast<std::uint32_t>(sides), row = k + 1;
   const auto continues = [&](std::size_t i) { return attributes.continues_strand(i); };
   for_each_strand(cluster, continues, [&](const Strand& strand) {
+    detail::throw_if_stopped("making the tubes");
     if (strand.size() < 2) return;
     detail::kept_points(cluster, radii, strand, tolerance, kept);
     const std::size_t rings = kept.size();

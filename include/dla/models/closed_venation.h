@@ -15,6 +15,7 @@
 //! its influence so, and the result is the full recomputation's at every step, node for node.
 
 #include "dla/core/cluster.h"
+#include "dla/core/stop.h"
 #include "dla/models/links.h"
 
 #include <algorithm>
@@ -161,13 +162,16 @@ class ClosedVenation {
   //! no node lies in its own: the neighbourhoods stay exact with no rescan. pull(source, node,
   //! +1 or -1) hears each change of whom a source pulls: a member not arrived, which it stays
   //! (nodes do not move). The links made where sources are removed are appended to `links`.
+  //! Once `stop` is set, no more nodes are taken in (a node among 10^5 sources within the
+  //! influence takes milliseconds), and growth is to end.
   template <class Pull>
-  void add_nodes(const std::vector<Particle>& nodes, std::size_t first, Pull&& pull, std::vector<Link>& links) {
+  void add_nodes(const std::vector<Particle>& nodes, std::size_t first, Pull&& pull, std::vector<Link>& links,
+                 const StopFlag* stop) {
     changed_.clear();
     nodes_ = &nodes;
     // One node at a time, each against the nodes before it: a neighbourhood is then the exact
     // one of the nodes so far after each.
-    for (std::size_t v = first; v < nodes.size(); ++v) {
+    for (std::size_t v = first; v < nodes.size() && !stopped(stop); ++v) {
       const Vec3& p = nodes[v].position;
       node_cells_.add(p, static_cast<std::int32_t>(v));
       recent_.clear();

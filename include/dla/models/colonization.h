@@ -418,7 +418,8 @@ inline Cluster colonize(const ColonizationOptions& o, std::vector<Vec3> attracto
     if (closed) {
       sources->add_nodes(
           tree.particles, first,
-          [&](std::size_t s, std::int32_t v, std::int64_t sign) { pull(sources->position(s), v, sign); }, tree.links);
+          [&](std::size_t s, std::int32_t v, std::int64_t sign) { pull(sources->position(s), v, sign); }, tree.links,
+          stop);
       return;
     }
     new_positions.clear();
@@ -460,6 +461,10 @@ inline Cluster colonize(const ColonizationOptions& o, std::vector<Vec3> attracto
         last_child[static_cast<std::size_t>(parent)] = v;
       }
       add_nodes(first_new);
+      if (stopped(stop)) {  // closed venation may have taken in only some of the new nodes
+        tree.complete = false;
+        break;
+      }
     }
   } catch (...) {
     detail::ModelShell::keep_what_grew(tree);

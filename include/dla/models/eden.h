@@ -302,7 +302,8 @@ class EdenLattice {
 //! The lattice graph of an Eden cluster beside its tree (`links` lattice): a link between every
 //! pair of occupied lattice neighbours that the tree does not join. Neighbours are the sites
 //! within the lattice's longest neighbour step, and no other site is that near.
-inline std::vector<Link> lattice_links(const Cluster& cluster, Lattice lattice, int threads = 1);
+inline std::vector<Link> lattice_links(const Cluster& cluster, Lattice lattice, int threads = 1,
+                                       const StageWatch& watch = {});
 
 //! The position of lattice site c, `spacing` apart, the seed at the origin.
 inline Vec3 eden_position(Lattice lattice, const std::array<int, 3>& c, double spacing) {
@@ -426,14 +427,14 @@ inline Cluster eden(const EdenOptions& o, const ProgressFn& progress = {}, const
   return cluster;
 }
 
-inline std::vector<Link> lattice_links(const Cluster& cluster, Lattice lattice, int threads) {
+inline std::vector<Link> lattice_links(const Cluster& cluster, Lattice lattice, int threads, const StageWatch& watch) {
   const std::vector<std::array<int, 3>> neighbours = lattice_neighbours(lattice);
   double step = 0.0;
   for (const std::array<int, 3>& c : neighbours) step = std::max(step, eden_position(lattice, c, 1.0).norm());
   LinkOptions o;
   o.distance = step * (1.0 + 1e-6);
   o.most = neighbours.size();
-  return neighbour_links(cluster, o, threads, {}, 2);  // all but the tree's own edges
+  return neighbour_links(cluster, o, threads, {}, 2, watch);  // all but the tree's own edges
 }
 
 }  // namespace dla

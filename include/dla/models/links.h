@@ -14,6 +14,7 @@
 #include "dla/core/cluster.h"
 #include "dla/core/errors.h"
 #include "dla/core/options.h"
+#include "dla/core/stop.h"
 #include "dla/index/grid_index.h"
 #include "dla/index/kdtree_index.h"
 
@@ -108,13 +109,15 @@ inline bool tree_near(const std::vector<Particle>& ps, std::int32_t a, std::int3
   return false;
 }
 
-//! The links particles [begin, end) make, in order, on `index` holding every particle.
+//! The links particles [begin, end) make, in order, on `index` holding every particle; none
+//! more once `stop` is set.
 template <class Index>
 void links_of(const Cluster& cluster, const Index& index, double radius, std::size_t most, int steps,
-              const LinkFilter& keep, std::size_t begin, std::size_t end, std::vector<Link>& links) {
+              const LinkFilter& keep, std::size_t begin, std::size_t end, const StopFlag* stop, std::vector<Link>& links) {
   const auto& ps = cluster.particles;
   std::vector<std::pair<double, std::int32_t>> near;
-  for (std::size_t i = begin; i < end; ++i) {
+  // A particle among 10^4 neighbours takes a millisecond: the flag is read before each.
+  for (std::size_t i = begin; i < end && !stopped(stop); ++i) {
     const auto later = static_cast<std::int32_t>(i);
     near.clear();
     index.for_each_within(ps[i].position, radius, [&](std::int32_t j, double d2) {
@@ -134,7 +137,7 @@ void links_of(const Cluster& cluster, const Index& index, double radius, std::si
 
 template <class Index>
 std::vector<Link> link_with(const Cluster& cluster, double radius, std::size_t most, int steps, const LinkFilter& keep,
-                            int threads) {
+                            int threads, const StageWatch& watch) {
   const auto& ps = cluster.particles;
   // The grid without its distance maps: only range queries are asked.
   Index index = [&] {
@@ -143,26 +146,32 @@ std::vector<Link> link_with(const Cluster& cluster, double radius, std::size_t m
   }();
   index.reserve(ps.size());
   for (std::size_t i = 0; i < ps.size(); ++i) index.insert(static_cast<std::int32_t>(i));
-  // Ranges of particles on `threads` threads, joined in order.
-  const std::size_t chunks = std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(threads) * 8, ps.size() / 4096 + 1));
+  // Ranges of particles on `threads` threads, joined in order: small ones, so the progress
+  // heard after each of the calling thread's is smooth.
+  const std::size_t chunks = std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(threads) * 256, ps.size() / 256 + 1));
   std::vector<std::vector<Link>> parts(chunks);
   std::vector<std::thread> workers;
-  std::atomic<std::size_t> next{0};
+  std::atomic<std::size_t> next{0}, finished{0};
   std::exception_ptr failure;
   std::mutex failed;
-  const auto work = [&] {
+  const auto work = [&](bool caller) {
     try {
-      for (std::size_t c; (c = next++) < chunks;)
-        links_of(cluster, index, radius, most, steps, keep, ps.size() * c / chunks, ps.size() * (c + 1) / chunks, parts[c]);
+      for (std::size_t c; (c = next++) < chunks;) {
+        links_of(cluster, index, radius, most, steps, keep, ps.size() * c / chunks, ps.size() * (c + 1) / chunks,
+                 watch.stop, parts[c]);
+        const double done = static_cast<double>(++finished) / static_cast<double>(chunks);
+        if (caller && watch.progress) watch.progress(done, "links");
+      }
     } catch (...) {
       const std::lock_guard<std::mutex> lock(failed);
       failure = std::current_exception();
     }
   };
-  for (int t = 1; t < threads && static_cast<std::size_t>(t) < chunks; ++t) workers.emplace_back(work);
-  work();
+  for (int t = 1; t < threads && static_cast<std::size_t>(t) < chunks; ++t) workers.emplace_back(work, false);
+  work(true);
   for (std::thread& worker : workers) worker.join();
   if (failure) std::rethrow_exception(failure);
+  if (stopped(watch.stop)) throw Interrupted("the links were stopped before every particle's were made");
   std::vector<Link> links;
   for (const std::vector<Link>& part : parts) links.insert(links.end(), part.begin(), part.end());
   return links;
@@ -172,18 +181,20 @@ std::vector<Link> link_with(const Cluster& cluster, double radius, std::size_t m
 
 //! The links `options` ask for on `cluster`'s tree, those `keep` allows, made on `threads`
 //! threads; the same for any count. Particles fewer than `steps` tree steps apart are not
-//! linked. `lattice` needs lattice_links() (eden.h).
+//! linked. `lattice` needs lattice_links() (eden.h). Throws Interrupted, with no links made,
+//! once `watch.stop` is set.
 inline std::vector<Link> neighbour_links(const Cluster& cluster, const LinkOptions& options, int threads = 1,
-                                         const LinkFilter& keep = {}, int steps = kLoopSteps) {
+                                         const LinkFilter& keep = {}, int steps = kLoopSteps,
+                                         const StageWatch& watch = {}) {
   validate(options);
   if (options.lattice) throw InvalidInput("`links` lattice links the sites of an Eden cluster; give D[,K] spacings");
   if (!options.any()) return {};
   const double radius = options.distance * cluster.spacing;
   threads = std::clamp(threads, 1, 256);
   try {
-    return detail::link_with<GridIndex>(cluster, radius, options.most, steps, keep, threads);
+    return detail::link_with<GridIndex>(cluster, radius, options.most, steps, keep, threads, watch);
   } catch (const GrowthError&) {  // beyond the grid's reach: the k-d tree holds any extent
-    return detail::link_with<KdTreeIndex>(cluster, radius, options.most, steps, keep, threads);
+    return detail::link_with<KdTreeIndex>(cluster, radius, options.most, steps, keep, threads, watch);
   }
 }
 

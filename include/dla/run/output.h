@@ -28,6 +28,12 @@ struct Formats {
   bool stl = false, threemf = false, vdb = false, solid_glb = false, solid_obj = false;
 
   bool solid() const { return stl || threemf || vdb || solid_glb || solid_obj; }
+  //! Without the solid's files, for a structure stopped short; with the CSV instead when no
+  //! other file would hold the structure.
+  void leave_out_solid() {
+    stl = threemf = vdb = solid_glb = solid_obj = false;
+    csv = csv || !(pov || ply || glb || obj || svg || png || html);
+  }
 };
 
 //! The formats' words, in the order file_names() lists them.
@@ -77,8 +83,10 @@ struct WriteContext {
   const MeshConstraint* constraint = nullptr;  //!< the boundary radius model measures to its mesh
   const TriangleMesh* scene_mesh = nullptr;    //!< the POV-Ray scene and the web viewer show it
   std::string comment;                         //!< the POV-Ray scene's first line (the command)
-  const StopFlag* stop = nullptr;              //!< set, it stops the solid: no solid file is written
-  SolidProgress solid_progress;                //!< how the solid's build goes (solid.h)
+  //! Set, it stops the look's measures, the solid and every writer within milliseconds: the
+  //! files finished stay, no other file is written.
+  const StopFlag* stop = nullptr;
+  StageProgress solid_progress;                //!< how the solid's build goes (solid.h)
   //! Closest triangles of the constraint's surface measured before (Run::measured_while_growing),
   //! or null.
   const MeasuredClosest* measured = nullptr;
@@ -96,8 +104,9 @@ struct FilesWritten {
 //! needs a run: run.h's write_run), each by its writer behind one signature and on a thread of
 //! its own: the same bytes as one by one. The solid is built once for all its files. Throws
 //! InvalidInput, before any file is written, for a solid that would take more memory than it
-//! may; IOError if a file cannot be written; and Interrupted, once the other files are written,
-//! when `context.stop` stops the solid.
+//! may; IOError if a file cannot be written; and Interrupted, once every writer has ended, when
+//! `context.stop` stopped them: the files finished by then stay whole, the others are not
+//! written (none stands half-written under its name).
 FilesWritten write_files(const Cluster& cluster, const OutputOptions& files, const WriteContext& context = {});
 
 //! Fails early, before a long run, if `path` cannot be created (its temporary name is tried):

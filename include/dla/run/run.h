@@ -53,8 +53,11 @@ class Run {
   virtual double filled() const { return 0.0; }
   //! The walks that grew the structure so far, which a checkpoint keeps (DLA); else null.
   virtual const WalkStats* walks() const { return nullptr; }
-  //! The links beside the tree that `links` asks for, made once growth ends (links.h).
-  virtual std::vector<Link> make_links(const Cluster& cluster) const { return neighbour_links(cluster, links, threads); }
+  //! The links beside the tree that `links` asks for, made once growth ends (links.h); throws
+  //! Interrupted once `watch.stop` is set.
+  virtual std::vector<Link> make_links(const Cluster& cluster, const StageWatch& watch) const {
+    return neighbour_links(cluster, links, threads, {}, kLoopSteps, watch);
+  }
   //! The model's part of the JSON record of the run: its options and statistics (the
   //! statistics as growth left them).
   virtual ModelRecord record() const = 0;
@@ -74,6 +77,8 @@ class Run {
   LinkOptions links;               //!< links beside the tree (links.h); none: a tree
   //! "NAME: 1,234 triangles; REPAIRS; spacing S", for a run with a constraint mesh, else empty.
   std::string mesh_line;
+  //! What a long stage after growth may take, said before growth; empty when none is long.
+  std::string forecast_line;
   //! The mesh the look measures distances to (the boundary radius model), or null.
   const MeshConstraint* constraint = nullptr;
   //! The closest triangles of the constraint's surface to the first particles grown, measured
@@ -127,25 +132,30 @@ const Model* find_model(std::string_view name);
 //! cannot be read.
 std::unique_ptr<Run> prepare_run(const RunOptions& options, const MeshReader& read = {}, const Resumed& resumed = {});
 
-//! Grows `run` under `progress` and `stop`, keeping what grew when growth fails part way (with
-//! the links its options ask for among what grew), and
-//! records the time taken and, when growth failed part way, "error: " and why in
-//! `record.stopped_by`. What stopped a structure short otherwise (a signal, a callback) only
-//! the caller knows, and records. With a constraint mesh and a core that growth leaves free, it
-//! measures there the particles' closest points of the mesh as they attach
-//! (Run::measured_while_growing), which the write then need not: the files are the same.
-Cluster grow_recorded(Run& run, const ProgressFn& progress, const StopFlag* stop, RunRecord& record);
+//! Grows `run` under `progress` and `stop`, then makes the links its options ask for, heard by
+//! `links_progress`. Keeps what grew when growth fails part way (with the links among what
+//! grew), and records the time taken and, when growth failed part way, "error: " and why in
+//! `record.stopped_by`. A stop ends the stage it comes in: growth stopped short (`stop`, or
+//! `progress` returning false) makes no links; links stopped leave none. Either way the
+//! structure comes back incomplete, with the stage in `record.stopped_in`; what stopped it (a
+//! signal, a callback) only the caller knows, and records. With a constraint mesh and a core
+//! that growth leaves free, it measures there the particles' closest points of the mesh as
+//! they attach (Run::measured_while_growing), which the write then need not: the files are
+//! the same.
+Cluster grow_recorded(Run& run, const ProgressFn& progress, const StopFlag* stop, RunRecord& record,
+                      const StageProgress& links_progress = {});
 
 //! Writes the files `files` asks for, the JSON record among them, of what `run` grew, each
 //! writer on a thread of its own (the same bytes as one by one), and records the time taken in
 //! `record`, with the solid's measures when a solid format is asked for. The POV-Ray scene's
 //! first line is `record.command`. The record is written even when another file fails, and
 //! then the failure is thrown: InvalidInput for a solid beyond the memory it may take,
-//! Interrupted when `stop` stops the solid. `solid_progress` hears how the solid's build goes.
+//! Interrupted when `stop` stopped the writing (write_files keeps the files finished).
+//! `solid_progress` hears how the solid's build goes.
 void write_run(const Run& run, const Cluster& cluster, const OutputOptions& files, RunRecord& record,
-               const StopFlag* stop = nullptr, const SolidProgress& solid_progress = {});
+               const StopFlag* stop = nullptr, const StageProgress& solid_progress = {});
 inline void write_run(const Run& run, const Cluster& cluster, RunRecord& record, const StopFlag* stop = nullptr,
-                      const SolidProgress& solid_progress = {}) {
+                      const StageProgress& solid_progress = {}) {
   write_run(run, cluster, run.files, record, stop, solid_progress);
 }
 
