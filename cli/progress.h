@@ -63,16 +63,21 @@ class ProgressBar {
 };
 
 //! A stage after growth (the links, the solid) on a terminal, once it has taken a second: its
-//! name, its share done, what it does now and an ETA. Called as a StageProgress.
+//! name, its share done, what it does now and an ETA. Called as a StageProgress; the stage's
+//! time counts from the first call.
 class StageBar {
  public:
-  StageBar(std::string name, bool enabled) : name_(std::move(name)), enabled_(enabled), start_(Clock::now()) {}
+  StageBar(std::string name, bool enabled) : name_(std::move(name)), enabled_(enabled) {}
   StageBar(const StageBar&) = delete;
   StageBar& operator=(const StageBar&) = delete;
   ~StageBar() { clear(); }
 
   void operator()(double fraction, std::string_view doing) {
     const Clock::time_point now = Clock::now();
+    if (!started_) {
+      start_ = now;
+      started_ = true;
+    }
     if (!enabled_ || now - start_ < std::chrono::seconds(1) || now - drawn_at_ < std::chrono::milliseconds(100)) return;
     drawn_at_ = now;
     drawn_ = true;
@@ -94,8 +99,8 @@ class StageBar {
  private:
   std::string name_;
   bool enabled_;
-  bool drawn_ = false;
-  Clock::time_point start_;
+  bool drawn_ = false, started_ = false;
+  Clock::time_point start_{};
   Clock::time_point drawn_at_{};
 };
 
