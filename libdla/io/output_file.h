@@ -220,7 +220,7 @@ class OutputFile : public Text {
   //! Where the writing of every format stops once its StopScope's flag is set: before each
   //! 64 kB written, and before the rename.
   void flush() {
-    throw_if_stopped("writing " + path_);
+    throw_if_stopped("writing ", path_);
     if (used_ > 0 && std::fwrite(bytes_.get(), 1, used_, file_) != used_) fail();
     used_ = 0;
   }

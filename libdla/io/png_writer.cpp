@@ -94,7 +94,7 @@ void write_png(const Cluster& cluster, const std::string& path, const PngOptions
       dot(a + (b - a) * (static_cast<double>(k) / static_cast<double>(steps)), band(static_cast<std::size_t>(link.later)));
   }
 
-  detail::throw_if_stopped("drawing " + path);  // before libpng, whose errors jump past C++ frames
+  detail::throw_if_stopped("drawing ", path);  // before libpng, whose errors jump past C++ frames
   // libpng reports its errors by longjmp, past any C++ frame: it writes into memory here,
   // and the file is written after.
   std::string encoded;

@@ -7,7 +7,6 @@
 #include "dla/core/random.h"
 #include "dla/mesh/mesh.h"
 
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

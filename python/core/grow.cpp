@@ -34,12 +34,23 @@ std::shared_ptr<Result> grow_run(const std::string& model, const py::dict& keywo
   std::string stopped_by;
   std::unique_ptr<py::error_already_set> raised;  // from the callback: raised once growth has stopped
   Clock::time_point next_call = Clock::now();
+  // Whether Python is due again: growth and the links take the GIL about every 0.1 s.
+  const auto due = [&] {
+    const Clock::time_point now = Clock::now();
+    if (now < next_call) return false;
+    next_call = now + std::chrono::milliseconds(100);
+    return true;
+  };
+  // A Python error while the run goes on, which stops it: Ctrl-C (also while the callback's
+  // own Python ran) returns what grew, any other is raised once it has stopped.
+  const auto take_error = [&](py::error_already_set error) {
+    if (error.matches(PyExc_KeyboardInterrupt)) stopped_by = "SIGINT";
+    else raised = std::make_unique<py::error_already_set>(std::move(error));
+  };
   const auto call_python = [&](const Cluster& so_far) {
     py::gil_scoped_acquire gil;
     if (PyErr_CheckSignals() != 0) {
-      auto error = std::make_unique<py::error_already_set>();
-      if (error->matches(PyExc_KeyboardInterrupt)) stopped_by = "SIGINT";
-      else raised = std::move(error);
+      take_error(py::error_already_set());
       return false;
     }
     if (progress.is_none()) return true;
@@ -50,9 +61,7 @@ std::shared_ptr<Result> grow_run(const std::string& model, const py::dict& keywo
         return false;
       }
     } catch (py::error_already_set& error) {
-      // Ctrl-C while the callback's own Python ran is Ctrl-C all the same: what grew comes back.
-      if (error.matches(PyExc_KeyboardInterrupt)) stopped_by = "SIGINT";
-      else raised = std::make_unique<py::error_already_set>(std::move(error));
+      take_error(std::move(error));
       return false;
     }
     return true;
@@ -61,22 +70,15 @@ std::shared_ptr<Result> grow_run(const std::string& model, const py::dict& keywo
   {
     py::gil_scoped_release released;
     const ProgressFn watch = [&](const Cluster& so_far) {
-      const Clock::time_point now = Clock::now();
-      if (now < next_call) return true;
-      next_call = now + std::chrono::milliseconds(100);
-      if (!call_python(so_far)) stop.store(true);
+      if (due() && !call_python(so_far)) stop.store(true);
       return !stop.load();
     };
     // The links are made on this thread, which hears Ctrl-C between their parts.
     const StageProgress links_watch = [&](double, std::string_view) {
-      const Clock::time_point now = Clock::now();
-      if (now < next_call) return;
-      next_call = now + std::chrono::milliseconds(100);
+      if (!due()) return;
       py::gil_scoped_acquire gil;
       if (PyErr_CheckSignals() == 0) return;
-      auto error = std::make_unique<py::error_already_set>();
-      if (error->matches(PyExc_KeyboardInterrupt)) stopped_by = "SIGINT";
-      else raised = std::move(error);
+      take_error(py::error_already_set());
       stop.store(true);
     };
     result->cluster = grow_recorded(run, watch, &stop, result->record, links_watch);

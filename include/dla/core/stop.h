@@ -49,9 +49,10 @@ class StopScope {
   const StopFlag* before_;
 };
 
-//! Throws Interrupted, saying `what` was stopped, once this thread's scoped flag is set.
-inline void throw_if_stopped(std::string_view what) {
-  if (stopped(scoped_stop())) throw Interrupted(std::string(what) + " was stopped");
+//! Throws Interrupted, saying `what` (then `of`) was stopped, once this thread's scoped flag is
+//! set. The message is made only then: the writers ask before every 64 kB.
+inline void throw_if_stopped(std::string_view what, std::string_view of = {}) {
+  if (stopped(scoped_stop())) throw Interrupted(std::string(what).append(of) + " was stopped");
 }
 
 }  // namespace detail
