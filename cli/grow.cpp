@@ -35,7 +35,11 @@ void check_resume_company(const std::vector<std::string>& args) {
   }
 }
 
-void add_options(CLI::App& app, DlaRunOptions& g, CommandLine& line, GrowWords& w) {
+void add_fill_options(CLI::App& app, DlaOptions& options, const char* meshes);
+
+//! DLA's options on `app`; with `dla` false, those of a model that walks as DLA does but has no
+//! fill, drift, rotation, index choice or checkpoints (the breakdown model).
+void add_options(CLI::App& app, DlaRunOptions& g, CommandLine& line, GrowWords& w, bool dla = true) {
   DlaOptions& options = g.growth;
   const char* growth = "Growth";
   w.particles_option = app.add_option("-n,--particles", w.particles, "particles to attach, seeds not counted; with a mesh, "
@@ -55,8 +59,9 @@ void add_options(CLI::App& app, DlaRunOptions& g, CommandLine& line, GrowWords& 
       ->capture_default_str()->group(growth);
   app.add_option("--min-step", options.min_step, "step length next to the structure, in spacings, [0.01, 1]")
       ->capture_default_str()->group(growth);
-  app.add_option("--index", w.index, "nearest-particle look-up: grid, kdtree or brute")
-      ->capture_default_str()->group(growth);
+  if (dla)
+    app.add_option("--index", w.index, "nearest-particle look-up: grid, kdtree or brute")
+        ->capture_default_str()->group(growth);
   add_links_option(app, growth, w.links);
   w.threads_option = app.add_option("--threads", options.threads,
                                     "walkers run at once, 1-256 (grid index); the files do not depend on it")
@@ -88,16 +93,13 @@ void add_options(CLI::App& app, DlaRunOptions& g, CommandLine& line, GrowWords& 
       "growing side");
   app.add_flag("--scene-mesh,!--no-scene-mesh", g.scene_mesh, "show the mesh, as glass, in the POV-Ray scene")
       ->capture_default_str()->group(meshes);
-  app.add_option("--fill", options.fill, "grow until this fraction of the mesh's volume lies within "
-                                         "--fill-distance of the structure, (0, 1]; -n then caps it (default 1e7)")
-      ->type_name("F")->group(meshes);
-  app.add_option("--fill-distance", options.fill_distance, "--fill: how near counts as covered, in spacings, [0.5, 1000]")
-      ->capture_default_str()->group(meshes);
+  if (dla) add_fill_options(app, options, meshes);
 
   const char* spawning = "Spawn";
   w.spawn_option =
       app.add_option("--spawn", w.spawn, "where walkers start: sphere, disk, box, or with a mesh inside, radial or surface; "
-                                         "with --side inside, default surface")
+                                         "with --side inside, default surface" +
+                                             std::string(dla ? "" : "; with a target, walkers leave it instead"))
           ->capture_default_str()->group(spawning);
   app.add_option("--spawn-axis", w.spawn_axis, "disk: the axis the disk sits on, x, y or z")
       ->capture_default_str()->group(spawning);
@@ -105,13 +107,16 @@ void add_options(CLI::App& app, DlaRunOptions& g, CommandLine& line, GrowWords& 
       ->capture_default_str()->group(spawning);
   app.add_option("--box", w.box, "box: a fixed box; default: the cube around the launch sphere")
       ->type_name("X0,Y0,Z0,X1,Y1,Z1")->group(spawning);
-  app.add_option("--drift", w.drift, "bias of every step, per unit step length, length < 1")
-      ->type_name("X,Y,Z")->group(spawning);
-  app.add_option("--rotate", w.rotate, "turn the spawn and the drift about the seeds' centre by DEGREES per 1000 "
-                                       "particles, as if the structure turned while it grew: spirals; no mesh")
-      ->type_name("AXIS,DEGREES")->group(spawning);
+  if (dla) {
+    app.add_option("--drift", w.drift, "bias of every step, per unit step length, length < 1")
+        ->type_name("X,Y,Z")->group(spawning);
+    app.add_option("--rotate", w.rotate, "turn the spawn and the drift about the seeds' centre by DEGREES per 1000 "
+                                         "particles, as if the structure turned while it grew: spirals; no mesh")
+        ->type_name("AXIS,DEGREES")->group(spawning);
+  }
 
   w.files = std::make_unique<OutputWords>(app, g.files, line.quiet);
+  if (!dla) return;
 
   const char* runs = "Long runs";
   app.add_option("--checkpoint", line.checkpoint_path, "save the run to FILE as it goes, and when stopped by Ctrl-C or SIGTERM")
@@ -119,6 +124,15 @@ void add_options(CLI::App& app, DlaRunOptions& g, CommandLine& line, GrowWords& 
   app.add_option("--checkpoint-every", line.checkpoint_every, "seconds between saves")->capture_default_str()->group(runs);
   app.add_option("--resume", line.resume_path, "grow on from a checkpoint, with the options it was started with")
       ->type_name("FILE")->group(runs);
+}
+
+void add_fill_options(CLI::App& app, DlaOptions& options, const char* meshes) {
+  app.add_option("--fill", options.fill, "grow until this fraction of the mesh's volume lies within "
+                                         "--fill-distance of the structure, (0, 1]; -n then caps it (default 1e7)")
+      ->type_name("F")->group(meshes);
+  app.add_option("--fill-distance", options.fill_distance, "--fill: how near counts as covered, in spacings, [0.5, 1000]")
+      ->capture_default_str()->group(meshes);
+
 }
 
 //! The words as DLA's run options. The checks that need to know what was given, which the run
@@ -165,6 +179,16 @@ void finish(CommandLine& line, DlaRunOptions& g, const GrowWords& w) {
 }
 
 }  // namespace
+
+WalkCommand add_walk_options(CLI::App& app, DlaRunOptions& run, bool& quiet) {
+  auto words = std::make_shared<GrowWords>();
+  auto line = std::make_shared<CommandLine>();
+  add_options(app, run, *line, *words, false);
+  return {[words, line, &run, &quiet] {
+    quiet = line->quiet;
+    finish(*line, run, *words);
+  }};
+}
 
 Subcommand add_grow_options(CLI::App& app, const Model&) {
   auto words = std::make_shared<GrowWords>();

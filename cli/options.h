@@ -88,6 +88,15 @@ inline LinkOptions links_of(const std::string& words) { return words.empty() ? L
 // (dla/run/run.h), and says how to finish them. DLA's are the top level's (`dla3d [options]`),
 // with --resume and the checkpoints.
 Subcommand add_grow_options(CLI::App& app, const Model& model);
+
+//! DLA's options but fill, drift, rotate, index and the checkpoints (grow.cpp), on `app`, for
+//! `run`: what the breakdown model, which walks as DLA does, shares with it. `finish` turns
+//! the words into `run` and sets `quiet`; both must outlive it.
+struct WalkCommand {
+  std::function<void()> finish;
+};
+WalkCommand add_walk_options(CLI::App& app, DlaRunOptions& run, bool& quiet);
+Subcommand add_breakdown_command(CLI::App& app, const Model& model);
 Subcommand add_colonize_command(CLI::App& app, const Model& model);
 Subcommand add_eden_command(CLI::App& app, const Model& model);
 Subcommand add_drop_command(CLI::App& app, const Model& model);

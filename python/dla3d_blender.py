@@ -27,8 +27,9 @@ MODELS = [
     ("drop", "Random drop", "Ballistic aggregation of particles dropped on the structure"),
     ("ballistic", "Ballistic", "Ballistic aggregation from random lines (no mesh)"),
     ("eden", "Eden", "The Eden model on a lattice (no mesh)"),
+    ("breakdown", "Discharge", "The dielectric breakdown model: lightning and Lichtenberg figures around the mesh"),
 ]
-MESH_MODELS = {"grow", "colonize", "drop"}
+MESH_MODELS = {"grow", "colonize", "drop", "breakdown"}
 
 
 class DLA3DSettings(bpy.types.PropertyGroup):
@@ -40,6 +41,8 @@ class DLA3DSettings(bpy.types.PropertyGroup):
                                  description="Particles (nodes, sites) to grow")
     seeds: bpy.props.IntProperty(name="Seeds", default=1, min=1, max=100,
                                  description="DLA: seeds placed deep in the mesh, far apart")
+    eta: bpy.props.FloatProperty(name="Eta", default=2.0, min=0.0, max=10.0,
+                                 description="Discharge: the field's exponent; 1 is DLA, 2 to 4 lightning")
     rng_seed: bpy.props.IntProperty(name="Random seed", default=1, min=0,
                                     description="The same seed grows the same structure")
     radius: bpy.props.EnumProperty(
@@ -117,6 +120,10 @@ def grow_options(settings, obj, depsgraph):
         options["particles"] = settings.count
         if arrays is not None:
             options.update(stl=arrays, side=settings.side)
+    elif model == "breakdown":
+        options.update(particles=settings.count, eta=settings.eta)
+        if arrays is not None:
+            options.update(stl=arrays, side=settings.side, seeds=settings.seeds)
     elif model == "ballistic":
         options["particles"] = settings.count
     else:
@@ -268,8 +275,10 @@ class DLA3D_PT_panel(bpy.types.Panel):
         if settings.model in MESH_MODELS:
             layout.prop(settings, "side")
         layout.prop(settings, "count")
-        if settings.model == "grow":
+        if settings.model in ("grow", "breakdown"):
             layout.prop(settings, "seeds")
+        if settings.model == "breakdown":
+            layout.prop(settings, "eta")
         layout.prop(settings, "rng_seed")
         layout.prop(settings, "links")
         layout.prop(settings, "radius")

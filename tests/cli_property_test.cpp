@@ -13,7 +13,7 @@
 //     incomplete.
 // Every model the library registers (dla/run/run.h) has a share of the command lines: a
 // quarter are `dla3d colonize` ones, an eighth `dla3d eden` ones and a sixteenth each `dla3d
-// drop`, `dla3d ballistic` and `dla3d frames` ones, each drawn from its own table and the
+// drop`, `dla3d ballistic`, `dla3d breakdown` and `dla3d frames` ones, each drawn from its own table and the
 // Output and Look options.
 // DLA_PROPERTY_RUNS sets the number of command lines (default 150, about a minute;
 // CliProperty.Long, in the full tier, runs 1,000) and DLA_PROPERTY_SEED the generator's seed.
@@ -241,6 +241,29 @@ const std::map<std::string, std::vector<std::string>>& ballistic_table() {
   static const std::map<std::string, std::vector<std::string>> table = seeded_table({
       {"--direction", {"0,-1,0", "1,1,0", "0,0,-1", "0,0,0", "1e-300,0,0", "inf,0,0", "x"}},
   });
+  return table;
+}
+
+//! `dla3d breakdown`'s options: DLA's walk, mesh and spawn options, drawn from DLA's values, and
+//! the Discharge group's own; its Output and Look options are the table's.
+const std::map<std::string, std::vector<std::string>>& breakdown_table() {
+  static const std::map<std::string, std::vector<std::string>> table = [] {
+    std::map<std::string, std::vector<std::string>> t = {
+        {"--eta", {"2", "0.5", "3", "0", "10", "1", "-1", "10.5", "nan", "x"}},
+        {"--walkers", {"4", "0", "1", "4096", "-1", "4097", "x"}},
+        {"--target-point", {"0,-15,0", "20,0,0", "0,0,0", "0.5,0,0", "0,0,4", "nan,0,0", "1e300,0,0", "x"}},
+        {"--target-plane", {"y=-15", "x,12", "z=-8", "y=0", "w=3", "y=nan", "y", "=4"}},
+        {"--stop-at-strike", {}},
+        {"--no-stop-at-strike", {}},
+        {"--particles", {"40", "150", "0", "-5", "x"}},
+    };
+    for (const char* shared : {"--spacing", "--stickiness", "--dimensions", "--seed-at", "--rng-seed", "--min-step",
+                               "--links", "--threads", "--stl", "--mesh", "--text", "--font", "--side", "--shell",
+                               "--constraint", "--seeds", "--seed-surface", "--seed-paint", "--seed-mesh", "--scene-mesh",
+                               "--no-scene-mesh", "--fill", "--spawn", "--spawn-axis", "--disk-radius", "--box"})
+      t.emplace(shared, option_table().at(shared));
+    return t;
+  }();
   return table;
 }
 
@@ -886,7 +909,8 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
   };
   const ModelRuns model_runs[] = {{"colonize", 4, &colonize_table()}, {"eden", 2, &eden_table()},
                                   {"drop", 1, &drop_table()},         {"ballistic", 1, &ballistic_table()},
-                                  {"frames", 1, &frames_table()},     {"grow", 7, nullptr}};
+                                  {"breakdown", 1, &breakdown_table()}, {"frames", 1, &frames_table()},
+                                  {"grow", 6, nullptr}};
   for (const dla::Model& model : dla::models())
     EXPECT_TRUE(std::any_of(std::begin(model_runs), std::end(model_runs), [&](const ModelRuns& m) { return m.name == model.name; }))
         << "the property test runs no " << model.name;

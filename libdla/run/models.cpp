@@ -21,7 +21,9 @@ void refuse_for(std::string_view model, std::string_view option) {
   const std::string name(option);
   if (option == "fill")
     throw InvalidInput("`fill` grows DLA until a mesh is full; " + std::string(model) +
-                       (model == "drop" ? " grows to its count, `particles`" : " ends when its attractors are gone, or at `max_nodes`"));
+                       (model == "drop"        ? " grows to its count, `particles`"
+                        : model == "breakdown" ? " grows to its count, `particles`, or to its strike"
+                                               : " ends when its attractors are gone, or at `max_nodes`"));
   if (option == "shell" && model == "colonize")
     throw InvalidInput("`shell` keeps DLA's walkers near a surface; colonization grows towards its attractors: put "
                        "them on it with `attractors_in` surface");

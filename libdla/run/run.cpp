@@ -115,8 +115,12 @@ const std::vector<Model>& models() {
        "grow by ballistic aggregation: particles fly in straight lines and stick where they first touch "
        "(docs/ballistic.md)",
        options_of<BallisticRunOptions>, detail::prepare_ballistic},
+      {"breakdown",
+       "grow a discharge by the dielectric breakdown model: growth where the field to the power eta is strong, "
+       "towards a target electrode, around insulating meshes: lightning, Lichtenberg figures (docs/breakdown.md)",
+       options_of<BreakdownRunOptions>, detail::prepare_breakdown},
   };
-  static_assert(std::variant_size_v<RunOptions> == 5, "a model is one alternative of RunOptions and one entry here");
+  static_assert(std::variant_size_v<RunOptions> == 6, "a model is one alternative of RunOptions and one entry here");
   return table;
 }
 
@@ -137,7 +141,9 @@ void require_input_files(const RunOptions& options) {
   const auto mesh_seeds = [&](const MeshSeeds& seeds) {
     for (const std::string& path : seeds.meshes) files.emplace_back(&path, "seed_mesh");
   };
-  if (const auto* o = std::get_if<DlaRunOptions>(&options)) {
+  const DlaRunOptions* dla = std::get_if<DlaRunOptions>(&options);
+  if (const auto* o = std::get_if<BreakdownRunOptions>(&options)) dla = o;
+  if (const auto* o = dla) {
     files.emplace_back(&o->stl, "stl");
     if (o->text) files.emplace_back(&o->text->font, "font");
     mesh_seeds(o->seeds);

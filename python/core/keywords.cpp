@@ -180,6 +180,8 @@ void settle(RunOptions& run, const Given& given) {
   };
   if (auto* o = std::get_if<DlaRunOptions>(&run)) {
     all(o->seeds);
+  } else if (auto* o = std::get_if<BreakdownRunOptions>(&run)) {
+    all(o->seeds);
   } else if (auto* o = std::get_if<DropRunOptions>(&run)) {
     all(o->seeds);
   } else if (auto* o = std::get_if<ColonizeRunOptions>(&run)) {
@@ -228,6 +230,7 @@ Keywords keywords_of(const Model& model) {
       {"eden", keywords_of<EdenRunOptions, eden_table>},
       {"drop", keywords_of<DropRunOptions, drop_table>},
       {"ballistic", keywords_of<BallisticRunOptions, ballistic_table>},
+      {"breakdown", keywords_of<BreakdownRunOptions, breakdown_table>},
   };
   for (const auto& [name, set] : tables)
     if (name == model.name) return set;

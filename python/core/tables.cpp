@@ -232,4 +232,29 @@ Table<BallisticRunOptions> ballistic_table() {
   return t;
 }
 
+Table<BreakdownRunOptions> breakdown_table() {
+  using O = BreakdownRunOptions;
+  Table<O> t;
+  // DLA's keywords, on the DLA run a breakdown run is, but those it has not.
+  for (const auto& [name, set] : dla_table())
+    if (name != "drift" && name != "rotate" && name != "index" && name != "fill" && name != "fill_distance")
+      t[name] = [set = set](O& o, py::handle v, Given& g) { set(o, v, g); };
+  t["fill"] = [](O&, py::handle, Given&) { refuse_for("breakdown", "fill"); };
+  t["eta"] = [](O& o, py::handle v, Given&) { o.breakdown.eta = number("eta", v); };
+  t["walkers"] = [](O& o, py::handle v, Given&) { o.breakdown.walkers = whole_int("walkers", v); };
+  t["target_point"] = [](O& o, py::handle v, Given&) {
+    o.breakdown.target.kind = TargetKind::point;
+    o.breakdown.target.point = vec3("target_point", v);
+  };
+  t["target_plane"] = [](O& o, py::handle v, Given&) {
+    if (py::isinstance<py::str>(v) || !py::hasattr(v, "__len__") || py::len(v) != 2)
+      throw InvalidInput("`target_plane` " + shown(v) + " is not (axis, value), as ('y', -60)");
+    o.breakdown.target.kind = TargetKind::plane;
+    o.breakdown.target.axis = word("target_plane", v[py::int_(0)], parse_axis);
+    o.breakdown.target.at = number("target_plane", v[py::int_(1)]);
+  };
+  t["stop_at_strike"] = [](O& o, py::handle v, Given&) { o.breakdown.stop_at_strike = flag("stop_at_strike", v); };
+  return t;
+}
+
 }  // namespace dla::python

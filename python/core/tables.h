@@ -10,5 +10,6 @@ Table<ColonizeRunOptions> colonize_table();
 Table<EdenRunOptions> eden_table();
 Table<DropRunOptions> drop_table();
 Table<BallisticRunOptions> ballistic_table();
+Table<BreakdownRunOptions> breakdown_table();
 
 }  // namespace dla::python

@@ -19,7 +19,7 @@ import numpy as np
 from . import _core
 from ._core import Result
 
-__all__ = ["grow", "colonize", "drop", "ballistic", "eden", "command_args", "Result", "Tubes", "ensemble"]
+__all__ = ["grow", "colonize", "drop", "ballistic", "eden", "breakdown", "command_args", "Result", "Tubes", "ensemble"]
 
 # Options of the files, which Result.write() takes instead: a model function writes nothing.
 _WRITE_ONLY = {"output", "o", "formats", "quiet", "q"}
@@ -27,6 +27,8 @@ _WRITE_ONLY = {"output", "o", "formats", "quiet", "q"}
 _CLI_ONLY = {"checkpoint", "checkpoint_every", "resume", "help", "h", "version"}
 # Options that name a mesh file, and may be given (V, 3) vertices and (F, 3) faces instead.
 _MESH_OPTIONS = {"stl", "mesh", "collide", "seed_mesh"}
+# Flags that are on unless turned off: False is --no-FLAG on the command line.
+_ON_BY_DEFAULT = {"scene_mesh", "stop_at_strike"}
 
 
 class Tubes(tuple):
@@ -133,6 +135,9 @@ def command_args(model, options):
     args = [] if model == "grow" else [model]
     for key, value in options.items():
         flag = ("-" if len(key) == 1 else "--") + key.replace("_", "-")
+        if value is False and key in _ON_BY_DEFAULT:
+            args.append("--no-" + key.replace("_", "-"))
+            continue
         if value is None or value is False:
             continue
         if value is True:
@@ -145,6 +150,8 @@ def command_args(model, options):
             values = list(value)
         elif key == "rotate" and isinstance(value, (list, tuple)) and len(value) == 2:
             values = [f"{value[0]},{_word(value[1])}"]
+        elif key == "target_plane" and isinstance(value, (list, tuple)) and len(value) == 2:
+            values = [f"{value[0]}={_word(value[1])}"]
         elif isinstance(value, (list, tuple)) and value and all(
                 isinstance(v, (list, tuple, np.ndarray, str)) for v in value):
             values = list(value)
@@ -206,6 +213,12 @@ def ballistic(progress=None, **options):
 def eden(progress=None, **options):
     """The Eden model on a lattice, as `dla3d eden [options]`."""
     return _run("eden", progress, options)
+
+
+def breakdown(progress=None, **options):
+    """The dielectric breakdown model, as `dla3d breakdown [options]`: eta=3 and
+    target_plane=("y", -60) grow a bolt to the ground."""
+    return _run("breakdown", progress, options)
 
 
 def ensemble(model, count, seeds=1, client=None, **options):

@@ -49,6 +49,18 @@ bool make_small(dla::RunOptions& run) {
     o->growth.threads = std::min(o->growth.threads, 2);
     return !far_apart(o->seed_at.value_or(o->growth.seeds), o->spacing.value_or(o->growth.spacing));
   }
+  if (auto* o = std::get_if<dla::BreakdownRunOptions>(&run)) {
+    if (o->has_mesh()) return false;
+    o->particles = std::min<std::size_t>(o->particles.value_or(o->growth.particles), 16);
+    o->growth.threads = std::min(o->growth.threads, 2);
+    const double spacing = o->spacing.value_or(o->growth.spacing);
+    const dla::Target& target = o->breakdown.target;
+    // A target far away is valid, and walkers take long to cross to it: the property test grows it.
+    if (target.kind != dla::TargetKind::none &&
+        (target.point.cwiseAbs().maxCoeff() > 100.0 * spacing || std::abs(target.at) > 100.0 * spacing))
+      return false;
+    return !far_apart(o->seed_at.value_or(o->growth.seeds), spacing);
+  }
   if (auto* o = std::get_if<dla::ColonizeRunOptions>(&run)) {
     if (!o->stl.empty() || !o->collide.empty() || !o->attractors_from.empty()) return false;
     o->colonization.max_nodes = std::min<std::size_t>(o->colonization.max_nodes, 64);

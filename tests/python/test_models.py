@@ -26,6 +26,9 @@ MODELS = [
     ("drop", {"particles": 2000, "rng_seed": 3}),
     ("ballistic", {"particles": 2000, "rng_seed": 4}),
     ("eden", {"sites": 2000, "rng_seed": 6}),
+    # Discharges: to the ground past the strike, and to a point, struck, in 2D.
+    ("breakdown", {"particles": 800, "eta": 2, "target_plane": ("y", -20), "stop_at_strike": False, "rng_seed": 7}),
+    ("breakdown", {"particles": 3000, "eta": 3, "target_point": (0, -15, 0), "dimensions": 2}),
     # Loops: links beside the tree, closed venation and the lattice graph.
     ("grow", {"particles": 2000, "links": (2.5, 2)}),
     ("colonize", {"max_nodes": 2000, "venation": "closed", "influence": 8.0, "dimensions": 2}),
@@ -50,8 +53,8 @@ def grown(model, options):
 
 def expect_tree(result, model="grow", options=None):
     """Parents come earlier, seeds first; every particle is in its parent's seed's tree; each
-    branch is as long as `model` makes it (with `options`, its keywords); and DLA's, drop's and
-    ballistic's particles stick at contact, a spacing from the parent and no nearer any other."""
+    branch is as long as `model` makes it (with `options`, its keywords); and DLA's, drop's,
+    ballistic's and the breakdown model's particles stick at contact, a spacing from the parent and no nearer any other."""
     n = len(result)
     parent, seed = result.parent, result.seed
     assert result.positions.shape == (n, 3) and parent.shape == seed.shape == (n,)
@@ -75,7 +78,7 @@ def expect_branch_lengths(result, model, options):
     positions, parent = result.positions, result.parent
     length = np.linalg.norm(positions[k:] - positions[parent[k:]], axis=1)
     slack = 1e-6 * spacing
-    if model in ("grow", "drop", "ballistic"):
+    if model in ("grow", "drop", "ballistic", "breakdown"):
         if options.get("constraint") == "clip":  # a clipped branch ends short of the mesh
             assert ((length > 0) & (length <= spacing + slack)).all(), length.max()
         else:

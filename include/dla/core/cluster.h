@@ -43,6 +43,9 @@ struct Cluster {
   double spacing = 1.0;
   int dimensions = 3;
   bool complete = true;             //!< false when growth was stopped before the count
+  //! The breakdown model's strike (breakdown.h): the particle that came within a spacing of
+  //! its target electrode, the end of the main channel; -1: none (every other model).
+  std::int32_t strike = -1;
 };
 // What growth counted (DLA's walks, the drops, the lines) each model returns beside the
 // structure: DlaStats (walk.h), DropStats, BallisticStats.
@@ -72,6 +75,7 @@ inline Cluster first_particles(const Cluster& cluster, std::size_t count) {
   part.spacing = cluster.spacing;
   part.dimensions = cluster.dimensions;
   part.complete = cluster.complete;
+  part.strike = cluster.strike >= 0 && static_cast<std::size_t>(cluster.strike) < count ? cluster.strike : -1;
   return part;
 }
 

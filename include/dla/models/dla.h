@@ -9,6 +9,7 @@
 #include "dla/mesh/constraint.h"
 #include "dla/core/options.h"
 #include "dla/core/random.h"
+#include "dla/models/electrode.h"
 #include "dla/models/fill.h"
 #include "dla/models/model_shell.h"
 #include "dla/models/spawn.h"
@@ -129,11 +130,13 @@ class Pause {
 template <class Index>
 class Aggregation {
  public:
+  //! With `target`, walkers leave it and start again when they come back (breakdown.h).
   Aggregation(const DlaOptions& options, const MeshConstraint* constraint, const Cluster* partial,
-              const StopFlag* stop, DlaStats& stats)
+              const StopFlag* stop, DlaStats& stats, const Electrode* target = nullptr)
       : opt_(options),
         stats_(stats),
         constraint_(constraint),
+        target_(target),
         stop_(stop),
         contact_(options.spacing),
         near_step_(options.min_step * options.spacing),
@@ -175,6 +178,22 @@ class Aggregation {
     shell.finish(cluster_);
     return std::move(cluster_);
   }
+
+  // For models that choose among several walkers' contacts (breakdown.h): one walker on
+  // `stream` run against the structure as it is, without attaching, safe on several threads
+  // at once while nothing attaches; false when the stop flag ended it.
+  bool trial(std::uint64_t stream, WalkStats& stats, Particle& contact) {
+    try {
+      contact = walk(stream, *sight_, stats, nullptr);
+      return true;
+    } catch (const Stopped&) {
+      return false;
+    }
+  }
+  void attach(const Particle& p) { add(p); }
+  Cluster& structure() { return cluster_; }
+  //! From the next walker on, walkers come from the spawn rather than the target.
+  void leave_target() { target_ = nullptr; }
 
  private:
   //! Thrown out of a walk when the stop flag is set.
@@ -315,7 +334,7 @@ class Aggregation {
   static void accumulate(WalkStats& total, const WalkStats& s) {
     total.walkers += s.walkers, total.steps += s.steps, total.near_steps += s.near_steps;
     total.contacts += s.contacts, total.returns += s.returns, total.relaunches += s.relaunches;
-    total.lost += s.lost, total.rejected += s.rejected, total.clipped += s.clipped;
+    total.lost += s.lost, total.rejected += s.rejected, total.clipped += s.clipped, total.absorbed += s.absorbed;
   }
 
   bool drifting() const { return opt_.drift.squaredNorm() > 0.0; }
@@ -391,18 +410,29 @@ class Aggregation {
     const Eigen::Matrix3d turn = turning() ? frame(k) : Eigen::Matrix3d::Identity();
     const Vec3 drift = turning() ? Vec3(turn * opt_.drift) : opt_.drift;
     const Eigen::Matrix3d* turned = turning() ? &turn : nullptr;
-    Vec3 x = launch(rng, sight, reads, turned);
+    const auto start = [&] { return target_ ? launch_from_target(rng, sight, reads) : launch(rng, sight, reads, turned); };
+    Vec3 x = start();
     // Bounds that turn a setup where nothing can stick into an error rather than a hang.
-    constexpr std::uint64_t max_lost = 10'000'000, max_rejected = 10'000, max_relaunches = 100'000;
-    std::uint64_t lost = 0, rejected = 0, relaunches = 0, steps = 0;
+    constexpr std::uint64_t max_lost = 10'000'000, max_rejected = 10'000, max_relaunches = 100'000,
+                            max_absorbed = 1'000'000;
+    std::uint64_t lost = 0, rejected = 0, relaunches = 0, steps = 0, absorbed = 0;
     const auto relaunch = [&] {
       ++stats.relaunches;
       if (++relaunches == max_relaunches)
         throw GrowthError("walker " + std::to_string(k + 1) + " was started afresh " + std::to_string(max_relaunches) +
                           " times without reaching the structure: walkers start too far from it, or the drift "
                           "carries them away");
-      x = launch(rng, sight, reads, turned);
+      x = start();
     };
+    const auto back_to_target = [&] {
+      ++stats.absorbed;
+      if (++absorbed == max_absorbed)
+        throw GrowthError("walkers leaving the target went back to it or far away " + std::to_string(max_absorbed) +
+                          " times without reaching the structure: the target cannot reach it (an insulator between "
+                          "them, or a target on the other side of the mesh)");
+      x = start();
+    };
+    const double far_away = target_ ? target_->far_away(center, return_radius) : 0.0;
     // In a shell, steps reach at most its thickness, and half as far after each step refused at
     // its edge (down to the near step): a walker in a narrow part still moves.
     const double shell = constraint_ ? constraint_->shell() : 0.0;
@@ -430,9 +460,20 @@ class Aggregation {
       }
       const Vec3 offset = x - center;
       const double r2 = offset.squaredNorm();
+      // From a target, walkers walk on spheres clear of it and of the structure's sphere; one
+      // back on the target, or far from both, leaves it again.
+      const double to_target = target_ ? target_->distance(x) : 0.0;
+      if (target_ && (to_target < target_->absorbs() || r2 > far_away * far_away)) {
+        back_to_target();
+        continue;
+      }
       // Walkers put on the return sphere sit on it up to rounding: they count as inside. In a
       // shell, there is no return through free space: walkers far away walk on in the shell.
       if (shell == 0.0 && r2 > return_radius * return_radius * (1.0 + 1e-9)) {
+        if (target_) {
+          x += jump(rng, std::min(std::sqrt(r2) - sight.cluster_radius - contact_, to_target), drift);
+          continue;
+        }
         if (!drifting()) {
           const ReturnPoint back = return_to_sphere(offset, return_radius, rng, opt_.dimensions);
           if (back.returned) {
@@ -459,12 +500,14 @@ class Aggregation {
         if (++lost == max_lost)
           throw GrowthError("walker " + std::to_string(k + 1) + " left the growing side of the mesh " +
                             std::to_string(max_lost) + " times: walkers cannot reach the seeds");
-        x = launch(rng, sight, reads, turned);
+        x = start();
         continue;
       }
 
       // Outside the sphere around every particle, its distance is a bound the index may not beat.
-      const double free = std::max(probe(x, reads).distance, std::sqrt(r2) - sight.cluster_radius) - contact_;
+      double free = std::max(probe(x, reads).distance, std::sqrt(r2) - sight.cluster_radius) - contact_;
+      // Near the target, a near step may cross it: the walker is back on it at the next.
+      if (target_) free = std::min(free, to_target);
       if (free > near_step_) {
         if (shell == 0.0) {
           x += jump(rng, free, drift);
@@ -557,6 +600,21 @@ class Aggregation {
                       (constraint_ ? " on the growing side of the mesh" : ": the structure fills it"));
   }
 
+  //! A start just off the target electrode (electrode.h), clear of the structure and on the
+  //! growing side of the mesh; drawn again if not.
+  Vec3 launch_from_target(Rng& rng, const Sight& sight, std::vector<Read>* reads) const {
+    const Vec3& center = cluster_.center;
+    const double R2 = sight.return_radius * sight.return_radius;
+    constexpr int max_draws = 1'000'000;
+    for (int draw = 0; draw < max_draws; ++draw) {
+      const Vec3 x = target_->draw_start(rng);
+      if (constraint_ && constraint_->lost(x)) continue;
+      if ((x - center).squaredNorm() >= R2 || probe(x, reads).distance >= contact_) return x;
+    }
+    throw GrowthError("no free start by the target in " + std::to_string(max_draws) +
+                      " draws: it lies on the wrong side of the mesh, or the structure covers it");
+  }
+
   Vec3 draw_start(Rng& rng, const Sight& sight) const {
     if (constraint_) {
       switch (opt_.spawn) {
@@ -577,6 +635,7 @@ class Aggregation {
   const DlaOptions& opt_;
   DlaStats& stats_;                   // the caller's, counted as walkers attach
   const MeshConstraint* constraint_;  // null: unconstrained
+  const Electrode* target_;           // null: walkers come from the spawn
   const StopFlag* stop_;              // null: no stop but by `progress`
   const double contact_;      // centre distance at which a walker touches a particle
   const double near_step_;    // step length near the structure

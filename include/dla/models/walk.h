@@ -27,6 +27,9 @@ struct WalkStats {
   std::uint64_t lost = 0;         //!< walkers on the wrong side of a constraint mesh, started afresh
   std::uint64_t rejected = 0;     //!< branches refused because they crossed the constraint mesh
   std::uint64_t clipped = 0;      //!< branches cut short at the constraint mesh
+  //! Walkers that went back to the breakdown model's target electrode, or far away from it and
+  //! the structure, and left it again (breakdown.h)
+  std::uint64_t absorbed = 0;
 };
 
 //! What a DLA run did beside the structure it grew (dla.h).

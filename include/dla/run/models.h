@@ -10,6 +10,7 @@
 #include "dla/mesh/paint.h"
 #include "dla/mesh/text.h"
 #include "dla/models/ballistic.h"
+#include "dla/models/breakdown.h"
 #include "dla/models/colonization.h"
 #include "dla/models/drop.h"
 #include "dla/models/eden.h"
@@ -129,6 +130,13 @@ struct BallisticRunOptions {
   OutputOptions files;
 };
 
+//! `dla3d breakdown`, `dla3d.breakdown()`: the dielectric breakdown model, grown by DLA's walk
+//! with every option of a DLA run (the mesh as an insulator, the seeds as the source, the spawn
+//! when there is no target) but `fill`, `drift`, `rotate`, `index` and checkpoints.
+struct BreakdownRunOptions : DlaRunOptions {
+  BreakdownOptions breakdown;
+};
+
 //! The roots a colonize run grows from: its `root_at` points; or `root_count` on the sphere
 //! around the attractors, or in or on `mesh` (the vessel, else the collision mesh); or one at
 //! the attractors' lowest point (-y).
@@ -146,7 +154,8 @@ std::vector<Vec3> seeds_on(const MeshConstraint& mesh, const MeshSeeds& seeds, s
 [[noreturn]] void refuse_for(std::string_view model, std::string_view option);
 
 //! A run of any model.
-using RunOptions = std::variant<DlaRunOptions, ColonizeRunOptions, EdenRunOptions, DropRunOptions, BallisticRunOptions>;
+using RunOptions = std::variant<DlaRunOptions, ColonizeRunOptions, EdenRunOptions, DropRunOptions, BallisticRunOptions,
+                                BreakdownRunOptions>;
 
 //! The files a run of any model writes.
 const OutputOptions& output_of(const RunOptions& options);
@@ -159,6 +168,7 @@ void validate(const ColonizeRunOptions& options);
 void validate(const EdenRunOptions& options);
 void validate(const DropRunOptions& options);
 void validate(const BallisticRunOptions& options);
+void validate(const BreakdownRunOptions& options);
 void validate(const RunOptions& options);
 
 }  // namespace dla

@@ -1,0 +1,101 @@
+#pragma once
+//! \file breakdown.h
+//! The dielectric breakdown model (Niemeyer, Pietronero and Wiesmann 1984), off the lattice:
+//! the structure is a conductor at one potential, a target electrode (or, without one, space
+//! far away) at the other, and growth goes where the field is strong, in proportion to the
+//! field to the power eta. eta = 1 is DLA, eta -> 0 a compact Eden-like blob, eta of 2 and up
+//! sparse straight channels: lightning, Lichtenberg figures. See docs/breakdown.md.
+//!
+//! The field comes from DLA's own walkers (dla.h): the density of walkers' first contacts on the
+//! structure is the field on its surface (the harmonic measure). Before each particle attaches,
+//! `walkers` walkers run against the structure as it is; each parent particle is a growth site
+//! weighted by its contacts to the power eta; one site is drawn by weight, and one of its
+//! contacts, at random, is the new particle. At eta = 1 that is one walker's contact, drawn
+//! uniformly: DLA by the same contact law, and with one walker the same structure as `dla3d`.
+//! With a target, walkers leave from it and one that comes back to it starts again (the
+//! excursion measure of the target, whose first contacts are the field of the capacitor).
+
+#include "dla/core/cluster.h"
+#include "dla/core/errors.h"
+#include "dla/core/options.h"
+#include "dla/mesh/constraint.h"
+#include "dla/models/walk.h"
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace dla {
+
+//! The electrode at the other potential (`target_point`, `target_plane`).
+enum class TargetKind {
+  none,   //!< space far away: walkers come from a sphere around the structure, as DLA's
+  point,  //!< a small ball at `target.point`, half a spacing across
+  plane,  //!< the plane `target.axis` = `target.at` (a line in 2D): the ground
+};
+
+std::string_view to_string(TargetKind kind);
+
+struct Target {
+  TargetKind kind = TargetKind::none;
+  Vec3 point = Vec3::Zero();  //!< point: its centre
+  Axis axis = Axis::y;        //!< plane: the axis across it (x or y in 2D)
+  double at = 0.0;            //!< plane: where it crosses the axis, scene units
+};
+
+//! Options of the breakdown model beside the walk's (DlaOptions). Lengths are in scene units.
+struct BreakdownOptions {
+  double eta = 1.0;  //!< the field's exponent, [0, 10]; 1: DLA
+  //! Walkers measured before each particle attaches, 1 to 4096; 0: one at eta 1, else
+  //! kDefaultBreakdownWalkers. More sharpen the field (docs/breakdown.md: the bias).
+  int walkers = 0;
+  Target target;
+  //! End growth when a particle comes within a spacing of the target (the strike). Else growth
+  //! goes on to its count: from a plane, walkers still leave it; a point, touched, is at the
+  //! structure's potential, and walkers come from the spawn, as without a target.
+  bool stop_at_strike = true;
+};
+
+inline constexpr int kDefaultBreakdownWalkers = 8;
+inline constexpr int kMaxBreakdownWalkers = 4096;
+inline constexpr double kMaxEta = 10.0;
+
+//! The walkers measured before each particle for these options.
+inline int walkers_for(const BreakdownOptions& o) {
+  return o.walkers > 0 ? o.walkers : o.eta == 1.0 ? 1 : kDefaultBreakdownWalkers;
+}
+
+//! What a breakdown run did beside the structure.
+struct BreakdownStats {
+  WalkStats walk;                 //!< every walker's steps, contacts and relaunches
+  std::uint64_t absorbed = 0;     //!< walkers that came back to the target and started again
+  std::int32_t strike = -1;       //!< the first particle within a spacing of the target; -1: none
+  std::uint64_t sites = 0;        //!< growth sites weighed, summed over the attachments
+  //! Where each particle goes as it attaches, seeds first (walk.h's DlaStats::feed); null: nowhere.
+  ParticleFeed* feed = nullptr;
+};
+
+//! Throws InvalidInput at the first option that cannot work: eta, walkers, the target against
+//! the walk's dimensions, seeds and spacing (electrodes that touch).
+void validate(const BreakdownOptions& options, const DlaOptions& walk);
+
+//! Grows a discharge from `walk.seeds` (the source) with DLA's walk options, constrained by
+//! `constraint` if given (an insulator walkers cannot cross). Validates first. The cluster's
+//! `strike` is the particle that reached the target (-1: none). Ctrl-C (`stop`) and a false
+//! from `progress` keep what grew, marked incomplete. The result is the same for every
+//! `walk.threads`, byte for byte. Throws PartialGrowth when growth fails part way.
+Cluster breakdown(const DlaOptions& walk, const BreakdownOptions& options, const MeshConstraint* constraint,
+                  const ProgressFn& progress = {}, const StopFlag* stop = nullptr, BreakdownStats* stats = nullptr);
+
+// ---------------------------------------------------------------------------------------------
+
+inline std::string_view to_string(TargetKind kind) {
+  switch (kind) {
+    case TargetKind::none: return "none";
+    case TargetKind::point: return "point";
+    case TargetKind::plane: return "plane";
+  }
+  return "?";
+}
+
+}  // namespace dla

@@ -1,0 +1,106 @@
+// The breakdown model's run (run.h): DLA's run (dla_run.h) for the meshes, seeds, defaults and
+// files, with the discharge's growth (breakdown.h), its checks, summary and record.
+
+#include "dla_run.h"
+
+#include "dla/models/breakdown.h"
+#include "dla/models/electrode.h"
+
+namespace dla {
+
+void validate(const BreakdownRunOptions& o) {
+  if (o.growth.fill != 0.0) refuse_for("breakdown", "fill");
+  if (o.growth.drift.squaredNorm() > 0.0) throw InvalidInput("`drift` is DLA's: the field of the breakdown model has none");
+  if (o.growth.rotate_degrees != 0.0) throw InvalidInput("`rotate` is DLA's, not the breakdown model's");
+  validate(static_cast<const DlaRunOptions&>(o));
+  // The seeds against the target wait for the mesh when it places them.
+  BreakdownOptions own = o.breakdown;
+  if (o.has_mesh() && !o.seed_at) own.target = {};
+  validate(own, walk_options(o));
+}
+
+namespace detail {
+
+namespace {
+
+class BreakdownRun : public DlaRun {
+ public:
+  BreakdownRun(const BreakdownRunOptions& o, const MeshReader& read)
+      : DlaRun(o, read, Resumed{}), breakdown_(o.breakdown) {
+    validate(breakdown_, options_);
+    const Target& target = breakdown_.target;
+    if (constraint_ && target.kind == TargetKind::point && !constraint_->on_growth_side(target.point))
+      throw InvalidInput("`target_point` is not on the growing side of " + mesh_name_ +
+                         ": it lies in the insulator, and no walker can leave it");
+    // A strike ends growth before the count: no count is promised.
+    if (target.kind != TargetKind::none && breakdown_.stop_at_strike) solid_forecast.particles = 0;
+    // Walkers of one particle run on the threads at once.
+    threads = std::min(options_.threads, walkers_for(breakdown_));
+  }
+
+  Cluster grow(const ProgressFn& progress, const StopFlag* stop) override {
+    return dla::breakdown(options_, breakdown_, constraint_.get(), progress, stop, &stats_);
+  }
+
+  bool feed_to(ParticleFeed* feed) override {
+    stats_.feed = feed;
+    return true;
+  }
+
+  const WalkStats* walks() const override { return &stats_.walk; }
+
+  std::string summary(const Cluster& cluster, const RunRecord& record) const override {
+    char strike[96] = "";
+    if (cluster.strike >= 0)
+      std::snprintf(strike, sizeof strike, "; struck the target at particle %s",
+                    with_commas(static_cast<double>(cluster.strike)).c_str());
+    else if (breakdown_.target.kind != TargetKind::none)
+      std::snprintf(strike, sizeof strike, "; the target was not reached");
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "grew %s particles at eta %g in %.2f s, %d walkers each (%s walks); bounding radius %.1f%s",
+                  with_commas(static_cast<double>(attached(cluster))).c_str(), breakdown_.eta, record.grow_seconds,
+                  walkers_for(breakdown_), with_commas(static_cast<double>(stats_.walk.walkers)).c_str(),
+                  bounding_radius(cluster), strike);
+    return line;
+  }
+
+  ModelRecord record() const override {
+    ModelRecord out{"breakdown", options_.rng_seed};
+    out.options = [this](RecordWriter& w) {
+      record_options(w);
+      const BreakdownOptions& b = breakdown_;
+      w.number("eta", b.eta).integer("walkers", walkers_for(b)).text("target", to_string(b.target.kind));
+      if (b.target.kind == TargetKind::point) w.point("target_point", b.target.point);
+      if (b.target.kind == TargetKind::plane)
+        w.text("target_plane_axis", to_string(b.target.axis)).number("target_plane_at", b.target.at);
+      if (b.target.kind != TargetKind::none) w.flag("stop_at_strike", b.stop_at_strike);
+    };
+    out.statistics = [this](RecordWriter& w) {
+      if (constraint_) record_constraint(w);
+      const WalkStats& s = stats_.walk;
+      w.open("walk")
+          .counts({{"walkers", s.walkers}, {"steps", s.steps}, {"near_steps", s.near_steps}, {"contacts", s.contacts},
+                   {"returns", s.returns}, {"relaunches", s.relaunches}, {"absorbed", s.absorbed}, {"lost", s.lost},
+                   {"rejected", s.rejected}, {"clipped", s.clipped}})
+          .close();
+      w.open("discharge").count("sites_weighed", stats_.sites).integer("strike", stats_.strike).close();
+    };
+    out.timings = [this](RecordWriter& w) { w.integer("threads", options_.threads); };
+    return out;
+  }
+
+ private:
+  BreakdownOptions breakdown_;
+  BreakdownStats stats_;
+};
+
+}  // namespace
+
+std::unique_ptr<Run> prepare_breakdown(const RunOptions& options, const MeshReader& read, const Resumed&) {
+  return std::make_unique<BreakdownRun>(std::get<BreakdownRunOptions>(options), read);
+}
+
+}  // namespace detail
+
+}  // namespace dla
