@@ -263,16 +263,10 @@ class Discharge {
       }
     });
     for (std::size_t m = 0; m < count; ++m) {
-      add(stats_.walk, walks_[m]);
+      accumulate(stats_.walk, walks_[m]);
       if (walked_[m] == 2) std::rethrow_exception(errors_[m]);  // the first walker's error
     }
     return std::all_of(walked_.begin(), walked_.end(), [](char w) { return w == 1; });
-  }
-
-  static void add(WalkStats& total, const WalkStats& s) {
-    total.walkers += s.walkers, total.steps += s.steps, total.near_steps += s.near_steps;
-    total.contacts += s.contacts, total.returns += s.returns, total.relaunches += s.relaunches;
-    total.lost += s.lost, total.rejected += s.rejected, total.clipped += s.clipped, total.absorbed += s.absorbed;
   }
 
   void finish_stats(const Cluster& cluster) {

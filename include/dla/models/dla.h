@@ -331,12 +331,6 @@ class Aggregation {
     return true;
   }
 
-  static void accumulate(WalkStats& total, const WalkStats& s) {
-    total.walkers += s.walkers, total.steps += s.steps, total.near_steps += s.near_steps;
-    total.contacts += s.contacts, total.returns += s.returns, total.relaunches += s.relaunches;
-    total.lost += s.lost, total.rejected += s.rejected, total.clipped += s.clipped, total.absorbed += s.absorbed;
-  }
-
   bool drifting() const { return opt_.drift.squaredNorm() > 0.0; }
   bool turning() const { return radians_per_walker_ != 0.0; }
 

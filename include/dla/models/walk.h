@@ -32,6 +32,13 @@ struct WalkStats {
   std::uint64_t absorbed = 0;
 };
 
+//! Adds the counts of `s` to `total`.
+inline void accumulate(WalkStats& total, const WalkStats& s) {
+  total.walkers += s.walkers, total.steps += s.steps, total.near_steps += s.near_steps;
+  total.contacts += s.contacts, total.returns += s.returns, total.relaunches += s.relaunches;
+  total.lost += s.lost, total.rejected += s.rejected, total.clipped += s.clipped, total.absorbed += s.absorbed;
+}
+
 //! What a DLA run did beside the structure it grew (dla.h).
 struct DlaStats {
   WalkStats walk;
