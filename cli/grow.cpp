@@ -132,7 +132,6 @@ void add_fill_options(CLI::App& app, DlaOptions& options, const char* meshes) {
       ->type_name("F")->group(meshes);
   app.add_option("--fill-distance", options.fill_distance, "--fill: how near counts as covered, in spacings, [0.5, 1000]")
       ->capture_default_str()->group(meshes);
-
 }
 
 //! The words as DLA's run options. The checks that need to know what was given, which the run

@@ -23,14 +23,15 @@
 namespace dla {
 
 void validate(const BreakdownOptions& o, const DlaOptions& walk) {
+  // What is DLA's alone, before DLA's own checks of its values.
+  if (walk.drift.squaredNorm() > 0.0) throw InvalidInput("`drift` is DLA's: the field of the breakdown model has none");
+  if (walk.rotate_degrees != 0.0) throw InvalidInput("`rotate` is DLA's, not the breakdown model's");
+  if (walk.fill != 0.0) throw InvalidInput("`fill` grows DLA until a mesh is full; a discharge grows to its count or its strike");
   validate(walk);
   if (!(o.eta >= 0.0 && o.eta <= kMaxEta))
     throw InvalidInput("`eta` " + detail::format_number(o.eta) + " is not in [0, 10]");
   if (o.walkers < 0 || o.walkers > kMaxBreakdownWalkers)
     throw InvalidInput("`walkers` " + std::to_string(o.walkers) + " is not in [1, 4096] (0: chosen by eta)");
-  if (walk.drift.squaredNorm() > 0.0) throw InvalidInput("`drift` is DLA's: the field of the breakdown model has none");
-  if (walk.rotate_degrees != 0.0) throw InvalidInput("`rotate` is DLA's, not the breakdown model's");
-  if (walk.fill != 0.0) throw InvalidInput("`fill` grows DLA until a mesh is full; a discharge grows to its count or its strike");
   const Target& t = o.target;
   if (t.kind == TargetKind::none) return;
   if (t.kind == TargetKind::point) detail::require_representable("`target_point`", t.point, walk.spacing);
@@ -43,10 +44,8 @@ void validate(const BreakdownOptions& o, const DlaOptions& walk) {
   }
   if (walk.dimensions == 2 && t.kind == TargetKind::point && t.point.z() != 0.0)
     throw InvalidInput("`target_point` is off the plane z = 0 of 2D growth");
-  Vec3 center = Vec3::Zero();
-  for (const Vec3& s : walk.seeds) center += s;
-  center /= static_cast<double>(walk.seeds.size());
-  const detail::Electrode electrode(t, center, walk.spacing, walk.dimensions);
+  const detail::Electrode electrode(t, detail::seeded(walk.seeds, walk.spacing, walk.dimensions).center, walk.spacing,
+                                    walk.dimensions);
   for (std::size_t i = 0; i < walk.seeds.size(); ++i) {
     const double d = electrode.distance(walk.seeds[i]);
     if (d <= walk.spacing)
@@ -157,14 +156,15 @@ class Discharge {
           break;
         }
         aggregation_.attach(*next);
-        if (electrode_) electrode_->grown(next->position);
-        if (electrode_ && cluster.strike < 0 &&
-            electrode_->distance(cluster.particles.back().position) <= walk_.spacing) {
-          cluster.strike = static_cast<std::int32_t>(cluster.particles.size() - 1);
-          if (options_.stop_at_strike) break;
-          // A ball touched is at the structure's potential, and soon buried in it: walkers come
-          // from far away from now on. A plane, too wide to bury, goes on sending them.
-          if (options_.target.kind == TargetKind::point) aggregation_.leave_target();
+        if (electrode_) {
+          electrode_->grown(next->position);
+          if (cluster.strike < 0 && electrode_->distance(next->position) <= walk_.spacing) {
+            cluster.strike = static_cast<std::int32_t>(cluster.particles.size() - 1);
+            if (options_.stop_at_strike) break;
+            // A ball touched is at the structure's potential, and soon buried in it: walkers
+            // come from far away from now on. A plane, too wide to bury, goes on sending them.
+            if (options_.target.kind == TargetKind::point) aggregation_.leave_target();
+          }
         }
         if (k + 1 < walk_.particles && !shell.go_on(cluster)) {
           cluster.complete = false;

@@ -9,9 +9,8 @@
 namespace dla {
 
 void validate(const BreakdownRunOptions& o) {
+  // Before DLA's checks, which would ask a fill for a mesh.
   if (o.growth.fill != 0.0) refuse_for("breakdown", "fill");
-  if (o.growth.drift.squaredNorm() > 0.0) throw InvalidInput("`drift` is DLA's: the field of the breakdown model has none");
-  if (o.growth.rotate_degrees != 0.0) throw InvalidInput("`rotate` is DLA's, not the breakdown model's");
   validate(static_cast<const DlaRunOptions&>(o));
   // The seeds against the target wait for the mesh when it places them.
   BreakdownOptions own = o.breakdown;
@@ -34,8 +33,6 @@ class BreakdownRun : public DlaRun {
                          ": it lies in the insulator, and no walker can leave it");
     // A strike ends growth before the count: no count is promised.
     if (target.kind != TargetKind::none && breakdown_.stop_at_strike) solid_forecast.particles = 0;
-    // Walkers of one particle run on the threads at once.
-    threads = std::min(options_.threads, walkers_for(breakdown_));
   }
 
   Cluster grow(const ProgressFn& progress, const StopFlag* stop) override {
