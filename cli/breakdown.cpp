@@ -44,9 +44,13 @@ Subcommand add_breakdown_command(CLI::App& app, const Model& model) {
   CLI::Option* point = command->add_option("--target-point", w->target_point, "the other electrode: a small ball at "
                                                                               "x,y,z; walkers leave it")
                            ->type_name("X,Y,Z")->group(discharge);
-  command->add_option("--target-plane", w->target_plane, "the other electrode: the plane AXIS = VALUE (a line in "
-                                                         "2D), the ground; walkers leave it")
-      ->type_name("AXIS=VALUE")->group(discharge)->excludes(point);
+  CLI::Option* plane = command->add_option("--target-plane", w->target_plane, "the other electrode: the plane AXIS = "
+                                                                              "VALUE (a line in 2D), the ground; "
+                                                                              "walkers leave it")
+                           ->type_name("AXIS=VALUE")->group(discharge)->excludes(point);
+  command->add_option("--target-mesh", b->target_mesh, "the other electrode: a mesh's surface (STL, OBJ, PLY, OFF; "
+                                                       "repaired as --stl is), a lightning rod; 3D only")
+      ->type_name("FILE")->group(discharge)->excludes(point)->excludes(plane);
   command->add_flag("--stop-at-strike,!--no-stop-at-strike", o.stop_at_strike,
                     "end growth when a particle comes within a spacing of the target (the strike)")
       ->capture_default_str()->group(discharge);

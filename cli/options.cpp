@@ -84,9 +84,11 @@ OutputWords::OutputWords(CLI::App& app, OutputOptions& f, bool& quiet, std::stri
                                                                   "[1, 10]; 2 keeps the area, 3 is Murray's law")
       ->capture_default_str()->group(looks);
   app.add_option("--color-by", color_by_, "colour the glb, obj, svg and POV-Ray scene by none, age, depth, "
-                                          "seed or distance (to the mesh, or to the seeds)")
+                                          "seed, distance (to the mesh, or to the seeds) or current (what "
+                                          "flows through it: a discharge's main channel brightest)")
       ->capture_default_str()->group(looks);
-  app.add_option("--look", pov_style_, "POV-Ray: branches (sphere sweeps) or blob (metaballs)")
+  app.add_option("--look", pov_style_, "POV-Ray: branches (sphere sweeps), blob (metaballs) or glow (emissive "
+                                        "branches on black, brightest where the colour value is highest)")
       ->capture_default_str()->group(looks);
   app.add_option("--tube-sides", f.look.tubes.sides, "glb, obj: vertices around a tube, 3-64")
       ->capture_default_str()->group(looks);

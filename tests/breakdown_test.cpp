@@ -1,18 +1,29 @@
 // The breakdown model (breakdown.h): DLA at eta 1, a tree whatever eta, the same structure on
 // any thread count, sparser with eta, a strike that ends growth at the target, insulators that
-// hold, and one line for every option that cannot work.
+// hold, one line for every option that cannot work, and the attributes of a strike (its main
+// channel, current and light) against their definitions walked out by hand.
 
 #include "tree_check.h"
 
 #include "dla/core/analysis.h"
+#include "dla/io/csv_writer.h"
+#include "dla/look/attributes.h"
+#include "dla/look/look.h"
 #include "dla/models/breakdown.h"
 #include "dla/models/dla.h"
 #include "dla/mesh/shapes.h"
+#include "dla/mesh/surface_distance.h"
 
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
+
+#include <unistd.h>
 
 namespace dla {
 namespace {
@@ -117,6 +128,42 @@ TEST(Breakdown, GoesOnPastTheStrikeWhenAsked) {
   EXPECT_LT(static_cast<std::size_t>(c.strike), c.particles.size() - 1);
 }
 
+TEST(Breakdown, AMeshTargetIsStruckOnItsSurface) {
+  // A rod below the seed, closed (a box) and open (a can, walkers leave both its faces): the
+  // strike is the first particle within a spacing of its surface.
+  const TriangleMesh box = make_box(Vec3(-1.5, -40.0, -1.5), Vec3(1.5, -18.0, 1.5));
+  const TriangleMesh can = make_open_can(Vec3(0.0, 0.0, -40.0), 1.5, 22.0, 24);  // about z, open at the top
+  for (const TriangleMesh* rod : {&box, &can}) {
+    SCOPED_TRACE(rod == &box ? "box" : "can");
+    const SurfaceDistance surface(*rod);
+    BreakdownOptions o;
+    o.eta = 2.0;
+    o.target.kind = TargetKind::mesh;
+    o.target.mesh = rod;
+    BreakdownStats stats;
+    const Cluster c = breakdown(walk_of(20000, 4), o, nullptr, {}, nullptr, &stats);
+    EXPECT_EQ(testing::tree_fault(c), "");
+    ASSERT_GE(c.strike, 0);
+    EXPECT_EQ(static_cast<std::size_t>(c.strike), c.particles.size() - 1);
+    EXPECT_LE(surface.distance(c.particles.back().position), 1.0);
+    for (std::size_t i = 0; i + 1 < c.particles.size(); ++i) EXPECT_GT(surface.distance(c.particles[i].position), 1.0) << i;
+    EXPECT_GT(stats.walk.absorbed, 0u);  // walkers that came straight back started again
+  }
+  // One line for a mesh target in 2D, and for a seed on it.
+  BreakdownOptions o;
+  o.target.kind = TargetKind::mesh;
+  o.target.mesh = &box;
+  EXPECT_THROW(breakdown(walk_of(10, 1, 2), o, nullptr), InvalidInput);
+  DlaOptions touching = walk_of(10);
+  touching.seeds = {Vec3(0.0, -17.5, 0.0)};
+  try {
+    breakdown(touching, o, nullptr);
+    ADD_FAILURE() << "a seed on the target grew";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("electrodes must be apart"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Breakdown, AnInsulatorHoldsTheDischargeOnItsSide) {
   // Growth inside a ball it cannot leave, towards a plane beyond the ball's wall.
   const TriangleMesh ball = make_sphere(Vec3::Zero(), 15.0);
@@ -177,6 +224,96 @@ TEST(Breakdown, RefusesWhatCannotWorkInOneLine) {
   negative.eta = -1.0;
   for (const std::string& line : {refusal(o), refusal(negative)})
     EXPECT_EQ(line.find('\n'), std::string::npos) << line;
+}
+
+// The particles on the way from j to the strike: up to their lowest common ancestor, then down.
+std::vector<std::size_t> path_to(const Cluster& c, std::size_t j, std::size_t strike) {
+  std::vector<std::size_t> up, down;
+  for (auto i = static_cast<std::int32_t>(j); i >= 0; i = c.particles[static_cast<std::size_t>(i)].parent)
+    up.push_back(static_cast<std::size_t>(i));
+  for (auto i = static_cast<std::int32_t>(strike); i >= 0; i = c.particles[static_cast<std::size_t>(i)].parent)
+    down.push_back(static_cast<std::size_t>(i));
+  while (up.size() > 1 && down.size() > 1 && up[up.size() - 2] == down[down.size() - 2]) {
+    up.pop_back();
+    down.pop_back();
+  }
+  up.insert(up.end(), down.rbegin() + 1, down.rend());  // the common ancestor once
+  return up;
+}
+
+TEST(Breakdown, TheStrikesChannelCurrentAndLightAreWhatTheyMean) {
+  // Two seeds, and a strike in one's tree (the nearer's, likely): the channel is its path, the current through a
+  // particle counts the particles whose charge passes it on the way out (to the strike in the
+  // struck tree, to its seed in the other), and the leader lights the strike at 1.
+  BreakdownOptions o;
+  o.eta = 2.0;
+  o.target.kind = TargetKind::plane;
+  o.target.axis = Axis::x;
+  o.target.at = 30.0;
+  DlaOptions walk = walk_of(3000, 6, 2);
+  walk.seeds = {Vec3(-10.0, 0.0, 0.0), Vec3(10.0, 0.0, 0.0)};
+  const Cluster c = breakdown(walk, o, nullptr);
+  ASSERT_GE(c.strike, 0);
+  const auto strike = static_cast<std::size_t>(c.strike);
+  const Attributes a = compute_attributes(c);
+  const std::size_t n = c.particles.size();
+  std::vector<int> flow(n, 0);
+  std::vector<bool> channel(n, false);
+  for (auto i = static_cast<std::int32_t>(strike); i >= 0; i = c.particles[static_cast<std::size_t>(i)].parent)
+    channel[static_cast<std::size_t>(i)] = true;
+  std::vector<int> tree(c.seed_count, 0);
+  for (std::size_t j = 0; j < n; ++j) {
+    ++tree[static_cast<std::size_t>(c.particles[j].seed)];
+    const bool struck_tree = c.particles[j].seed == c.particles[strike].seed;
+    if (struck_tree)
+      for (const std::size_t i : path_to(c, j, strike)) ++flow[i];
+    else
+      for (auto i = static_cast<std::int32_t>(j); i >= 0; i = c.particles[static_cast<std::size_t>(i)].parent) ++flow[static_cast<std::size_t>(i)];
+  }
+  const int largest = *std::max_element(tree.begin(), tree.end());
+  std::size_t on_channel = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_EQ(a.on_channel(i), channel[i]);
+    // Off the channel in the struck tree, the charge of a side branch passes it on its way in.
+    EXPECT_EQ(a.flow(i), flow[i]);
+    EXPECT_FLOAT_EQ(a.current(i), static_cast<float>(flow[i]) / static_cast<float>(largest));
+    on_channel += channel[i];
+  }
+  EXPECT_EQ(a.flow(strike), tree[static_cast<std::size_t>(c.particles[strike].seed)]);
+  EXPECT_GE(on_channel, 10u);  // 20 spacings from the seed to the plane, at least
+  EXPECT_FLOAT_EQ(a.light(c.seed_count), 0.0f);
+  EXPECT_FLOAT_EQ(a.light(strike), 1.0f);
+  for (std::size_t i = c.seed_count + 1; i < n; ++i) EXPECT_LT(a.light(i - 1), a.light(i));
+
+  // The CSV carries them, as the PLY does, and a structure that did not strike does not.
+  const auto dir = std::filesystem::temp_directory_path() / ("dla_breakdown_csv_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  write_csv(c, make_look(c, {}, {}), (dir / "struck.csv").string());
+  std::ifstream csv(dir / "struck.csv");
+  std::string header, row;
+  std::getline(csv, header);
+  EXPECT_EQ(header, "id,x,y,z,parent,seed,radius,age,depth,descendants,order,tip,current,channel,light");
+  std::size_t rows = 0, channel_rows = 0;
+  while (std::getline(csv, row)) {
+    std::vector<std::string> cells;
+    std::stringstream cut(row);
+    for (std::string cell; std::getline(cut, cell, ',');) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), 15u) << row;
+    EXPECT_EQ(std::stof(cells[12]), a.current(rows));
+    EXPECT_EQ(cells[13], channel[rows] ? "1" : "0");
+    channel_rows += cells[13] == "1";
+    ++rows;
+  }
+  EXPECT_EQ(rows, n);
+  EXPECT_EQ(channel_rows, on_channel);
+  Cluster unstruck = c;
+  unstruck.strike = -1;
+  write_csv(unstruck, make_look(unstruck, {}, {}), (dir / "unstruck.csv").string());
+  std::ifstream plain(dir / "unstruck.csv");
+  std::getline(plain, header);
+  EXPECT_EQ(header, "id,x,y,z,parent,seed,radius,age,depth,descendants,order,tip");
+  std::filesystem::remove_all(dir);
 }
 
 TEST(Breakdown, StopsWhenAskedAndKeepsWhatGrew) {

@@ -2,6 +2,7 @@
 // framed, in 3D and in the plane.
 
 #include "dla/models/ballistic.h"
+#include "dla/models/breakdown.h"
 #include "dla/models/drop.h"
 #include "dla/models/eden.h"
 #include "dla/models/dla.h"
@@ -131,6 +132,47 @@ TEST(Render, EveryRadiusModelIsASwitchInTheScene) {
   }
   EXPECT_GT(lit["uniform"], lit["taper"]);
   EXPECT_GT(lit["uniform"], lit["pipe"]);
+}
+
+// The glow look: a discharge gives light on black, as bright as its current: its main channel
+// as bright as the same scene with every branch at full glow, the whole darker, the sky black.
+TEST(Render, AGlowingDischargeIsBrightestOnItsMainChannel) {
+  DlaOptions walk;
+  walk.particles = 5000;
+  walk.rng_seed = 8;
+  BreakdownOptions o;
+  o.eta = 2.0;
+  o.target.kind = TargetKind::plane;
+  o.target.at = -30.0;
+  const Cluster c = breakdown(walk, o, nullptr);
+  ASSERT_GE(c.strike, 0);
+  PovOptions glow;
+  glow.style = PovStyle::glow;
+  LookOptions options;
+  options.radius.model = RadiusModel::pipe;
+  const Look look = make_look(c, options, {});
+  // The picture's summed brightness, and its brightest pixel's.
+  const auto brightness = [&](const ScratchDir& dir) {
+    const Picture image = read_png(dir / "scene.png");
+    EXPECT_EQ(image.at(0, 0), (std::array<int, 3>{0, 0, 0}));
+    std::pair<long long, int> sum_and_most{0, 0};
+    for (std::size_t y = 0; y < image.height; ++y)
+      for (std::size_t x = 0; x < image.width; ++x) {
+        const std::array<int, 3> p = image.at(x, y);
+        sum_and_most.first += p[0] + p[1] + p[2];
+        sum_and_most.second = std::max(sum_and_most.second, p[0] + p[1] + p[2]);
+      }
+    return sum_and_most;
+  };
+  ScratchDir dir;  // one a test: each render is measured before the next
+  expect_framed_render(c, dir, nullptr, glow, &look);
+  EXPECT_NE(read_file(dir / "scene.pov").find("Brightness by current"), std::string::npos);
+  const auto by_current = brightness(dir);
+  expect_framed_render(c, dir, nullptr, glow, &look, set("DLA_GlowFloor", "1"));
+  const auto uniform = brightness(dir);
+  // The channel glows as brightly as every branch does at full glow; the side branches fade.
+  EXPECT_GE(by_current.second, uniform.second * 9 / 10);
+  EXPECT_LT(by_current.first, uniform.first * 4 / 5);
 }
 
 // The blob look (metaballs) renders in frame, and so does DLA_Tip at every tip, a leaf of a

@@ -146,5 +146,28 @@ TEST(Blender, ChecksTheSolidWithItsPrintToolboxAndRendersItAndTheVolume) {
   }
 }
 
+// A discharge's .vdb is a glow: Blender imports it as a volume, and Cycles renders its density
+// as emission on a black sky, the bolt lit and framed.
+TEST(Blender, RendersADischargesVolumeAsAGlow) {
+  DLA_NEED_BLENDER();
+  ScratchDir dir;
+  const testing::CliRun grown = testing::dla3d(
+      dir, "breakdown -n 3000 --eta 2 --target-plane y=-20 --radius pipe --formats vdb,json -q -o bolt");
+  ASSERT_EQ(grown.exit_code, 0) << grown.err;
+  const std::string log =
+      run_in(dir, "blender -b --factory-startup --python-exit-code 1 --python '" TEST_CLIENTS_DIR
+                  "/blender_glow.py' -- bolt.vdb glow.png", "blender.txt");
+  const std::size_t at = log.find("DLA3D ");
+  ASSERT_NE(at, std::string::npos) << log;
+  const std::string line = log.substr(at, log.find('\n', at) - at);
+  EXPECT_NE(line.find("\"density\""), std::string::npos) << line;
+  const testing::Picture picture = testing::read_png(dir / "glow.png");
+  ASSERT_EQ(picture.width, 200u);
+  EXPECT_EQ(picture.at(0, 0), (std::array<int, 3>{0, 0, 0}));  // the sky gives no light
+  const long lit = lit_pixels(picture);
+  EXPECT_GT(lit, static_cast<long>(picture.width * picture.height / 40)) << lit;
+  EXPECT_LT(lit, static_cast<long>(picture.width * picture.height / 2)) << lit;
+}
+
 }  // namespace
 }  // namespace dla

@@ -10,7 +10,9 @@ namespace {
 
 void write(const Cluster& cluster, const Look* look, const std::string& path) {
   detail::OutputFile out(path);
-  out << (look ? "id,x,y,z,parent,seed,radius,age,depth,descendants,order,tip\n" : "id,x,y,z,parent,seed\n");
+  const bool struck = look && !look->attributes.channel.empty();
+  out << (look ? "id,x,y,z,parent,seed,radius,age,depth,descendants,order,tip" : "id,x,y,z,parent,seed")
+      << (struck ? ",current,channel,light\n" : "\n");
   // Ranges of rows formatted at once, appended in order: 4096 rows, about 400 kB.
   write_in_order(out, cluster.particles.size(), 1 << 12, detail::format_threads(), [&](detail::Text& text, std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
@@ -31,6 +33,12 @@ void write(const Cluster& cluster, const Look* look, const std::string& path) {
         text.integer(a.descendants[i]) << ',';
         text.integer(a.strahler(i)) << ',';
         text.integer(a.tip(i) ? 1 : 0);
+        if (struck) {
+          text << ',';
+          text.float_number(a.current(i)) << ',';
+          text.integer(a.on_channel(i) ? 1 : 0) << ',';
+          text.float_number(a.light(i));
+        }
       }
       text << '\n';
     }

@@ -107,6 +107,7 @@ void write_html(const Cluster& cluster, const Look& look, const std::string& pat
   const std::vector<float> radii = look.radii;
   // A byte a particle for each colour attribute; distance only where it means something.
   std::vector<ColorBy> colorings = {ColorBy::age, ColorBy::depth, ColorBy::seed, ColorBy::distance};
+  if (!look.attributes.channel.empty() || look.options.color_by == ColorBy::current) colorings.push_back(ColorBy::current);
   std::vector<std::uint8_t> colors;
   colors.reserve(colorings.size() * n);
   {

@@ -25,13 +25,17 @@ void write_ply(const Cluster& cluster, const Look& look, const std::string& path
   out << "comment radius in scene units, by the " << to_string(look.options.radius.model)
       << " model; order is the Strahler order; tip is 1 for a particle with no child\n";
   // A tree's edges are parent to child; with links, `link` tells them from the links.
-  const bool linked = !cluster.links.empty();
+  const bool linked = !cluster.links.empty(), struck = !a.channel.empty();
+  if (struck)
+    out << "comment a discharge: current is the share of its charge that flows through a particle, channel\n"
+           "comment is 1 on the main channel to the strike, light is when the leader reaches it (strike 1)\n";
   if (linked) out << "comment an edge's link is 0 for the tree's (parent to child), 1 for a link that joins branches\n";
   out << "element vertex ";
   out.integer(static_cast<long long>(ps.size()));
   out << "\nproperty float x\nproperty float y\nproperty float z\nproperty float radius\nproperty float age\n"
          "property int depth\nproperty int descendants\nproperty uchar order\nproperty uchar tip\n"
-         "property int seed\nproperty int parent\n";
+         "property int seed\nproperty int parent\n"
+      << (struck ? "property float current\nproperty uchar channel\nproperty float light\n" : "");
   out << "element edge ";
   out.integer(static_cast<long long>(ps.size() - cluster.seed_count + cluster.links.size()));
   out << "\nproperty int vertex1\nproperty int vertex2\n" << (linked ? "property uchar link\n" : "") << "end_header\n";
@@ -44,6 +48,7 @@ void write_ply(const Cluster& cluster, const Look& look, const std::string& path
       for (int axis = 0; axis < 3; ++axis) text.raw(static_cast<float>(p.position[axis]));
       text.raw(radius).raw(a.age(i)).raw(a.depth[i]).raw(a.descendants[i]);
       text.raw(order).raw(tip).raw(p.seed).raw(p.parent);
+      if (struck) text.raw(a.current(i)).raw(static_cast<std::uint8_t>(a.on_channel(i))).raw(a.light(i));
       return;
     }
     // The floats the properties declare, each as the shortest text that reads back as it.
@@ -55,7 +60,14 @@ void write_ply(const Cluster& cluster, const Look& look, const std::string& path
     text.integer(order) << ' ';
     text.integer(tip) << ' ';
     text.integer(p.seed) << ' ';
-    text.integer(p.parent) << '\n';
+    text.integer(p.parent);
+    if (struck) {
+      text << ' ';
+      text.float_number(a.current(i)) << ' ';
+      text.integer(a.on_channel(i) ? 1 : 0) << ' ';
+      text.float_number(a.light(i));
+    }
+    text << '\n';
   };
   const auto edge = [&](detail::Text& text, std::int32_t a, std::int32_t b, std::uint8_t link) {
     if (binary) {

@@ -141,8 +141,15 @@ void write_mesh(const TriangleMesh& mesh, const SceneFrame& frame, const std::st
   out.commit();
 }
 
-//! Writes the arguments of DLA_R for particle i: its place along its strand, its subtree's
-//! size, and its distances to the mesh and to the seeds as fractions of the largest.
+//! What the scene's branches are painted by: the look's colour, and for the glow, which is
+//! always as bright as some value, the current when the look has none.
+ColorBy painted_by(const Look& look, const PovOptions& options) {
+  const ColorBy by = look.options.color_by;
+  return options.style == PovStyle::glow && by == ColorBy::none ? ColorBy::current : by;
+}
+
+//! Writes the arguments of DLA_R for particle i: its place along its strand, its flow (the
+//! subtree's size, or a discharge's current), and its distances to the mesh and to the seeds as fractions of the largest.
 class RadiusArguments {
  public:
   RadiusArguments(const Cluster& cluster, const Look& look) : cluster_(cluster), attributes_(look.attributes) {}
@@ -151,7 +158,7 @@ class RadiusArguments {
     const Attributes& a = attributes_;
     out << "DLA_R(";
     out.fixed(a.taper(i), 4) << ", ";
-    out.integer(a.descendants[i] + 1) << ", ";
+    out.integer(a.flow(i)) << ", ";
     out.fixed(a.boundary_reach > 0 ? a.boundary_distance[i] / a.boundary_reach : 0.0, 3) << ", ";
     const double seed = a.seed_distance(cluster_.particles[i].position);
     out.fixed(a.seed_reach > 0 ? seed / a.seed_reach : 0.0, 3) << ')';
@@ -174,8 +181,9 @@ void write_geometry(const Cluster& cluster, const SceneFrame& frame, const Look&
                     const std::string& path) {
   const auto& ps = cluster.particles;
   const RadiusArguments radius(cluster, look);
-  const bool colored = look.options.color_by != ColorBy::none;
-  const ColorScale color(cluster, look.attributes, look.options.color_by);
+  const ColorBy by = painted_by(look, options);
+  const bool colored = by != ColorBy::none;
+  const ColorScale color(cluster, look.attributes, by);
   const auto paint = [&](detail::Text& out, std::size_t i) {
     if (!colored) return;
     out << " texture { DLA_Paint(";
@@ -314,8 +322,9 @@ void write_growth(const Cluster& cluster, const SceneFrame& frame, const Look& l
                   const std::string& path) {
   const auto& ps = cluster.particles;
   const Attributes& a = look.attributes;
-  const bool colored = look.options.color_by != ColorBy::none, boundary = a.boundary_reach > 0;
-  const ColorScale color(cluster, a, look.options.color_by);
+  const ColorBy by = painted_by(look, options);
+  const bool colored = by != ColorBy::none, boundary = a.boundary_reach > 0;
+  const ColorScale color(cluster, a, by);
   detail::OutputFile out(path);
   out << "// dla3d " << version << " growth: the tree, from which DLA_Structure is built as it was when a\n"
          "// fraction DLA_Show of the particles had attached. Read by the .pov when DLA_Show < 1.\n"
@@ -532,7 +541,8 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
   }
 
   const double unit = cluster.spacing * frame.scale;  // a spacing in scene units
-  const bool colored = used.options.color_by != ColorBy::none;
+  const ColorBy by = painted_by(used, options);
+  const bool colored = by != ColorBy::none, glow = options.style == PovStyle::glow;
   detail::OutputFile out(prefix + ".pov");
   if (!options.comment.empty()) out << "// " << comment_text(options.comment) << '\n';
   out << "// dla3d " << version << " scene: ";
@@ -559,14 +569,26 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
          "#declare DLA_BaseRadius = ";
   out.number(radius.base_radius * unit, 7) << ";  // the thickest branch\n#declare DLA_TipRadius = ";
   out.number(radius.tip_radius * unit, 7) << ";  // the finest branch\n#declare DLA_PipeExponent = ";
-  out.number(radius.pipe_exponent, 7) << ";  // pipe: 2 keeps the area, about 3 is Murray's law\n"
-         "#declare DLA_Finish = finish { ambient 0.06 diffuse 0.8 specular 0.4 roughness 0.015 }\n"
-         "#declare DLA_Texture = texture {\n"
-         "  pigment { color rgb <0.90, 0.80, 0.62> }\n"
-         "  finish { DLA_Finish }\n"
-         "}\n"
-         "#declare DLA_Background = rgb <0.04, 0.05, 0.07>;\n"
-         "#declare DLA_ShowTips = off;  // on: show DLA_Tip at every "
+  out.number(radius.pipe_exponent, 7) << ";  // pipe: 2 keeps the area, about 3 is Murray's law\n";
+  if (glow)
+    out << "// Glow: the branches give light and take none, DLA_GlowColor * DLA_Glow at their brightest.\n"
+           "#declare DLA_GlowColor = rgb <0.70, 0.80, 1.00>;\n"
+           "#declare DLA_Glow = 1.6;  // the brightest branch's emission\n"
+           "#declare DLA_GlowFloor = 0.12;  // the faintest branch's share of it\n"
+           "#declare DLA_Finish = finish { ambient 0 diffuse 0 emission DLA_Glow }\n"
+           "#declare DLA_Texture = texture {\n"
+           "  pigment { color DLA_GlowColor }\n"
+           "  finish { DLA_Finish }\n"
+           "}\n"
+           "#declare DLA_Background = rgb 0;\n";
+  else
+    out << "#declare DLA_Finish = finish { ambient 0.06 diffuse 0.8 specular 0.4 roughness 0.015 }\n"
+           "#declare DLA_Texture = texture {\n"
+           "  pigment { color rgb <0.90, 0.80, 0.62> }\n"
+           "  finish { DLA_Finish }\n"
+           "}\n"
+           "#declare DLA_Background = rgb <0.04, 0.05, 0.07>;\n";
+  out << "#declare DLA_ShowTips = off;  // on: show DLA_Tip at every "
       << (options.instances.set == InstanceSet::tips ? "tip" : "particle") << " (a small sphere, or your leaf)"
       << (options.tips ? "" : "; needs tips in dla3d's --formats") << "\n"
          "#declare DLA_TipTexture = DLA_Texture;\n";
@@ -580,8 +602,14 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
            "  pigment { color rgbt <0.80, 0.90, 1.0, 0.92> }\n"
            "  finish { ambient 0.04 diffuse 0.12 specular 0.6 roughness 0.004 reflection 0.03 }\n"
            "}\n";
-  if (colored) {
-    out << "// Colour by " << to_string(used.options.color_by) << ": the value in [0, 1] through this map (viridis).\n"
+  if (colored && glow) {
+    out << "// Brightness by " << to_string(by) << ": the value in [0, 1] scales the glow.\n"
+           "#macro DLA_Paint(V)\n"
+           "  pigment { color DLA_GlowColor * (DLA_GlowFloor + (1 - DLA_GlowFloor) * min(max(V, 0), 1)) }\n"
+           "  finish { DLA_Finish }\n"
+           "#end\n";
+  } else if (colored) {
+    out << "// Colour by " << to_string(by) << ": the value in [0, 1] through this map (viridis).\n"
            "#declare DLA_Colors = array[" << std::to_string(kColorStops.size()) << "] {\n";
     for (std::size_t k = 0; k < kColorStops.size(); ++k) {
       out << "  <";

@@ -44,6 +44,11 @@ void validate(const BreakdownOptions& o, const DlaOptions& walk) {
   }
   if (walk.dimensions == 2 && t.kind == TargetKind::point && t.point.z() != 0.0)
     throw InvalidInput("`target_point` is off the plane z = 0 of 2D growth");
+  if (t.kind == TargetKind::mesh) {
+    if (!t.mesh || t.mesh->triangles.empty()) throw InvalidInput("`target_mesh` has no triangles");
+    if (walk.dimensions == 2)
+      throw InvalidInput("`target_mesh` is for 3D growth; in 2D give `target_point` or `target_plane` (a line)");
+  }
   const detail::Electrode electrode(t, detail::seeded(walk.seeds, walk.spacing, walk.dimensions).center, walk.spacing,
                                     walk.dimensions);
   for (std::size_t i = 0; i < walk.seeds.size(); ++i) {
@@ -272,6 +277,8 @@ class Discharge {
   void finish_stats(const Cluster& cluster) {
     stats_.absorbed = stats_.walk.absorbed;
     stats_.strike = cluster.strike;
+    stats_.channel = 0;
+    for (std::int32_t i = cluster.strike; i >= 0; i = cluster.particles[static_cast<std::size_t>(i)].parent) ++stats_.channel;
   }
 
   struct Site {

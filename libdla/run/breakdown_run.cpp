@@ -5,6 +5,10 @@
 
 #include "dla/models/breakdown.h"
 #include "dla/models/electrode.h"
+#include "dla/mesh/inside_test.h"
+#include "dla/mesh/mesh_repair.h"
+
+#include <algorithm>
 
 namespace dla {
 
@@ -12,7 +16,13 @@ void validate(const BreakdownRunOptions& o) {
   // Before DLA's checks, which would ask a fill for a mesh.
   if (o.growth.fill != 0.0) refuse_for("breakdown", "fill");
   validate(static_cast<const DlaRunOptions&>(o));
-  // The seeds against the target wait for the mesh when it places them.
+  if (!o.target_mesh.empty() && o.breakdown.target.kind != TargetKind::none)
+    throw InvalidInput("`target_mesh` and `target_" + std::string(to_string(o.breakdown.target.kind)) +
+                       "` are two targets: give one");
+  if (!o.target_mesh.empty() && o.growth.dimensions == 2)
+    throw InvalidInput("`target_mesh` is for 3D growth; in 2D give `target_point` or `target_plane` (a line)");
+  // The seeds against the target wait for the mesh when it places them, and for the target's
+  // mesh when it is read.
   BreakdownOptions own = o.breakdown;
   if (o.has_mesh() && !o.seed_at) own.target = {};
   validate(own, walk_options(o));
@@ -25,12 +35,32 @@ namespace {
 class BreakdownRun : public DlaRun {
  public:
   BreakdownRun(const BreakdownRunOptions& o, const MeshReader& read)
-      : DlaRun(o, read, Resumed{}), breakdown_(o.breakdown) {
+      : DlaRun(o, read, Resumed{}), breakdown_(o.breakdown), target_mesh_name_(o.target_mesh) {
+    if (!o.target_mesh.empty()) {
+      read_target(read);
+      // The scene shows the target beside the insulator, to see where the bolt goes.
+      if (o.scene_mesh) {
+        scene_mesh_ = with_entering(scene_mesh ? *scene_mesh : TriangleMesh{}, {target_mesh_});
+        scene_mesh = &scene_mesh_;
+      }
+    }
     validate(breakdown_, options_);
     const Target& target = breakdown_.target;
     if (constraint_ && target.kind == TargetKind::point && !constraint_->on_growth_side(target.point))
       throw InvalidInput("`target_point` is not on the growing side of " + mesh_name_ +
                          ": it lies in the insulator, and no walker can leave it");
+    if (constraint_ && target.kind == TargetKind::mesh &&
+        std::none_of(target_mesh_.vertices.begin(), target_mesh_.vertices.end(),
+                     [&](const Vec3& v) { return constraint_->on_growth_side(v); }))
+      throw InvalidInput("`target_mesh` " + target_mesh_name_ + " is not on the growing side of " + mesh_name_ +
+                         ": it lies in the insulator, and no walker can leave it");
+    if (target.kind == TargetKind::mesh && target_repair_.closed) {
+      const InsideTest inside(target_mesh_, options_.spacing, options_.spacing);
+      for (std::size_t i = 0; i < options_.seeds.size(); ++i)
+        if (inside.contains(options_.seeds[i]))
+          throw InvalidInput("seed " + std::to_string(i + 1) + " is inside `target_mesh` " + target_mesh_name_ +
+                             ": the electrodes must be apart");
+    }
     // A strike ends growth before the count: no count is promised.
     if (target.kind != TargetKind::none && breakdown_.stop_at_strike) solid_forecast.particles = 0;
   }
@@ -71,6 +101,11 @@ class BreakdownRun : public DlaRun {
       if (b.target.kind == TargetKind::point) w.point("target_point", b.target.point);
       if (b.target.kind == TargetKind::plane)
         w.text("target_plane_axis", to_string(b.target.axis)).number("target_plane_at", b.target.at);
+      if (b.target.kind == TargetKind::mesh)
+        w.text("target_mesh", target_mesh_name_)
+            .count("target_triangles", target_mesh_.triangles.size())
+            .text("target_repair", target_repair_.summary())
+            .flag("target_closed", target_repair_.closed);
       if (b.target.kind != TargetKind::none) w.flag("stop_at_strike", b.stop_at_strike);
     };
     out.statistics = [this](RecordWriter& w) {
@@ -81,15 +116,34 @@ class BreakdownRun : public DlaRun {
                    {"returns", s.returns}, {"relaunches", s.relaunches}, {"absorbed", s.absorbed}, {"lost", s.lost},
                    {"rejected", s.rejected}, {"clipped", s.clipped}})
           .close();
-      w.open("discharge").count("sites_weighed", stats_.sites).integer("strike", stats_.strike).close();
+      w.open("discharge")
+          .count("sites_weighed", stats_.sites)
+          .integer("strike", stats_.strike)
+          .count("channel", stats_.channel)
+          .close();
     };
     out.timings = [this](RecordWriter& w) { w.integer("threads", options_.threads); };
     return out;
   }
 
  private:
+  //! The target's mesh, repaired as the constraint's is, becomes the target.
+  void read_target(const MeshReader& read) {
+    try {
+      target_mesh_ = repair_mesh(read(target_mesh_name_, nullptr), {}, &target_repair_);
+    } catch (const InvalidInput& e) {
+      throw InvalidInput("`target_mesh` " + std::string(e.what()));
+    }
+    breakdown_.target = {};
+    breakdown_.target.kind = TargetKind::mesh;
+    breakdown_.target.mesh = &target_mesh_;
+  }
+
   BreakdownOptions breakdown_;
   BreakdownStats stats_;
+  std::string target_mesh_name_;
+  TriangleMesh target_mesh_;
+  RepairReport target_repair_;
 };
 
 }  // namespace

@@ -142,7 +142,10 @@ void require_input_files(const RunOptions& options) {
     for (const std::string& path : seeds.meshes) files.emplace_back(&path, "seed_mesh");
   };
   const DlaRunOptions* dla = std::get_if<DlaRunOptions>(&options);
-  if (const auto* o = std::get_if<BreakdownRunOptions>(&options)) dla = o;
+  if (const auto* o = std::get_if<BreakdownRunOptions>(&options)) {
+    dla = o;
+    files.emplace_back(&o->target_mesh, "target_mesh");
+  }
   if (const auto* o = dla) {
     files.emplace_back(&o->stl, "stl");
     if (o->text) files.emplace_back(&o->text->font, "font");

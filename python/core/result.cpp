@@ -65,11 +65,21 @@ void bind_result(py::module_& m) {
   attribute("order", [](const Attributes& a, std::size_t i) { return static_cast<std::uint8_t>(a.strahler(i)); },
             "(N,) uint8: Strahler order, tips 1");
   attribute("tip", [](const Attributes& a, std::size_t i) { return a.tip(i); }, "(N,) bool: no child");
+  attribute("current", [](const Attributes& a, std::size_t i) { return a.current(i); },
+            "(N,) float32: the share of the largest tree's charge that flows through it, 1 at a discharge's "
+            "strike; its subtree's particles when nothing struck");
+  attribute("channel", [](const Attributes& a, std::size_t i) { return a.on_channel(i); },
+            "(N,) bool: on a discharge's main channel, from the seed to the strike");
+  attribute("light", [](const Attributes& a, std::size_t i) { return a.light(i); },
+            "(N,) float32: when the leader reaches it, 0 to 1 at the strike (past 1 after it); the age "
+            "when nothing struck");
   result
       .def_property_readonly("radius", [](Result& r) {
         const Look& look = r.look_for_python();
         return per_particle<float>(r, [&](std::size_t i) { return static_cast<float>(look.radius(r.cluster, i)); });
       }, "(N,) float32: the branch radius of the look, in scene units")
+      .def_property_readonly("strike", [](const Result& r) { return r.cluster.strike; },
+                             "the breakdown model's strike: the particle that reached the target; -1: none")
       .def_property_readonly("seed_count", [](const Result& r) { return r.cluster.seed_count; })
       .def_property_readonly("spacing", [](const Result& r) { return r.cluster.spacing; })
       .def_property_readonly("dimensions", [](const Result& r) { return r.cluster.dimensions; })

@@ -253,6 +253,7 @@ Table<BreakdownRunOptions> breakdown_table() {
     o.breakdown.target.axis = word("target_plane", v[py::int_(0)], parse_axis);
     o.breakdown.target.at = number("target_plane", v[py::int_(1)]);
   };
+  t["target_mesh"] = [](O& o, py::handle v, Given& g) { o.target_mesh = mesh("target_mesh", v, g); };
   t["stop_at_strike"] = [](O& o, py::handle v, Given&) { o.breakdown.stop_at_strike = flag("stop_at_strike", v); };
   return t;
 }

@@ -26,7 +26,7 @@ _WRITE_ONLY = {"output", "o", "formats", "quiet", "q"}
 # The command line's own: from Python a stopped run returns what grew, and help is help().
 _CLI_ONLY = {"checkpoint", "checkpoint_every", "resume", "help", "h", "version"}
 # Options that name a mesh file, and may be given (V, 3) vertices and (F, 3) faces instead.
-_MESH_OPTIONS = {"stl", "mesh", "collide", "seed_mesh"}
+_MESH_OPTIONS = {"stl", "mesh", "collide", "seed_mesh", "target_mesh"}
 # Flags that are on unless turned off: False is --no-FLAG on the command line.
 _ON_BY_DEFAULT = {"scene_mesh", "stop_at_strike"}
 

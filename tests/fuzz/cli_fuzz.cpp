@@ -50,7 +50,7 @@ bool make_small(dla::RunOptions& run) {
     return !far_apart(o->seed_at.value_or(o->growth.seeds), o->spacing.value_or(o->growth.spacing));
   }
   if (auto* o = std::get_if<dla::BreakdownRunOptions>(&run)) {
-    if (o->has_mesh()) return false;
+    if (o->has_mesh() || !o->target_mesh.empty()) return false;
     o->particles = std::min<std::size_t>(o->particles.value_or(o->growth.particles), 16);
     o->growth.threads = std::min(o->growth.threads, 2);
     const double spacing = o->spacing.value_or(o->growth.spacing);

@@ -2,7 +2,8 @@
 //! \file csv_writer.h
 //! Particles as CSV, one row per particle in attach order, coordinates in the shortest form
 //! that reads back to the same double: `id,x,y,z,parent,seed`, and with a look also
-//! `radius,age,depth,descendants,order,tip` (as in the PLY). A structure with links also gets
+//! `radius,age,depth,descendants,order,tip` (as in the PLY), and for a discharge that struck
+//! `current,channel,light` (attributes.h). A structure with links also gets
 //! PREFIX_links.csv beside PREFIX.csv: `a,b`, a row a link, `b` the later particle.
 
 #include "dla/look/look.h"

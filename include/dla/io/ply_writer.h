@@ -1,7 +1,8 @@
 #pragma once
 //! \file ply_writer.h
 //! Particles and branches as a PLY: vertices with their radius and attributes
-//! (x y z radius age depth descendants order tip seed parent) and edges (parent to child, as
+//! (x y z radius age depth descendants order tip seed parent, and for a discharge that struck
+//! current channel light) and edges (parent to child, as
 //! `vertex1 vertex2`), which Blender, Houdini and MeshLab import; and instancing points as
 //! PREFIX_tips.ply. See docs/formats.md.
 

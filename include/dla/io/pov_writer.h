@@ -15,16 +15,25 @@
 
 namespace dla {
 
-//! What the structure is made of in the scene (`--look branches|blob`).
+//! What the structure is made of in the scene, and how it is lit (`--look branches|blob|glow`).
 enum class PovStyle {
   branches,  //!< a sphere_sweep along each strand
   blob,      //!< metaballs: a blob of one sphere per particle (the thesis' "uncanny growth")
+  glow,      //!< the branches, emissive on black, as bright as the colour value (a discharge's
+             //!< current unless `color_by` says otherwise)
 };
 
-inline std::string_view to_string(PovStyle style) { return style == PovStyle::branches ? "branches" : "blob"; }
+inline std::string_view to_string(PovStyle style) {
+  switch (style) {
+    case PovStyle::branches: return "branches";
+    case PovStyle::blob: return "blob";
+    case PovStyle::glow: return "glow";
+  }
+  return "?";
+}
 
 inline PovStyle parse_pov_style(std::string_view word) {
-  constexpr PovStyle values[] = {PovStyle::branches, PovStyle::blob};
+  constexpr PovStyle values[] = {PovStyle::branches, PovStyle::blob, PovStyle::glow};
   return detail::parse_word(word, values, "look");
 }
 

@@ -83,6 +83,11 @@ struct Attributes {
   //! rounded down (infinity for a lone tip). Unit-radius copies scaled by it never overlap:
   //! the instancing points' scale (instances.h). Empty unless AttributeOptions::tip_gaps.
   std::vector<float> tip_gaps;
+  //! A discharge's main channel (breakdown.h): the particles on the path from the struck tree's
+  //! seed to Cluster::strike, in attach order (a parent comes before its child); empty when
+  //! nothing struck.
+  std::vector<std::int32_t> channel;
+  std::int32_t largest_tree = 1;           //!< the particles of the largest tree: flow's scale
   PointDistance seed_points;               //!< the seeds (or AttributeOptions::points)
   double seed_reach = 0.0;                 //!< the largest distance of a particle to them
   double boundary_reach = 0.0;             //!< the largest boundary_distance, 0 without a mesh
@@ -104,6 +109,35 @@ struct Attributes {
   bool continues_strand(std::size_t i) const { return (shape[i] & kContinuesBit) != 0; }
   //! 1 at its strand's start, falling to 0 at its tip.
   double taper(std::size_t i) const { return strand_place[i] / kPlaceSteps; }
+  //! Whether particle i is on a discharge's main channel.
+  bool on_channel(std::size_t i) const {
+    return std::binary_search(channel.begin(), channel.end(), static_cast<std::int32_t>(i));
+  }
+  //! The particles whose charge flows through particle i, itself among them: its subtree, which
+  //! drains towards its seed as the pipe model's sap does. On a main channel the struck tree's
+  //! charge flows to the strike instead, so there it is every particle of the tree but those
+  //! past i along the channel: the current grows towards the strike, which carries it all.
+  std::int32_t flow(std::size_t i) const {
+    if (!channel.empty()) {
+      const auto at = std::lower_bound(channel.begin(), channel.end(), static_cast<std::int32_t>(i));
+      if (at != channel.end() && *at == static_cast<std::int32_t>(i)) {
+        const std::int32_t tree = descendants[static_cast<std::size_t>(channel.front())] + 1;
+        return at + 1 == channel.end() ? tree : tree - descendants[static_cast<std::size_t>(at[1])] - 1;
+      }
+    }
+    return descendants[i] + 1;
+  }
+  //! flow(i) as a fraction of the largest tree: 1 at the strike (or the largest seed).
+  float current(std::size_t i) const { return static_cast<float>(flow(i)) / static_cast<float>(largest_tree); }
+  //! When the leader reaches particle i, in attach order: 0 at the seeds and the first particle,
+  //! 1 at the strike (the return stroke), past 1 for what grew after it; age(i) without a strike.
+  float light(std::size_t i) const {
+    if (channel.empty()) return age(i);
+    const auto strike = static_cast<std::size_t>(channel.back());
+    if (i < seed_count) return 0.0f;
+    const double span = strike > seed_count ? static_cast<double>(strike - seed_count) : 1.0;
+    return static_cast<float>(static_cast<double>(i - seed_count) / span);
+  }
   //! The distance from a particle at `position` to the nearest seed (or given point).
   double seed_distance(const Vec3& position) const { return seed_points(position); }
 };
@@ -197,6 +231,12 @@ inline Attributes compute_attributes(const Cluster& cluster, const AttributeOpti
   }
   a.depth.resize(n);
   for (std::size_t i = 0; i < n; ++i) a.depth[i] = ps[i].parent < 0 ? 0 : a.depth[parent_of(i)] + 1;
+  for (std::size_t i = 0; i < n; ++i)
+    if (ps[i].parent < 0) a.largest_tree = std::max(a.largest_tree, a.descendants[i] + 1);
+  if (cluster.strike >= 0 && static_cast<std::size_t>(cluster.strike) < n) {
+    for (std::int32_t i = cluster.strike; i >= 0; i = ps[static_cast<std::size_t>(i)].parent) a.channel.push_back(i);
+    std::reverse(a.channel.begin(), a.channel.end());
+  }
 
   std::vector<Vec3> seeds;
   if (options.points) seeds = *options.points;

@@ -1,6 +1,6 @@
 #pragma once
 //! \file color_map.h
-//! Colour by attribute (`--color-by none|age|depth|seed|distance`): one value in [0, 1] per
+//! Colour by attribute (`--color-by none|age|depth|seed|distance|current`): one value in [0, 1] per
 //! particle, and one colour map for every file that carries colour (glTF, OBJ, POV-Ray).
 
 #include "dla/look/attributes.h"
@@ -18,6 +18,8 @@ enum class ColorBy {
   depth,     //!< path length to the seed
   seed,      //!< which tree: a colour each
   distance,  //!< distance to the mesh's surface, or to the seeds without a mesh
+  current,   //!< the charge that flows through it (Attributes::current): a discharge's main
+             //!< channel brightest, fading along the side branches
 };
 
 inline std::string_view to_string(ColorBy by) {
@@ -27,12 +29,14 @@ inline std::string_view to_string(ColorBy by) {
     case ColorBy::depth: return "depth";
     case ColorBy::seed: return "seed";
     case ColorBy::distance: return "distance";
+    case ColorBy::current: return "current";
   }
   return "?";
 }
 
 inline ColorBy parse_color_by(std::string_view word) {
-  constexpr ColorBy values[] = {ColorBy::none, ColorBy::age, ColorBy::depth, ColorBy::seed, ColorBy::distance};
+  constexpr ColorBy values[] = {ColorBy::none, ColorBy::age, ColorBy::depth, ColorBy::seed, ColorBy::distance,
+                                ColorBy::current};
   return detail::parse_word(word, values, "colour attribute");
 }
 
@@ -53,6 +57,8 @@ class ColorScale {
       // The golden ratio spreads tree after tree around the map.
       case ColorBy::seed: return std::fmod(0.15 + 0.618034 * cluster_->particles[i].seed, 1.0);
       case ColorBy::distance: return reach_ > 0 ? distance(i) / reach_ : 0.0;
+      // The square root: a side branch of a hundredth of the current still shows, at a tenth.
+      case ColorBy::current: return std::sqrt(attributes_->current(i));
     }
     return 0.0;
   }

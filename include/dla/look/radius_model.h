@@ -15,7 +15,8 @@ namespace dla {
 
 enum class RadiusModel {
   taper,          //!< base at each strand's start, tip at its end (Bourke)
-  pipe,           //!< the pipe model: tip · (descendants + 1)^(1/e), up to base (da Vinci, Murray)
+  pipe,           //!< the pipe model: tip · flow^(1/e), up to base (da Vinci, Murray); the flow
+                  //!< is the subtree's particles, or a discharge's current (Attributes::flow)
   boundary,       //!< thick far from the mesh's surface, fine near it (the thesis' wire fill)
   seed_distance,  //!< thick at the seeds, finer the farther from them
   uniform,        //!< the base radius everywhere
@@ -63,10 +64,10 @@ inline double radius_fraction(const RadiusOptions& options, const Cluster& clust
   switch (options.model) {
     case RadiusModel::taper: return a.taper(i);
     case RadiusModel::pipe: {
-      // tip · (d + 1)^(1/e), capped at the base, as a fraction of the range.
+      // tip · flow^(1/e), capped at the base, as a fraction of the range.
       const double range = options.base_radius - options.tip_radius;
       if (range <= 0.0) return 1.0;
-      const double r = options.tip_radius * std::pow(a.descendants[i] + 1.0, 1.0 / options.pipe_exponent);
+      const double r = options.tip_radius * std::pow(static_cast<double>(a.flow(i)), 1.0 / options.pipe_exponent);
       return std::min(1.0, (r - options.tip_radius) / range);
     }
     case RadiusModel::boundary: return a.boundary_reach > 0.0 ? a.boundary_distance[i] / a.boundary_reach : 1.0;

@@ -19,6 +19,7 @@
 #include "dla/core/errors.h"
 #include "dla/core/options.h"
 #include "dla/mesh/constraint.h"
+#include "dla/mesh/mesh.h"
 #include "dla/models/walk.h"
 
 #include <cstdint>
@@ -27,11 +28,12 @@
 
 namespace dla {
 
-//! The electrode at the other potential (`target_point`, `target_plane`).
+//! The electrode at the other potential (`target_point`, `target_plane`, `target_mesh`).
 enum class TargetKind {
   none,   //!< space far away: walkers come from a sphere around the structure, as DLA's
   point,  //!< a small ball at `target.point`, half a spacing across
   plane,  //!< the plane `target.axis` = `target.at` (a line in 2D): the ground
+  mesh,   //!< the surface of `target.mesh` (a lightning rod, a second object), in 3D
 };
 
 std::string_view to_string(TargetKind kind);
@@ -41,6 +43,9 @@ struct Target {
   Vec3 point = Vec3::Zero();  //!< point: its centre
   Axis axis = Axis::y;        //!< plane: the axis across it (x or y in 2D)
   double at = 0.0;            //!< plane: where it crosses the axis, scene units
+  //! mesh: the electrode's triangles, repaired (mesh_repair.h), closed or open; it must outlive
+  //! growth. A closed mesh sends walkers from its outside, an open one from both faces.
+  const TriangleMesh* mesh = nullptr;
 };
 
 //! Options of the breakdown model beside the walk's (DlaOptions). Lengths are in scene units.
@@ -70,6 +75,7 @@ struct BreakdownStats {
   WalkStats walk;                 //!< every walker's steps, contacts and relaunches
   std::uint64_t absorbed = 0;     //!< walkers that came back to the target and started again
   std::int32_t strike = -1;       //!< the first particle within a spacing of the target; -1: none
+  std::uint64_t channel = 0;      //!< particles on the main channel, the seed to the strike; 0: none
   std::uint64_t sites = 0;        //!< growth sites weighed, summed over the attachments
   //! Where each particle goes as it attaches, seeds first (walk.h's DlaStats::feed); null: nowhere.
   ParticleFeed* feed = nullptr;
@@ -94,6 +100,7 @@ inline std::string_view to_string(TargetKind kind) {
     case TargetKind::none: return "none";
     case TargetKind::point: return "point";
     case TargetKind::plane: return "plane";
+    case TargetKind::mesh: return "mesh";
   }
   return "?";
 }

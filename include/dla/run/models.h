@@ -135,6 +135,9 @@ struct BallisticRunOptions {
 //! when there is no target) but `fill`, `drift`, `rotate`, `index` and checkpoints.
 struct BreakdownRunOptions : DlaRunOptions {
   BreakdownOptions breakdown;
+  //! The target electrode's mesh file (STL, OBJ, PLY, OFF), read and repaired as `stl` is:
+  //! `breakdown.target` becomes that mesh. Empty: the target is `breakdown.target`'s.
+  std::string target_mesh;
 };
 
 //! The roots a colonize run grows from: its `root_at` points; or `root_count` on the sphere
