@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <string>
@@ -163,7 +165,8 @@ TEST(Blender, RendersADischargesVolumeAsAGlow) {
   EXPECT_NE(line.find("\"density\""), std::string::npos) << line;
   const testing::Picture picture = testing::read_png(dir / "glow.png");
   ASSERT_EQ(picture.width, 200u);
-  EXPECT_EQ(picture.at(0, 0), (std::array<int, 3>{0, 0, 0}));  // the sky gives no light
+  const std::array<int, 3> sky = picture.at(0, 0);
+  EXPECT_LE(std::max({sky[0], sky[1], sky[2]}), 4);  // black, but for the view transform's floor
   const long lit = lit_pixels(picture);
   EXPECT_GT(lit, static_cast<long>(picture.width * picture.height / 40)) << lit;
   EXPECT_LT(lit, static_cast<long>(picture.width * picture.height / 2)) << lit;

@@ -124,7 +124,9 @@ def test_arrays_are_the_clis_csv_for_the_same_seed(model, options, cli, tmp_path
     words = result.command.split()[1:]
     cli(*words, "-q", "--formats", "csv", "-o", str(tmp_path / "cli"))
     table = np.loadtxt(tmp_path / "cli.csv", delimiter=",", skiprows=1)
-    assert open(tmp_path / "cli.csv").readline().strip() == COLUMNS
+    # A discharge that struck its target has its current, channel and light besides.
+    struck = result.strike >= 0
+    assert open(tmp_path / "cli.csv").readline().strip() == COLUMNS + (",current,channel,light" if struck else "")
     assert len(table) == len(result)
     np.testing.assert_array_equal(table[:, 1:4], result.positions)
     np.testing.assert_array_equal(table[:, 4], result.parent)
@@ -135,6 +137,13 @@ def test_arrays_are_the_clis_csv_for_the_same_seed(model, options, cli, tmp_path
     np.testing.assert_array_equal(table[:, 9], result.descendants)
     np.testing.assert_array_equal(table[:, 10], result.order)
     np.testing.assert_array_equal(table[:, 11], result.tip)
+    if struck:
+        np.testing.assert_array_equal(table[:, 12].astype(np.float32), result.current)
+        np.testing.assert_array_equal(table[:, 13], result.channel)
+        np.testing.assert_array_equal(table[:, 14].astype(np.float32), result.light)
+        assert result.channel[result.strike] and result.current[result.strike] == 1 and result.light[result.strike] == 1
+    else:
+        assert not result.channel.any() and (result.light == result.age).all()
     # The links, and the CLI's PREFIX_links.csv.
     assert result.links.dtype == np.int32 and result.links.shape == (len(result.links), 2)
     looped = "links" in options or "venation" in options
