@@ -131,11 +131,14 @@ TEST(Breakdown, GoesOnPastTheStrikeWhenAsked) {
 TEST(Breakdown, AMeshTargetIsStruckOnItsSurface) {
   // A rod below the seed, closed (a box) and open (a can, walkers leave both its faces): the
   // strike is the first particle within a spacing of its surface.
-  const TriangleMesh box = make_box(Vec3(-1.5, -40.0, -1.5), Vec3(1.5, -18.0, 1.5));
-  const TriangleMesh can = make_open_can(Vec3(0.0, 0.0, -40.0), 1.5, 22.0, 24);  // about z, open at the top
-  for (const TriangleMesh* rod : {&box, &can}) {
+  ConstraintOptions outside, both;
+  outside.side = Side::outside;
+  both.side = Side::both;
+  const MeshConstraint box(make_box(Vec3(-1.5, -40.0, -1.5), Vec3(1.5, -18.0, 1.5)), outside, 1.0);
+  const MeshConstraint can(make_open_can(Vec3(0.0, 0.0, -40.0), 1.5, 22.0, 24), both, 1.0);  // about z, open at the top
+  for (const MeshConstraint* rod : {&box, &can}) {
     SCOPED_TRACE(rod == &box ? "box" : "can");
-    const SurfaceDistance surface(*rod);
+    const SurfaceDistance surface(rod->mesh());
     BreakdownOptions o;
     o.eta = 2.0;
     o.target.kind = TargetKind::mesh;
@@ -149,18 +152,20 @@ TEST(Breakdown, AMeshTargetIsStruckOnItsSurface) {
     for (std::size_t i = 0; i + 1 < c.particles.size(); ++i) EXPECT_GT(surface.distance(c.particles[i].position), 1.0) << i;
     EXPECT_GT(stats.walk.absorbed, 0u);  // walkers that came straight back started again
   }
-  // One line for a mesh target in 2D, and for a seed on it.
+  // One line for a mesh target in 2D, and for a seed on it or inside it.
   BreakdownOptions o;
   o.target.kind = TargetKind::mesh;
   o.target.mesh = &box;
   EXPECT_THROW(breakdown(walk_of(10, 1, 2), o, nullptr), InvalidInput);
-  DlaOptions touching = walk_of(10);
-  touching.seeds = {Vec3(0.0, -17.5, 0.0)};
-  try {
-    breakdown(touching, o, nullptr);
-    ADD_FAILURE() << "a seed on the target grew";
-  } catch (const InvalidInput& e) {
-    EXPECT_NE(std::string(e.what()).find("electrodes must be apart"), std::string::npos) << e.what();
+  for (const Vec3& seed : {Vec3(0.0, -17.5, 0.0), Vec3(0.0, -29.0, 0.0)}) {
+    DlaOptions touching = walk_of(10);
+    touching.seeds = {seed};
+    try {
+      breakdown(touching, o, nullptr);
+      ADD_FAILURE() << "a seed on or in the target grew";
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find("electrodes must be apart"), std::string::npos) << e.what();
+    }
   }
 }
 

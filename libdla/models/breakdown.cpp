@@ -45,7 +45,7 @@ void validate(const BreakdownOptions& o, const DlaOptions& walk) {
   if (walk.dimensions == 2 && t.kind == TargetKind::point && t.point.z() != 0.0)
     throw InvalidInput("`target_point` is off the plane z = 0 of 2D growth");
   if (t.kind == TargetKind::mesh) {
-    if (!t.mesh || t.mesh->triangles.empty()) throw InvalidInput("`target_mesh` has no triangles");
+    if (!t.mesh) throw InvalidInput("`target_mesh` is missing: the target is a mesh, but none is given");
     if (walk.dimensions == 2)
       throw InvalidInput("`target_mesh` is for 3D growth; in 2D give `target_point` or `target_plane` (a line)");
   }
@@ -56,6 +56,8 @@ void validate(const BreakdownOptions& o, const DlaOptions& walk) {
     if (d <= walk.spacing)
       throw InvalidInput("seed " + std::to_string(i + 1) + (d < 0.0 ? " is beyond" : " touches") +
                          " the target (within a spacing of it): the electrodes must be apart");
+    if (t.kind == TargetKind::mesh && !t.mesh->on_growth_side(walk.seeds[i]))
+      throw InvalidInput("seed " + std::to_string(i + 1) + " is inside the target: the electrodes must be apart");
   }
 }
 

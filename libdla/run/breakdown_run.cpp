@@ -5,10 +5,10 @@
 
 #include "dla/models/breakdown.h"
 #include "dla/models/electrode.h"
-#include "dla/mesh/inside_test.h"
 #include "dla/mesh/mesh_repair.h"
 
 #include <algorithm>
+#include <memory>
 
 namespace dla {
 
@@ -40,7 +40,7 @@ class BreakdownRun : public DlaRun {
       read_target(read);
       // The scene shows the target beside the insulator, to see where the bolt goes.
       if (o.scene_mesh) {
-        scene_mesh_ = with_entering(scene_mesh ? *scene_mesh : TriangleMesh{}, {target_mesh_});
+        scene_mesh_ = with_entering(scene_mesh ? *scene_mesh : TriangleMesh{}, {target_->mesh()});
         scene_mesh = &scene_mesh_;
       }
     }
@@ -50,17 +50,10 @@ class BreakdownRun : public DlaRun {
       throw InvalidInput("`target_point` is not on the growing side of " + mesh_name_ +
                          ": it lies in the insulator, and no walker can leave it");
     if (constraint_ && target.kind == TargetKind::mesh &&
-        std::none_of(target_mesh_.vertices.begin(), target_mesh_.vertices.end(),
+        std::none_of(target_->mesh().vertices.begin(), target_->mesh().vertices.end(),
                      [&](const Vec3& v) { return constraint_->on_growth_side(v); }))
       throw InvalidInput("`target_mesh` " + target_mesh_name_ + " is not on the growing side of " + mesh_name_ +
                          ": it lies in the insulator, and no walker can leave it");
-    if (target.kind == TargetKind::mesh && target_repair_.closed) {
-      const InsideTest inside(target_mesh_, options_.spacing, options_.spacing);
-      for (std::size_t i = 0; i < options_.seeds.size(); ++i)
-        if (inside.contains(options_.seeds[i]))
-          throw InvalidInput("seed " + std::to_string(i + 1) + " is inside `target_mesh` " + target_mesh_name_ +
-                             ": the electrodes must be apart");
-    }
     // A strike ends growth before the count: no count is promised.
     if (target.kind != TargetKind::none && breakdown_.stop_at_strike) solid_forecast.particles = 0;
   }
@@ -103,7 +96,7 @@ class BreakdownRun : public DlaRun {
         w.text("target_plane_axis", to_string(b.target.axis)).number("target_plane_at", b.target.at);
       if (b.target.kind == TargetKind::mesh)
         w.text("target_mesh", target_mesh_name_)
-            .count("target_triangles", target_mesh_.triangles.size())
+            .count("target_triangles", target_->mesh().triangles.size())
             .text("target_repair", target_repair_.summary())
             .flag("target_closed", target_repair_.closed);
       if (b.target.kind != TargetKind::none) w.flag("stop_at_strike", b.stop_at_strike);
@@ -127,23 +120,27 @@ class BreakdownRun : public DlaRun {
   }
 
  private:
-  //! The target's mesh, repaired as the constraint's is, becomes the target.
+  //! The target's mesh, repaired as the constraint's is, becomes the target: walkers leave a
+  //! closed one from outside, one that stays open from both faces.
   void read_target(const MeshReader& read) {
     try {
-      target_mesh_ = repair_mesh(read(target_mesh_name_, nullptr), {}, &target_repair_);
+      const TriangleMesh repaired = repair_mesh(read(target_mesh_name_, nullptr), {}, &target_repair_);
+      ConstraintOptions side;
+      side.side = target_repair_.closed ? Side::outside : Side::both;
+      target_ = std::make_unique<MeshConstraint>(repaired, side, options_.spacing);
     } catch (const InvalidInput& e) {
       throw InvalidInput("`target_mesh` " + std::string(e.what()));
     }
     breakdown_.target = {};
     breakdown_.target.kind = TargetKind::mesh;
-    breakdown_.target.mesh = &target_mesh_;
+    breakdown_.target.mesh = target_.get();
   }
 
   BreakdownOptions breakdown_;
   BreakdownStats stats_;
   std::string target_mesh_name_;
-  TriangleMesh target_mesh_;
-  RepairReport target_repair_;
+  std::unique_ptr<const MeshConstraint> target_;
+  RepairReport target_repair_;  // of the file as read: the constraint's own finds nothing to repair
 };
 
 }  // namespace

@@ -19,7 +19,6 @@
 #include "dla/core/errors.h"
 #include "dla/core/options.h"
 #include "dla/mesh/constraint.h"
-#include "dla/mesh/mesh.h"
 #include "dla/models/walk.h"
 
 #include <cstdint>
@@ -43,9 +42,10 @@ struct Target {
   Vec3 point = Vec3::Zero();  //!< point: its centre
   Axis axis = Axis::y;        //!< plane: the axis across it (x or y in 2D)
   double at = 0.0;            //!< plane: where it crosses the axis, scene units
-  //! mesh: the electrode's triangles, repaired (mesh_repair.h), closed or open; it must outlive
-  //! growth. A closed mesh sends walkers from its outside, an open one from both faces.
-  const TriangleMesh* mesh = nullptr;
+  //! mesh: the electrode as a constraint whose growing side is where walkers leave it
+  //! (Side::outside for a closed rod, Side::both for a plate, which sends them from both faces);
+  //! it must outlive growth. It does not constrain the walk.
+  const MeshConstraint* mesh = nullptr;
 };
 
 //! Options of the breakdown model beside the walk's (DlaOptions). Lengths are in scene units.

@@ -5,15 +5,11 @@
 //! gone to the far boundary. Internal to the engine.
 
 #include "dla/core/random.h"
-#include "dla/mesh/surface_distance.h"
 #include "dla/models/breakdown.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <memory>
-#include <utility>
-#include <vector>
 
 namespace dla::detail {
 
@@ -27,14 +23,13 @@ class Electrode {
       normal_ = Vec3::Zero();
       normal_[a] = side[a] >= target.at ? 1.0 : -1.0;
     }
-    if (target.kind == TargetKind::mesh) surface_ = std::make_shared<const MeshSurface>(*target.mesh);
   }
 
   //! From the electrode's surface, positive on the structure's side.
   double distance(const Vec3& x) const {
     if (target_.kind == TargetKind::plane)
       return normal_[static_cast<int>(target_.axis)] * (x[static_cast<int>(target_.axis)] - target_.at);
-    if (target_.kind == TargetKind::mesh) return surface_->distance.distance(x);
+    if (target_.kind == TargetKind::mesh) return target_.mesh->distance_to_surface(x);
     return (x - target_.point).norm() - ball_radius();
   }
 
@@ -52,11 +47,12 @@ class Electrode {
   //! walkers leaving a ball every concentric sphere: they start on the one two spacings short
   //! of the structure's nearest particle (nearer when it is close), which is exact, but that a plane's is cut to a disk
   //! (a strip in 2D) around the structure, kLaunchWidths times its height above it wider.
-  //! A mesh's walkers start a spacing off its surface, at a point drawn uniformly by area: to
-  //! first order in that spacing the excursion measure, whose weight at each point (the field
-  //! there) comes out as the chance of not coming straight back, high at a rod's tip.
+  //! A mesh's walkers start half a spacing off its surface on its growing side, at a point
+  //! drawn uniformly by area: to first order in that offset the excursion measure, whose weight
+  //! at each point (the field there) comes out as the chance of not coming straight back, high
+  //! at a rod's tip.
   Vec3 draw_start(Rng& rng) const {
-    if (target_.kind == TargetKind::mesh) return surface_->draw(rng, kMeshLaunch * spacing_);
+    if (target_.kind == TargetKind::mesh) return target_.mesh->draw_near_surface(rng);
     // Clear of every particle's contact ball: a spacing short of the nearest, or halfway to it.
     const double start = std::max({nearest_ - 2.0 * spacing_, 0.5 * (nearest_ - spacing_), 2.0 * absorbs()});
     if (target_.kind == TargetKind::point)
@@ -79,7 +75,7 @@ class Electrode {
   //! structure is) and start again.
   double far_away(const Vec3& center, double radius) const {
     if (target_.kind == TargetKind::mesh)
-      return 2.0 * ((center - surface_->center).norm() + surface_->radius + radius) + 64.0 * spacing_;
+      return 2.0 * ((center - target_.mesh->center()).norm() + target_.mesh->radius() + radius) + 64.0 * spacing_;
     const double reach = target_.kind == TargetKind::plane ? lateral_reach() : 0.0;
     return 2.0 * (std::abs(distance(center)) + radius + reach) + 64.0 * spacing_;
   }
@@ -89,57 +85,6 @@ class Electrode {
 
  private:
   static constexpr double kLaunchWidths = 2.0;
-  static constexpr double kMeshLaunch = 1.0;  // spacings off a mesh's surface
-
-  //! A target mesh's closest points, and its triangles by area to start walkers on.
-  struct MeshSurface {
-    explicit MeshSurface(const TriangleMesh& m) : mesh(m), distance(m) {
-      double total = 0.0;
-      Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity()), high = -low;
-      for (const auto& t : m.triangles) {
-        total += area(t);
-        cumulative.push_back(total);
-      }
-      for (const Vec3& v : m.vertices) {
-        low = low.cwiseMin(v);
-        high = high.cwiseMax(v);
-      }
-      center = 0.5 * (low + high);
-      radius = 0.5 * (high - low).norm();
-      // Closed when every edge has two triangles: then only the outside (the faces' side, as
-      // repair turns them) sends walkers.
-      std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
-      for (const auto& t : m.triangles)
-        for (int e = 0; e < 3; ++e) edges.emplace_back(std::minmax(t[static_cast<std::size_t>(e)], t[static_cast<std::size_t>((e + 1) % 3)]));
-      std::sort(edges.begin(), edges.end());
-      closed = !edges.empty();
-      for (std::size_t i = 0; i < edges.size() && closed; i += 2)
-        closed = i + 1 < edges.size() && edges[i] == edges[i + 1] && (i + 2 == edges.size() || edges[i + 2] != edges[i]);
-    }
-
-    double area(const std::array<std::uint32_t, 3>& t) const {
-      return 0.5 * (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]).norm();
-    }
-
-    Vec3 draw(Rng& rng, double offset) const {
-      const double at = rng.uniform() * cumulative.back();
-      const auto k = static_cast<std::size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), at) - cumulative.begin());
-      const auto& t = mesh.triangles[std::min(k, cumulative.size() - 1)];
-      const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
-      double u = rng.uniform(), v = rng.uniform();
-      if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
-      Vec3 normal = (b - a).cross(c - a).normalized();
-      if (!closed && rng.uniform() < 0.5) normal = -normal;
-      return a + u * (b - a) + v * (c - a) + offset * normal;
-    }
-
-    const TriangleMesh& mesh;
-    SurfaceDistance distance;
-    std::vector<double> cumulative;  // the triangles' areas, summed in order
-    Vec3 center;
-    double radius = 0.0;
-    bool closed = false;
-  };
   double ball_radius() const { return 0.5 * spacing_; }
 
   //! Half the width of a plane's launch disk: the structure's half width across the axis, and
@@ -158,7 +103,6 @@ class Electrode {
   }
 
   Target target_;
-  std::shared_ptr<const MeshSurface> surface_;  // mesh: shared by the copies
   double spacing_;
   int dimensions_;
   Vec3 normal_ = Vec3::Zero();  // plane: towards the structure
