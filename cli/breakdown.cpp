@@ -38,8 +38,8 @@ Subcommand add_breakdown_command(CLI::App& app, const Model& model) {
                                       "1 is DLA, 0 compact, 2 to 4 lightning")
       ->capture_default_str()->group(discharge);
   command->add_option("--walkers", o.walkers, "walkers that measure the field before each particle, 1-4096; "
-                                              "0: 1 at eta 1, else " + std::to_string(kDefaultBreakdownWalkers) +
-                                              " (more: a sharper field, slower)")
+                                              "0: 1 at eta 1, 8 below, doubling with each step of eta "
+                                              "above, to 64 (more: a sharper field, slower)")
       ->capture_default_str()->group(discharge);
   CLI::Option* point = command->add_option("--target-point", w->target_point, "the other electrode: a small ball at "
                                                                               "x,y,z; walkers leave it")

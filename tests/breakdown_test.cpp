@@ -17,8 +17,12 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -63,7 +67,7 @@ TEST(Breakdown, GrowsATreeOfSpacedParticlesForEveryEta) {
       EXPECT_EQ(attached(c), 400u);
       EXPECT_TRUE(c.complete);
       // At least the walkers a particle asks for; past eta 1, more where no site had weight.
-      EXPECT_GE(stats.walk.walkers, 400u * kDefaultBreakdownWalkers);
+      EXPECT_GE(stats.walk.walkers, 400u * static_cast<unsigned>(default_breakdown_walkers(eta)));
     }
 }
 
@@ -333,6 +337,79 @@ TEST(Breakdown, StopsWhenAskedAndKeepsWhatGrew) {
   EXPECT_FALSE(c.complete);
   EXPECT_EQ(testing::tree_fault(c), "");
   EXPECT_LT(attached(c), 200000u);
+}
+
+// The fractal dimension of ensembles (docs/breakdown.md#fractal-dimension-against-η): the
+// mean over `clusters` runs of D from the radius of gyration (its last decade), with its
+// standard error. In the full tier only (ctest -L full sets DLA_FULL_TESTS).
+struct Ensemble {
+  double mean = 0.0, error = 0.0;
+};
+
+Ensemble ensemble_dimension(int clusters, const std::function<Cluster(std::uint64_t)>& grow_one) {
+  std::vector<double> d;
+  for (int i = 0; i < clusters; ++i) d.push_back(fractal_dimension_by_gyration(grow_one(4000 + static_cast<std::uint64_t>(i))).dimension);
+  Ensemble e;
+  for (const double x : d) e.mean += x / clusters;
+  double variance = 0.0;
+  for (const double x : d) variance += (x - e.mean) * (x - e.mean) / (clusters - 1);
+  e.error = std::sqrt(variance / clusters);
+  return e;
+}
+
+Ensemble discharge_dimension(int dimensions, double eta, std::size_t particles, int clusters) {
+  const Ensemble e = ensemble_dimension(clusters, [&](std::uint64_t seed) {
+    BreakdownOptions o;
+    o.eta = eta;
+    // At eta 1 the default walker is DLA's own: eight make it the breakdown model's estimate.
+    if (eta == 1.0) o.walkers = 8;
+    return breakdown(walk_of(particles, seed, dimensions), o, nullptr);
+  });
+  std::printf("%dD, eta %.1f, %d of %zu particles: D by gyration %.3f +- %.3f\n", dimensions, eta, clusters,
+              particles, e.mean, e.error);
+  return e;
+}
+
+bool full_tier() { return std::getenv("DLA_FULL_TESTS") != nullptr; }
+
+// DLA's ensembles reach 2.50 and 1.71 from about 2e4 particles; the sparse discharges of eta
+// 2 and 3 span as far with fewer, and cost hundreds of walkers a particle.
+constexpr std::size_t kEtaOneParticles = 20000;
+constexpr int kEtaOneClusters = 8;
+constexpr std::size_t kSparseParticles = 5000;
+constexpr int kSparseClusters = 8;
+
+// At eta 1 the model is DLA by the same contact law: eight walkers' contacts, one drawn, grow
+// the dimension of DLA's own ensemble at the same count and of the literature (2.50 and 1.71).
+TEST(Slow, BreakdownAtEtaOneHasDlasDimension) {
+  if (!full_tier()) GTEST_SKIP() << "in the full tier: ctest -L full";
+  for (const int dimensions : {3, 2}) {
+    const std::size_t particles = kEtaOneParticles;
+    const Ensemble dla = ensemble_dimension(kEtaOneClusters, [&](std::uint64_t seed) {
+      return grow(walk_of(particles, seed, dimensions));
+    });
+    const Ensemble discharge = discharge_dimension(dimensions, 1.0, particles, kEtaOneClusters);
+    std::printf("%dD, DLA: D by gyration %.3f +- %.3f\n", dimensions, dla.mean, dla.error);
+    EXPECT_NEAR(discharge.mean, dla.mean, 3.0 * std::hypot(dla.error, discharge.error));
+    EXPECT_NEAR(discharge.mean, dimensions == 3 ? 2.50 : 1.71, dimensions == 3 ? 0.06 : 0.04);
+  }
+}
+
+// In 3D, Satpathy's lattice values (Phys. Rev. B 33, 5093, 1986): 2.1 at eta 2, 1.9 at eta 3.
+TEST(Slow, BreakdownIn3DHasSatpathysDimensions) {
+  if (!full_tier()) GTEST_SKIP() << "in the full tier: ctest -L full";
+  EXPECT_NEAR(discharge_dimension(3, 2.0, kSparseParticles, kSparseClusters).mean, 2.1, 0.12);
+  EXPECT_NEAR(discharge_dimension(3, 3.0, kSparseParticles, kSparseClusters).mean, 1.9, 0.12);
+}
+
+// In 2D, D falls from DLA's 1.71 as eta rises, towards 1 at eta 4 (Hastings 2001).
+TEST(Slow, BreakdownIn2DFallsWithEta) {
+  if (!full_tier()) GTEST_SKIP() << "in the full tier: ctest -L full";
+  const double two = discharge_dimension(2, 2.0, kSparseParticles, kSparseClusters).mean;
+  const double three = discharge_dimension(2, 3.0, kSparseParticles, kSparseClusters).mean;
+  EXPECT_LT(two, 1.71 - 0.15);
+  EXPECT_LT(three, two);
+  EXPECT_GT(three, 1.0);
 }
 
 }  // namespace

@@ -21,6 +21,8 @@
 #include "dla/mesh/constraint.h"
 #include "dla/models/walk.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -52,7 +54,7 @@ struct Target {
 struct BreakdownOptions {
   double eta = 1.0;  //!< the field's exponent, [0, 10]; 1: DLA
   //! Walkers measured before each particle attaches, 1 to 4096; 0: one at eta 1, else
-  //! kDefaultBreakdownWalkers. More sharpen the field (docs/breakdown.md: the bias).
+  //! default_breakdown_walkers(eta). More sharpen the field (docs/breakdown.md: the bias).
   int walkers = 0;
   Target target;
   //! End growth when a particle comes within a spacing of the target (the strike). Else growth
@@ -61,13 +63,21 @@ struct BreakdownOptions {
   bool stop_at_strike = true;
 };
 
-inline constexpr int kDefaultBreakdownWalkers = 8;
 inline constexpr int kMaxBreakdownWalkers = 4096;
 inline constexpr double kMaxEta = 10.0;
 
+//! The first batch of walkers a particle's field is measured with by default: 8 up to eta 1,
+//! doubling with each whole step of eta past it, to 64. Growth stops at the first batch in
+//! which a site has weight, which favours lucky sites the more, the smaller the batch; past
+//! eta 2 a site needs hundreds of walkers to have weight anyway, so a larger batch costs little
+//! (docs/breakdown.md: the bias).
+inline int default_breakdown_walkers(double eta) {
+  return eta <= 1.0 ? 8 : std::min(64, 8 << static_cast<int>(std::ceil(eta - 1.0)));
+}
+
 //! The walkers measured before each particle for these options.
 inline int walkers_for(const BreakdownOptions& o) {
-  return o.walkers > 0 ? o.walkers : o.eta == 1.0 ? 1 : kDefaultBreakdownWalkers;
+  return o.walkers > 0 ? o.walkers : o.eta == 1.0 ? 1 : default_breakdown_walkers(o.eta);
 }
 
 //! What a breakdown run did beside the structure.
