@@ -384,11 +384,10 @@ constexpr int kSparseClusters = 8;
 TEST(Slow, BreakdownAtEtaOneHasDlasDimension) {
   if (!full_tier()) GTEST_SKIP() << "in the full tier: ctest -L full";
   for (const int dimensions : {3, 2}) {
-    const std::size_t particles = kEtaOneParticles;
     const Ensemble dla = ensemble_dimension(kEtaOneClusters, [&](std::uint64_t seed) {
-      return grow(walk_of(particles, seed, dimensions));
+      return grow(walk_of(kEtaOneParticles, seed, dimensions));
     });
-    const Ensemble discharge = discharge_dimension(dimensions, 1.0, particles, kEtaOneClusters);
+    const Ensemble discharge = discharge_dimension(dimensions, 1.0, kEtaOneParticles, kEtaOneClusters);
     std::printf("%dD, DLA: D by gyration %.3f +- %.3f\n", dimensions, dla.mean, dla.error);
     EXPECT_NEAR(discharge.mean, dla.mean, 3.0 * std::hypot(dla.error, discharge.error));
     EXPECT_NEAR(discharge.mean, dimensions == 3 ? 2.50 : 1.71, dimensions == 3 ? 0.06 : 0.04);

@@ -39,7 +39,8 @@ step("the tests under ASan and UBSan" ${CMAKE_CTEST_COMMAND} --test-dir ${WORK_D
 
 # Walkers on several threads share the index while one of them attaches, a spare core measures
 # the distances to the mesh as they attach, and the look shares out the rest: TSan checks that
-# every word they share is read and written atomically.
+# every word they share is read and written atomically. The TSan build compiles only the files
+# these tests are in (tests/CMakeLists.txt, DLA_TSAN): a test named here must be in one of them.
 set(tsan_dir ${WORK_DIR}-thread)
 step("configuring TSan" ${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${tsan_dir} -DCMAKE_BUILD_TYPE=RelWithDebInfo ${compiler}
      -DDLA_FUZZ=OFF -DDLA_TSAN=ON -DDLA_BUILD_BENCH=OFF -DDLA_BUILD_EXAMPLES=OFF -DDLA_BUILD_PYTHON=OFF)

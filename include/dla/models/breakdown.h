@@ -21,8 +21,6 @@
 #include "dla/mesh/constraint.h"
 #include "dla/models/walk.h"
 
-#include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -72,7 +70,7 @@ inline constexpr double kMaxEta = 10.0;
 //! eta 2 a site needs hundreds of walkers to have weight anyway, so a larger batch costs little
 //! (docs/breakdown.md: the bias).
 inline int default_breakdown_walkers(double eta) {
-  return eta <= 1.0 ? 8 : std::min(64, 8 << static_cast<int>(std::ceil(eta - 1.0)));
+  return eta <= 1.0 ? 8 : eta <= 2.0 ? 16 : eta <= 3.0 ? 32 : 64;
 }
 
 //! The walkers measured before each particle for these options.
