@@ -1,14 +1,17 @@
 // The breakdown model (breakdown.h) against DLA at the same count, one thread: a 3D discharge
 // from a point towards the ground plane at eta 0, 2 and 3 (the plane far enough below that
-// 10^4 particles grow without striking it, so every run grows its whole count), and DLA itself
-// (eta 1 with no target and one walker a particle: dla3d's structure, byte for byte). Counters: particles a second and walkers a
-// particle. Run:
+// every run grows its whole count without striking it), by the walkers field and by the
+// charges field (10^4 and 10^5 particles), and DLA itself (eta 1 with no target and one walker
+// a particle: dla3d's structure, byte for byte). Counters: particles a second, and walkers or
+// open sites a particle. Run:
 //   build/bench/dla_breakdown_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 // (medians and the ratio to DLA in docs/performance.md).
 
 #include "dla/models/breakdown.h"
 
 #include <benchmark/benchmark.h>
+
+#include <algorithm>
 
 namespace {
 
@@ -20,7 +23,8 @@ void grow_discharge(benchmark::State& state) {
   options.eta = static_cast<double>(state.range(1)) / 10.0;
   options.target.kind = state.range(1) == 10 ? dla::TargetKind::none : dla::TargetKind::plane;
   options.target.axis = dla::Axis::y;
-  options.target.at = -400.0;
+  options.target.at = -400.0 * std::max<double>(1.0, static_cast<double>(walk.particles) / 10000.0);
+  options.field = state.range(2) ? dla::BreakdownField::charges : dla::BreakdownField::walkers;
   dla::BreakdownStats stats;
   for (auto _ : state) {
     stats = {};
@@ -30,17 +34,22 @@ void grow_discharge(benchmark::State& state) {
   const double n = static_cast<double>(walk.particles);
   state.counters["particles_per_s"] = benchmark::Counter(n, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["walkers_per_particle"] = static_cast<double>(stats.walk.walkers) / n;
+  state.counters["sites_per_particle"] = static_cast<double>(stats.sites) / n;
 }
 
 }  // namespace
 
-// eta in tenths: 10 is DLA, the baseline.
+// eta in tenths: 10 is DLA, the baseline; charges 1: the charges field.
 BENCHMARK(grow_discharge)
-    ->ArgNames({"particles", "eta_tenths"})
-    ->Args({10000, 10})
-    ->Args({10000, 0})
-    ->Args({10000, 20})
-    ->Args({10000, 30})
+    ->ArgNames({"particles", "eta_tenths", "charges"})
+    ->Args({10000, 10, 0})
+    ->Args({10000, 0, 0})
+    ->Args({10000, 20, 0})
+    ->Args({10000, 30, 0})
+    ->Args({10000, 0, 1})
+    ->Args({10000, 20, 1})
+    ->Args({10000, 30, 1})
+    ->Args({100000, 20, 1})
     ->Unit(benchmark::kSecond)
     ->Iterations(1);
 

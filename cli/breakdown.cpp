@@ -8,6 +8,7 @@ namespace dla::cli {
 namespace {
 
 struct BreakdownWords {
+  std::string field = std::string(to_string(BreakdownField::walkers));
   std::string target_point, target_plane;
   WalkCommand walk;
 };
@@ -37,6 +38,10 @@ Subcommand add_breakdown_command(CLI::App& app, const Model& model) {
   command->add_option("--eta", o.eta, "the field's exponent, [0, 10]: growth goes where the field^eta is strong; "
                                       "1 is DLA, 0 compact, 2 to 4 lightning")
       ->capture_default_str()->group(discharge);
+  command->add_option("--field", w->field, "how the field is measured: walkers (DLA's first contacts: exact, "
+                                           "insulators shape it, slower as eta grows) or charges (a point charge a "
+                                           "particle: fast at any eta, blind to insulators); docs/breakdown.md")
+      ->capture_default_str()->group(discharge);
   command->add_option("--walkers", o.walkers, "walkers that measure the field before each particle, 1-4096; "
                                               "0: 1 at eta 1, 8 below, doubling with each step of eta "
                                               "above, to 64 (more: a sharper field, slower)")
@@ -62,6 +67,7 @@ Subcommand add_breakdown_command(CLI::App& app, const Model& model) {
   return {command, [w, b, quiet](CommandLine& line, const std::vector<std::string>&) {
             w->walk.finish();
             BreakdownOptions& o = b->breakdown;
+            o.field = parse_breakdown_field(w->field);
             if (!w->target_point.empty()) {
               o.target.kind = TargetKind::point;
               o.target.point = parse_vec3("--target-point", w->target_point);

@@ -43,6 +43,10 @@ class DLA3DSettings(bpy.types.PropertyGroup):
                                  description="DLA: seeds placed deep in the mesh, far apart")
     eta: bpy.props.FloatProperty(name="Eta", default=2.0, min=0.0, max=10.0,
                                  description="Discharge: the field's exponent; 1 is DLA, 2 to 4 lightning")
+    field: bpy.props.EnumProperty(
+        name="Field", default="walkers",
+        items=[("walkers", "Walkers", "Discharge: the exact field of random walkers; slower as eta grows"),
+               ("charges", "Charges", "Discharge: a point charge a particle; fast at any eta, blind to the mesh")])
     rng_seed: bpy.props.IntProperty(name="Random seed", default=1, min=0,
                                     description="The same seed grows the same structure")
     radius: bpy.props.EnumProperty(
@@ -121,7 +125,7 @@ def grow_options(settings, obj, depsgraph):
         if arrays is not None:
             options.update(stl=arrays, side=settings.side)
     elif model == "breakdown":
-        options.update(particles=settings.count, eta=settings.eta)
+        options.update(particles=settings.count, eta=settings.eta, field=settings.field)
         if arrays is not None:
             options.update(stl=arrays, side=settings.side, seeds=settings.seeds)
     elif model == "ballistic":
@@ -279,6 +283,7 @@ class DLA3D_PT_panel(bpy.types.Panel):
             layout.prop(settings, "seeds")
         if settings.model == "breakdown":
             layout.prop(settings, "eta")
+            layout.prop(settings, "field")
         layout.prop(settings, "rng_seed")
         layout.prop(settings, "links")
         layout.prop(settings, "radius")

@@ -13,6 +13,7 @@
 #include "dla/models/dla.h"
 #include "dla/mesh/shapes.h"
 #include "dla/mesh/surface_distance.h"
+#include "models/breakdown_charges.h"
 
 #include <gtest/gtest.h>
 
@@ -233,6 +234,239 @@ TEST(Breakdown, RefusesWhatCannotWorkInOneLine) {
   negative.eta = -1.0;
   for (const std::string& line : {refusal(o), refusal(negative)})
     EXPECT_EQ(line.find('\n'), std::string::npos) << line;
+}
+
+// --- The charges field (BreakdownField::charges) ---------------------------------------------
+
+BreakdownOptions charges(double eta) {
+  BreakdownOptions o;
+  o.field = BreakdownField::charges;
+  o.eta = eta;
+  return o;
+}
+
+// The kept sums against the potential summed afresh in doubles, the closed sites against the
+// charges near them: in 2D and 3D, with and without a mirror plane, on one thread and three.
+TEST(BreakdownCharges, KeptSumsAreThePotentialSummedAfresh) {
+  for (const int dimensions : {2, 3})
+    for (const bool mirrored : {false, true})
+      for (const int threads : {1, 3}) {
+        SCOPED_TRACE(std::to_string(dimensions) + "D" + (mirrored ? ", mirrored" : "") + ", threads " +
+                     std::to_string(threads));
+        const Vec3 origin(3.0, -2.0, dimensions == 3 ? 1.0 : 0.0);
+        const double spacing = 0.5, mirror_at = -40.0;
+        detail::ChargeField field(origin, spacing, dimensions, mirrored ? 1 : -1, mirror_at);
+        detail::Crew crew(threads);
+        Rng rng(7, 1);
+        const auto point = [&](double reach) {
+          Vec3 p = origin + reach * spacing * random_direction(rng, dimensions) * rng.uniform();
+          if (dimensions == 2) p.z() = 0.0;
+          return p;
+        };
+        std::vector<Vec3> charges, sites;
+        std::vector<std::size_t> charges_before;  // a site closes for the charges added after it
+        // Sites and charges in turns, enough sites for several blocks, so the crew splits them.
+        for (int round = 0; round < 40; ++round) {
+          for (int c = 0; c < 3; ++c) {
+            charges.push_back(point(30.0));
+            field.add_charge(charges.back(), crew);
+          }
+          std::vector<Vec3> batch;
+          for (int i = 0; i < 200; ++i) batch.push_back(point(30.0));
+          field.add_sites(batch, 0, std::vector<double>(batch.size(), 0.0), crew);
+          sites.insert(sites.end(), batch.begin(), batch.end());
+          charges_before.resize(sites.size(), charges.size());
+        }
+        ASSERT_EQ(field.sites(), sites.size());
+        const auto g = [&](const Vec3& a, const Vec3& b) {
+          const double r = (a - b).norm() / spacing;
+          return dimensions == 2 ? -std::log(r) : 1.0 / r;
+        };
+        std::size_t open = 0;
+        for (std::size_t i = 0; i < sites.size(); ++i) {
+          double exact = 0.0, scale = 0.0;
+          bool near = false;
+          for (std::size_t j = 0; j < charges.size(); ++j) {
+            const Vec3& q = charges[j];
+            Vec3 image = q;
+            image.y() = 2.0 * mirror_at - q.y();
+            const double term = g(sites[i], q) - (mirrored ? g(sites[i], image) : 0.0);
+            exact += term;
+            scale += std::abs(term);
+            if (j >= charges_before[i] && (sites[i] - q).norm() < spacing * (1.0 - 2e-3)) near = true;
+          }
+          // A site summed after some charges, then kept as the rest came: float rounding only.
+          EXPECT_NEAR(field.sum(i), exact, 2e-5 * scale + 1e-5) << i;
+          if (near) EXPECT_FALSE(field.open(i)) << i;
+          if (field.open(i)) ++open;
+        }
+        EXPECT_EQ(field.open_sites(), open);
+        EXPECT_GT(open, sites.size() / 2);
+      }
+}
+
+// The draw against the weights it is meant to follow: ((U_max - U) / (U_max - U_min))^eta over
+// the open sites, by the counts of many draws.
+TEST(BreakdownCharges, DrawsSitesByTheirWeights) {
+  detail::ChargeField field(Vec3::Zero(), 1.0, 3);
+  detail::Crew crew(1);
+  field.add_charge(Vec3::Zero(), crew);
+  field.add_charge(Vec3(1.0, 0.0, 0.0), crew);
+  // Sites at several distances from the two charges, and some more blocks of far ones.
+  std::vector<Vec3> at;
+  for (int i = 0; i < 8; ++i) at.emplace_back(-1.0 - 0.5 * i, 0.0, 0.0);
+  for (int i = 0; i < 600; ++i) at.emplace_back(0.0, 40.0 + 0.01 * i, 0.0);
+  field.add_sites(at, 0, std::vector<double>(at.size(), 0.0), crew);
+  for (const double eta : {0.0, 1.0, 3.0}) {
+    SCOPED_TRACE("eta " + std::to_string(eta));
+    double top = -1e300, bottom = 1e300;
+    for (std::size_t i = 0; i < field.sites(); ++i) {
+      top = std::max(top, static_cast<double>(field.u(i)));
+      bottom = std::min(bottom, static_cast<double>(field.u(i)));
+    }
+    std::vector<double> weight(field.sites());
+    double total = 0.0;
+    for (std::size_t i = 0; i < weight.size(); ++i) total += weight[i] = std::pow((top - field.u(i)) / (top - bottom), eta);
+    std::vector<int> count(field.sites(), 0);
+    Rng rng(11, static_cast<std::uint64_t>(eta));
+    const int draws = 200000;
+    for (int d = 0; d < draws; ++d) ++count[static_cast<std::size_t>(field.draw(rng, eta))];
+    // The eight near sites one by one, the far ones together: within 5 standard deviations.
+    const auto check = [&](std::size_t from, std::size_t to) {
+      double p = 0.0;
+      int n = 0;
+      for (std::size_t i = from; i < to; ++i) {
+        p += weight[i] / total;
+        n += count[i];
+      }
+      EXPECT_NEAR(n, p * draws, 5.0 * std::sqrt(draws * p * (1.0 - p)) + 1.0) << from;
+    };
+    for (std::size_t i = 0; i < 8; ++i) check(i, i + 1);
+    check(8, field.sites());
+  }
+}
+
+TEST(BreakdownCharges, GrowsATreeOfSpacedParticlesForEveryEta) {
+  for (const double eta : {0.0, 1.0, 3.0, 10.0})
+    for (const int dimensions : {2, 3}) {
+      SCOPED_TRACE("eta " + std::to_string(eta) + ", " + std::to_string(dimensions) + "D");
+      BreakdownStats stats;
+      const Cluster c = breakdown(walk_of(1500, 5, dimensions), charges(eta), nullptr, {}, nullptr, &stats);
+      EXPECT_EQ(testing::tree_fault(c), "");
+      EXPECT_EQ(attached(c), 1500u);
+      EXPECT_TRUE(c.complete);
+      EXPECT_EQ(stats.walk.walkers, 0u);
+      EXPECT_GT(stats.sites, 1500u);
+    }
+}
+
+TEST(BreakdownCharges, TheSameStructureOnAnyThreadCount) {
+  for (const int dimensions : {2, 3}) {
+    BreakdownOptions o = charges(6.0);  // sparse: its open sites fill more than 32 blocks
+    o.target.kind = TargetKind::plane;
+    o.target.at = -300.0;
+    DlaOptions walk = walk_of(4000, 9, dimensions);
+    const Cluster one = breakdown(walk, o, nullptr);
+    walk.threads = 3;
+    EXPECT_TRUE(same_particles(one, breakdown(walk, o, nullptr))) << dimensions << "D";
+  }
+}
+
+TEST(BreakdownCharges, HigherEtaGrowsSparserChannels) {
+  const std::size_t n = 4000;
+  const double compact = radius_of_gyration(breakdown(walk_of(n, 11), charges(0.0), nullptr));
+  const double one = radius_of_gyration(breakdown(walk_of(n, 11), charges(1.0), nullptr));
+  const double sparse = radius_of_gyration(breakdown(walk_of(n, 11), charges(3.0), nullptr));
+  // Equal charges screen the inside weakly (docs/breakdown.md): compact at eta 0 and 1 alike,
+  // channels from eta 3.
+  EXPECT_LT(compact, one);
+  EXPECT_LT(1.5 * one, sparse);
+}
+
+TEST(BreakdownCharges, AStrikeEndsGrowthAtTheTarget) {
+  ConstraintOptions outside;
+  outside.side = Side::outside;
+  const MeshConstraint rod(make_box(Vec3(-1.5, -40.0, -1.5), Vec3(1.5, -18.0, 1.5)), outside, 1.0);
+  const SurfaceDistance rod_surface(rod.mesh());
+  for (const int dimensions : {2, 3})
+    for (const TargetKind kind : {TargetKind::point, TargetKind::plane, TargetKind::mesh}) {
+      if (kind == TargetKind::mesh && dimensions == 2) continue;
+      BreakdownOptions o = charges(2.0);
+      o.target.kind = kind;
+      o.target.point = Vec3(0.0, -25.0, 0.0);
+      o.target.at = -25.0;
+      o.target.mesh = &rod;
+      SCOPED_TRACE(std::string(to_string(kind)) + ", " + std::to_string(dimensions) + "D");
+      const Cluster c = breakdown(walk_of(20000, 4, dimensions), o, nullptr);
+      EXPECT_EQ(testing::tree_fault(c), "");
+      ASSERT_GE(c.strike, 0);
+      EXPECT_EQ(static_cast<std::size_t>(c.strike), c.particles.size() - 1);
+      const auto to_target = [&](const Vec3& p) {
+        return kind == TargetKind::point ? (p - o.target.point).norm() - 0.5
+               : kind == TargetKind::plane ? p.y() + 25.0
+                                           : rod_surface.distance(p);
+      };
+      EXPECT_LE(to_target(c.particles.back().position), 1.0);
+      for (std::size_t i = 0; i + 1 < c.particles.size(); ++i) EXPECT_GT(to_target(c.particles[i].position), 1.0) << i;
+    }
+}
+
+TEST(BreakdownCharges, GoesOnPastTheStrikeWhenAsked) {
+  BreakdownOptions o = charges(2.0);
+  o.target.kind = TargetKind::point;
+  o.target.point = Vec3(12.0, 0.0, 0.0);
+  o.stop_at_strike = false;
+  const Cluster c = breakdown(walk_of(600, 2, 2), o, nullptr);
+  EXPECT_EQ(testing::tree_fault(c), "");
+  EXPECT_EQ(attached(c), 600u);
+  EXPECT_GE(c.strike, 0);
+  EXPECT_LT(static_cast<std::size_t>(c.strike), c.particles.size() - 1);
+}
+
+TEST(BreakdownCharges, AnInsulatorHoldsTheDischargeOnItsSide) {
+  // Outside a ball, from above it, towards the ground below it: around, never through.
+  const MeshConstraint outside(make_sphere(Vec3::Zero(), 15.0), ConstraintOptions{Side::outside}, 1.0);
+  BreakdownOptions o = charges(2.0);
+  o.target.kind = TargetKind::plane;
+  o.target.at = -25.0;
+  DlaOptions walk = walk_of(3000);
+  walk.seeds = {Vec3(0.0, 25.0, 0.0)};
+  const Cluster c = breakdown(walk, o, &outside);
+  EXPECT_EQ(testing::tree_fault(c), "");
+  for (const Particle& p : c.particles) EXPECT_TRUE(outside.on_growth_side(p.position)) << p.position.transpose();
+  // Inside a small ball, more particles than it holds: one line, and what grew.
+  const MeshConstraint small(make_sphere(Vec3::Zero(), 3.0), ConstraintOptions{}, 1.0);
+  try {
+    breakdown(walk_of(5000), charges(1.0), &small);
+    FAIL() << "5,000 particles grew in a ball of radius 3";
+  } catch (const PartialGrowth& e) {
+    EXPECT_NE(std::string(e.what()).find("no free site"), std::string::npos) << e.what();
+    EXPECT_EQ(testing::tree_fault(e.partial()), "");
+    EXPECT_GT(attached(e.partial()), 10u);
+  }
+}
+
+TEST(BreakdownCharges, RefusesWhatOnlyWalkersHave) {
+  const auto refusal = [](BreakdownOptions o, DlaOptions walk) {
+    try {
+      breakdown(walk, o, nullptr);
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  BreakdownOptions o = charges(2.0);
+  o.walkers = 16;
+  EXPECT_EQ(refusal(o, walk_of(10)), "`walkers` measure the walkers field; the charges field sends none");
+  o.walkers = 0;
+  DlaOptions walk = walk_of(10);
+  walk.stickiness = 0.5;
+  EXPECT_EQ(refusal(o, walk), "`stickiness` is a walker's; the charges field sends none");
+  walk = walk_of(10);
+  walk.spawn = SpawnMode::box;
+  EXPECT_EQ(refusal(o, walk), "`spawn` is where walkers start; the charges field sends none");
+  EXPECT_THROW(parse_breakdown_field("both"), InvalidInput);
+  EXPECT_EQ(parse_breakdown_field("charges"), BreakdownField::charges);
 }
 
 // The particles on the way from j to the strike: up to their lowest common ancestor, then down.

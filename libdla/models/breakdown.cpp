@@ -7,17 +7,13 @@
 #include "dla/models/dla.h"
 #include "dla/models/electrode.h"
 #include "dla/models/model_shell.h"
-
-#include <atomic>
+#include "models/breakdown_charges.h"
+#include "models/crew.h"
 
 #include <algorithm>
 #include <cmath>
-#include <condition_variable>
 #include <exception>
-#include <functional>
-#include <mutex>
 #include <optional>
-#include <thread>
 #include <vector>
 
 namespace dla {
@@ -32,6 +28,13 @@ void validate(const BreakdownOptions& o, const DlaOptions& walk) {
     throw InvalidInput("`eta` " + detail::format_number(o.eta) + " is not in [0, 10]");
   if (o.walkers < 0 || o.walkers > kMaxBreakdownWalkers)
     throw InvalidInput("`walkers` " + std::to_string(o.walkers) + " is not in [1, 4096] (0: chosen by eta)");
+  if (o.field == BreakdownField::charges) {
+    // What only walkers have: the charges field sends none.
+    if (o.walkers != 0) throw InvalidInput("`walkers` measure the walkers field; the charges field sends none");
+    if (walk.stickiness != 1.0) throw InvalidInput("`stickiness` is a walker's; the charges field sends none");
+    if (walk.spawn != SpawnMode::sphere)
+      throw InvalidInput("`spawn` is where walkers start; the charges field sends none");
+  }
   const Target& t = o.target;
   if (t.kind == TargetKind::none) return;
   if (t.kind == TargetKind::point) detail::require_representable("`target_point`", t.point, walk.spacing);
@@ -62,71 +65,6 @@ void validate(const BreakdownOptions& o, const DlaOptions& walk) {
 }
 
 namespace {
-
-//! Runs job(0), ..., job(count - 1) on `threads` threads, the caller's one of them; threads
-//! wait between batches rather than start afresh for each.
-class Crew {
- public:
-  explicit Crew(int threads) {
-    for (int t = 1; t < threads; ++t) helpers_.emplace_back([this] { serve(); });
-  }
-  ~Crew() {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      closing_ = true;
-    }
-    wake_.notify_all();
-    for (std::thread& helper : helpers_) helper.join();
-  }
-
-  void run(std::size_t count, const std::function<void(std::size_t)>& job) {
-    if (helpers_.empty()) {
-      for (std::size_t i = 0; i < count; ++i) job(i);
-      return;
-    }
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      job_ = &job;
-      count_ = count;
-      next_ = 0;
-      busy_ = helpers_.size();
-      ++batch_;
-    }
-    wake_.notify_all();
-    work(job, count);
-    std::unique_lock<std::mutex> lock(mutex_);
-    done_.wait(lock, [this] { return busy_ == 0; });
-  }
-
- private:
-  void work(const std::function<void(std::size_t)>& job, std::size_t count) {
-    for (std::size_t i = next_.fetch_add(1); i < count; i = next_.fetch_add(1)) job(i);
-  }
-  void serve() {
-    std::uint64_t seen = 0;
-    for (;;) {
-      std::unique_lock<std::mutex> lock(mutex_);
-      wake_.wait(lock, [&] { return closing_ || batch_ != seen; });
-      if (closing_) return;
-      seen = batch_;
-      const std::function<void(std::size_t)>* job = job_;
-      const std::size_t count = count_;
-      lock.unlock();
-      work(*job, count);
-      lock.lock();
-      if (--busy_ == 0) done_.notify_one();
-    }
-  }
-
-  std::vector<std::thread> helpers_;
-  std::mutex mutex_;
-  std::condition_variable wake_, done_;
-  const std::function<void(std::size_t)>* job_ = nullptr;
-  std::size_t count_ = 0, busy_ = 0;
-  std::atomic<std::size_t> next_{0};
-  std::uint64_t batch_ = 0;
-  bool closing_ = false;
-};
 
 //! The choice among contacts draws from streams of their own, apart from every walker's.
 constexpr std::uint64_t kChoiceStreams = std::uint64_t{1} << 63;
@@ -296,7 +234,7 @@ class Discharge {
   DlaStats dla_stats_;
   std::optional<detail::Electrode> electrode_;
   detail::Aggregation<GridIndex> aggregation_;
-  Crew crew_;
+  detail::Crew crew_;
   std::vector<Particle> contacts_;
   std::vector<WalkStats> walks_;
   std::vector<char> walked_;  // per walker of a batch: 1 contact, 0 stopped, 2 threw
@@ -318,6 +256,8 @@ Cluster breakdown(const DlaOptions& walk, const BreakdownOptions& options, const
   ParticleFeed* feed = counted.feed;
   counted = {};
   counted.feed = feed;
+  if (options.field == BreakdownField::charges)
+    return detail::grow_by_charges(walk, options, constraint, progress, stop, counted);
   Discharge discharge(walk, options, constraint, stop, counted);
   return discharge.run(progress);
 }

@@ -8,6 +8,7 @@
 #include "dla/mesh/mesh_repair.h"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 
 namespace dla {
@@ -54,8 +55,29 @@ class BreakdownRun : public DlaRun {
                      [&](const Vec3& v) { return constraint_->on_growth_side(v); }))
       throw InvalidInput("`target_mesh` " + target_mesh_name_ + " is not on the growing side of " + mesh_name_ +
                          ": it lies in the insulator, and no walker can leave it");
+    if (breakdown_.field == BreakdownField::charges) foresee_charges(options_.particles);
     // A strike ends growth before the count: no count is promised.
     if (target.kind != TargetKind::none && breakdown_.stop_at_strike) solid_forecast.particles = 0;
+  }
+
+  //! The charges field keeps six sites a particle at most beside the structure, and sums each
+  //! new particle's charge at every open site: memory in proportion to the count, time to its
+  //! square (docs/performance.md#the-breakdown-model).
+  void foresee_charges(std::size_t particles) {
+    constexpr double kBytesPerParticle = 400.0;
+    const double n = static_cast<double>(particles), memory = installed_memory();
+    if (memory > 0.0 && kBytesPerParticle * n > memory)
+      throw InvalidInput("`particles` " + format_count(particles) + " with the charges field needs about " +
+                         format_number(std::ceil(kBytesPerParticle * n / 1e8) / 10.0) + " GB of memory; this machine has " +
+                         format_number(std::floor(memory / 1e8) / 10.0) + " GB: at most " +
+                         format_count(static_cast<std::size_t>(memory / kBytesPerParticle)) + " particles fit");
+    // About 2.5 open sites a particle, each summing every later charge, and six new sites each
+    // summing the charges before them: 4 n^2 potentials, at about 1e9 a second on one core.
+    const double seconds = 4.0 * n * n / 1e9;
+    if (seconds > 120.0)
+      forecast_line = "the charges field sums about " + format_number(std::round(4.0 * n * n / 1e10) / 100.0) +
+                      " trillion potentials for " + format_count(particles) + " particles, " +
+                      time_for_pairs(seconds * kPairsPerSecond) + " on one core";
   }
 
   Cluster grow(const ProgressFn& progress, const StopFlag* stop) override {
@@ -76,12 +98,17 @@ class BreakdownRun : public DlaRun {
                     with_commas(static_cast<double>(cluster.strike)).c_str());
     else if (breakdown_.target.kind != TargetKind::none)
       std::snprintf(strike, sizeof strike, "; the target was not reached");
+    char field[96];
+    if (breakdown_.field == BreakdownField::charges)
+      std::snprintf(field, sizeof field, "by the charges field, %s sites weighed",
+                    with_commas(static_cast<double>(stats_.sites)).c_str());
+    else
+      std::snprintf(field, sizeof field, "%d walkers each (%s walks)", walkers_for(breakdown_),
+                    with_commas(static_cast<double>(stats_.walk.walkers)).c_str());
     char line[512];
-    std::snprintf(line, sizeof line,
-                  "grew %s particles at eta %g in %.2f s, %d walkers each (%s walks); bounding radius %.1f%s",
+    std::snprintf(line, sizeof line, "grew %s particles at eta %g in %.2f s, %s; bounding radius %.1f%s",
                   with_commas(static_cast<double>(attached(cluster))).c_str(), breakdown_.eta, record.grow_seconds,
-                  walkers_for(breakdown_), with_commas(static_cast<double>(stats_.walk.walkers)).c_str(),
-                  bounding_radius(cluster), strike);
+                  field, bounding_radius(cluster), strike);
     return line;
   }
 
@@ -90,7 +117,9 @@ class BreakdownRun : public DlaRun {
     out.options = [this](RecordWriter& w) {
       record_options(w);
       const BreakdownOptions& b = breakdown_;
-      w.number("eta", b.eta).integer("walkers", walkers_for(b)).text("target", to_string(b.target.kind));
+      w.number("eta", b.eta).text("field", to_string(b.field));
+      if (b.field == BreakdownField::walkers) w.integer("walkers", walkers_for(b));
+      w.text("target", to_string(b.target.kind));
       if (b.target.kind == TargetKind::point) w.point("target_point", b.target.point);
       if (b.target.kind == TargetKind::plane)
         w.text("target_plane_axis", to_string(b.target.axis)).number("target_plane_at", b.target.at);

@@ -241,6 +241,7 @@ Table<BreakdownRunOptions> breakdown_table() {
       t[name] = [set = set](O& o, py::handle v, Given& g) { set(o, v, g); };
   t["fill"] = [](O&, py::handle, Given&) { refuse_for("breakdown", "fill"); };
   t["eta"] = [](O& o, py::handle v, Given&) { o.breakdown.eta = number("eta", v); };
+  t["field"] = [](O& o, py::handle v, Given&) { o.breakdown.field = word("field", v, parse_breakdown_field); };
   t["walkers"] = [](O& o, py::handle v, Given&) { o.breakdown.walkers = whole_int("walkers", v); };
   t["target_point"] = [](O& o, py::handle v, Given&) {
     o.breakdown.target.kind = TargetKind::point;

@@ -14,6 +14,8 @@
 //! uniformly: DLA by the same contact law, and with one walker the same structure as `dla3d`.
 //! With a target, walkers leave from it and one that comes back to it starts again (the
 //! excursion measure of the target, whose first contacts are the field of the capacitor).
+//! `field = charges` measures it instead by a point charge a particle (FSLG): fast at any eta,
+//! but too weakly screened to have the model's dimensions (docs/breakdown.md).
 
 #include "dla/core/cluster.h"
 #include "dla/core/errors.h"
@@ -26,6 +28,22 @@
 #include <string_view>
 
 namespace dla {
+
+//! How the field on the structure is measured (`--field walkers|charges`); docs/breakdown.md.
+enum class BreakdownField {
+  //! DLA's walkers' first contacts (the harmonic measure): exact, insulators shape the field,
+  //! and at eta 1 it is DLA; the walkers a particle needs grow with eta
+  walkers,
+  //! every particle an equal point charge, the potential summed at candidate sites a spacing
+  //! from the structure, updated as each particle attaches (Kim, Sud and Lin's FSLG): a cost
+  //! that does not grow with eta, a field that ignores insulators and the charge's crowding
+  //! on the tips
+  charges,
+};
+
+std::string_view to_string(BreakdownField field);
+//! Parses the CLI's words; throws InvalidInput naming the accepted ones.
+BreakdownField parse_breakdown_field(std::string_view word);
 
 //! The electrode at the other potential (`target_point`, `target_plane`, `target_mesh`).
 enum class TargetKind {
@@ -51,8 +69,10 @@ struct Target {
 //! Options of the breakdown model beside the walk's (DlaOptions). Lengths are in scene units.
 struct BreakdownOptions {
   double eta = 1.0;  //!< the field's exponent, [0, 10]; 1: DLA
+  BreakdownField field = BreakdownField::walkers;
   //! Walkers measured before each particle attaches, 1 to 4096; 0: one at eta 1, else
-  //! default_breakdown_walkers(eta). More sharpen the field (docs/breakdown.md: the bias).
+  //! default_breakdown_walkers(eta). More sharpen the field (docs/breakdown.md: the bias). The
+  //! walkers field's alone: 0 with charges.
   int walkers = 0;
   Target target;
   //! End growth when a particle comes within a spacing of the target (the strike). Else growth
@@ -84,7 +104,9 @@ struct BreakdownStats {
   std::uint64_t absorbed = 0;     //!< walkers that came back to the target and started again
   std::int32_t strike = -1;       //!< the first particle within a spacing of the target; -1: none
   std::uint64_t channel = 0;      //!< particles on the main channel, the seed to the strike; 0: none
-  std::uint64_t sites = 0;        //!< growth sites weighed, summed over the attachments
+  //! growth sites weighed, summed over the attachments: touched parents (walkers), or free
+  //! candidate sites (charges)
+  std::uint64_t sites = 0;
   //! Where each particle goes as it attaches, seeds first (walk.h's DlaStats::feed); null: nowhere.
   ParticleFeed* feed = nullptr;
 };
@@ -102,6 +124,19 @@ Cluster breakdown(const DlaOptions& walk, const BreakdownOptions& options, const
                   const ProgressFn& progress = {}, const StopFlag* stop = nullptr, BreakdownStats* stats = nullptr);
 
 // ---------------------------------------------------------------------------------------------
+
+inline std::string_view to_string(BreakdownField field) {
+  switch (field) {
+    case BreakdownField::walkers: return "walkers";
+    case BreakdownField::charges: return "charges";
+  }
+  return "?";
+}
+
+inline BreakdownField parse_breakdown_field(std::string_view word) {
+  constexpr BreakdownField values[] = {BreakdownField::walkers, BreakdownField::charges};
+  return detail::parse_word(word, values, "field");
+}
 
 inline std::string_view to_string(TargetKind kind) {
   switch (kind) {
