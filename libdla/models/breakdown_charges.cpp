@@ -334,7 +334,10 @@ std::ptrdiff_t ChargeField::draw(Rng& rng, double eta) const {
     if (block_open_[b] != 0) total += weight(block_low_[b]);
     cumulative[b] = total;
   }
-  for (;;) {
+  // At most kBlock tries on average (a block's bound is at most its weight); past many more,
+  // something in the floats is amiss, and a plain draw over every open site stands in.
+  constexpr int kMaxTries = 1 << 20;
+  for (int tries = 0; tries < kMaxTries; ++tries) {
     const double pick = rng.uniform() * total;
     const std::size_t b = static_cast<std::size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), pick) -
                                                    cumulative.begin());
@@ -344,6 +347,18 @@ std::ptrdiff_t ChargeField::draw(Rng& rng, double eta) const {
     if (open_[i] == 0.0f) continue;
     if (u * weight(block_low_[b]) < weight(this->u(i))) return static_cast<std::ptrdiff_t>(i);
   }
+  double sum = 0.0;
+  for (std::size_t i = 0; i < used_; ++i)
+    if (open_[i] != 0.0f) sum += weight(this->u(i));
+  double pick = rng.uniform() * sum;
+  std::ptrdiff_t last = -1;
+  for (std::size_t i = 0; i < used_; ++i) {
+    if (open_[i] == 0.0f) continue;
+    last = static_cast<std::ptrdiff_t>(i);
+    pick -= weight(this->u(i));
+    if (pick < 0.0) break;
+  }
+  return last;
 }
 
 namespace {
