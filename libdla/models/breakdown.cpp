@@ -217,8 +217,7 @@ class Discharge {
   void finish_stats(const Cluster& cluster) {
     stats_.absorbed = stats_.walk.absorbed;
     stats_.strike = cluster.strike;
-    stats_.channel = 0;
-    for (std::int32_t i = cluster.strike; i >= 0; i = cluster.particles[static_cast<std::size_t>(i)].parent) ++stats_.channel;
+    stats_.channel = detail::channel_length(cluster);
   }
 
   struct Site {

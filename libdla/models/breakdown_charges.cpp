@@ -532,9 +532,7 @@ class ChargeDischarge {
 
   void finish_stats() {
     stats_.strike = cluster_.strike;
-    stats_.channel = 0;
-    for (std::int32_t i = cluster_.strike; i >= 0; i = cluster_.particles[static_cast<std::size_t>(i)].parent)
-      ++stats_.channel;
+    stats_.channel = channel_length(cluster_);
   }
 
   const DlaOptions& walk_;

@@ -123,6 +123,15 @@ void validate(const BreakdownOptions& options, const DlaOptions& walk);
 Cluster breakdown(const DlaOptions& walk, const BreakdownOptions& options, const MeshConstraint* constraint,
                   const ProgressFn& progress = {}, const StopFlag* stop = nullptr, BreakdownStats* stats = nullptr);
 
+namespace detail {
+//! The particles on the main channel, from the strike back to its seed; 0 without a strike.
+inline std::uint64_t channel_length(const Cluster& cluster) {
+  std::uint64_t length = 0;
+  for (std::int32_t i = cluster.strike; i >= 0; i = cluster.particles[static_cast<std::size_t>(i)].parent) ++length;
+  return length;
+}
+}  // namespace detail
+
 // ---------------------------------------------------------------------------------------------
 
 inline std::string_view to_string(BreakdownField field) {
