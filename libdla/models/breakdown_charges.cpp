@@ -64,6 +64,14 @@ struct Bound {
   float low, high, open;
 };
 
+//! p's image across the plane where `axis` (0, 1, 2; else none) is `at`.
+inline Point mirrored(Point p, int axis, float at) {
+  if (axis == 0) p.x = 2.0f * at - p.x;
+  if (axis == 1) p.y = 2.0f * at - p.y;
+  if (axis == 2) p.z = 2.0f * at - p.z;
+  return p;
+}
+
 struct Sites {
   float* sum;
   float* open;
@@ -188,10 +196,7 @@ void ChargeField::add_charge(const Vec3& p, Crew& crew) {
   charge_y_.push_back(q.y);
   charge_z_.push_back(q.z);
   ++charges_;
-  Point image = q;
-  if (mirror_axis_ == 0) image.x = 2.0f * mirror_at_ - q.x;
-  if (mirror_axis_ == 1) image.y = 2.0f * mirror_at_ - q.y;
-  if (mirror_axis_ == 2) image.z = 2.0f * mirror_at_ - q.z;
+  const Point image = mirrored(q, mirror_axis_, mirror_at_);
   const float n_target = target_on_ ? static_cast<float>(charges_) : 0.0f;
   const bool planar = dimensions_ == 2;
   over_blocks(crew, [&](std::size_t first, std::size_t last) {
@@ -260,13 +265,8 @@ void ChargeField::add_sites(const std::vector<Vec3>& at, std::int32_t parent, co
     const std::size_t i = first + s;
     const Point c{x_[i], y_[i], z_[i]};
     float total = sum_at(charge_x_.data(), charge_y_.data(), charge_z_.data(), charges_, c, planar);
-    if (mirror_axis_ >= 0) {
-      Point image = c;
-      if (mirror_axis_ == 0) image.x = 2.0f * mirror_at_ - c.x;
-      if (mirror_axis_ == 1) image.y = 2.0f * mirror_at_ - c.y;
-      if (mirror_axis_ == 2) image.z = 2.0f * mirror_at_ - c.z;
-      total -= sum_at(charge_x_.data(), charge_y_.data(), charge_z_.data(), charges_, image, planar);
-    }
+    if (mirror_axis_ >= 0)
+      total -= sum_at(charge_x_.data(), charge_y_.data(), charge_z_.data(), charges_, mirrored(c, mirror_axis_, mirror_at_), planar);
     sum_[i] = total;
   });
   if (used_ > first) bound_blocks(first / kBlock, (used_ - 1) / kBlock + 1);
