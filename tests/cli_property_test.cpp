@@ -646,7 +646,10 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
   if (wants("csv")) {
     std::istringstream csv(read_file(dir / (prefix + ".csv")));
     std::string line;
-    if (!std::getline(csv, line) || line != "id,x,y,z,parent,seed,radius,age,depth,descendants,order,tip")
+    // A discharge that struck its target has its attributes beside every model's columns
+    // (docs/breakdown.md#attributes).
+    const std::string header = "id,x,y,z,parent,seed,radius,age,depth,descendants,order,tip";
+    if (!std::getline(csv, line) || (line != header && line != header + ",current,channel,light"))
       return prefix + ".csv has no header";
     dla::Cluster grown;
     grown.spacing = spacing;
