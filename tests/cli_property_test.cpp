@@ -511,7 +511,12 @@ Cluster read_ply_tree(const ScratchDir& dir, const std::string& name, std::strin
   const auto edges = static_cast<std::size_t>(std::atoll(header.c_str() + at_edge + 13));
   const bool linked = header.find("property uchar link") != std::string::npos;
   const bool binary = header.find("format binary_little_endian") != std::string::npos;
-  if (binary && body != 38 * vertices + (linked ? 9 : 8) * edges) {
+  // A struck discharge's vertices end with its current (float), channel (uchar) and light (float).
+  const std::size_t stride = header.find("property float current\nproperty uchar channel\nproperty float light\n") !=
+                                     std::string::npos
+                                 ? 47
+                                 : 38;
+  if (binary && body != stride * vertices + (linked ? 9 : 8) * edges) {
     fault = name + "'s body is not its header's size";
     return tree;
   }
@@ -520,7 +525,7 @@ Cluster read_ply_tree(const ScratchDir& dir, const std::string& name, std::strin
   std::vector<std::array<std::int32_t, 3>> edge_list;  // vertex1, vertex2, link
   if (binary) {
     const char* data = ply.data() + header.size();
-    for (std::size_t v = 0; v < vertices; ++v, data += 38) {
+    for (std::size_t v = 0; v < vertices; ++v, data += stride) {
       float five[5];
       std::memcpy(five, data, 20);
       floats.insert(floats.end(), five, five + 5);
