@@ -7,6 +7,8 @@
 
 #include "dla/version.h"
 
+#include <algorithm>
+
 namespace dla::cli {
 
 Subcommand add_frames_command(CLI::App& app);
@@ -40,6 +42,15 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
       "analyze", "print the fractal dimension of a grown structure (by gyration and by mass-radius) as JSON");
   analyze->add_option("csv", line.analyze_csv, "a CSV that dla3d wrote")->required();
   const Subcommand frames = add_frames_command(app);
+  CLI::App* options = app.add_subcommand("options", "print every growth model's options as JSON (names, defaults, "
+                                                    "types, groups, help), as --help shows them, then stop");
+  CLI::App* studio = app.add_subcommand("studio", "start the growth studio, a web page to paint seeds on a mesh, watch "
+                                                  "growth live and download the files (docs/studio.md)");
+  StudioCommand& s = line.studio;
+  studio->add_option("--host", s.host, "the address to listen on; another than loopback lets other machines in, "
+                                       "each with the printed token")->capture_default_str();
+  studio->add_option("--port", s.port, "the port to listen on, 0-65535; 0: a free one")->capture_default_str();
+  studio->add_flag("--open", s.open, "open the page in the web browser");
   app.require_subcommand(0, 1);
 
   std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them last first
@@ -61,11 +72,32 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     throw InvalidInput(std::string(e.what()) + " (see dla3d --help)");
   }
 
+  // --stream is every growth model's; only the run reads it.
+  const auto finish_model = [&](const Subcommand& model) {
+    model.finish(line, args);
+    if (const CLI::Option* stream = model.app->get_option_no_throw("--stream"); stream && stream->count()) {
+      line.stream_path = stream->as<std::string>();
+      if (line.stream_path.empty()) throw InvalidInput("--stream '' names no file");
+    }
+  };
   for (const Subcommand& model : models)
     if (model.app != &app && model.app->parsed()) {
-      model.finish(line, args);
+      finish_model(model);
       return line;
     }
+  if (options->parsed()) {
+    line.kind = CommandLine::Kind::print;
+    line.text = options_json(models);
+    return line;
+  }
+  if (studio->parsed()) {
+    line.kind = CommandLine::Kind::studio;
+    if (s.port < 0 || s.port > 65535) throw InvalidInput("--port " + std::to_string(s.port) + " is not in 0-65535");
+    const bool printable = std::all_of(s.host.begin(), s.host.end(), [](char c) { return c > ' ' && c < 127; });
+    if (s.host.empty() || s.host.size() > 253 || !printable)
+      throw InvalidInput("--host '" + s.host + "' is not a host name or address");
+    return line;
+  }
   if (convert->parsed()) {
     line.kind = CommandLine::Kind::convert;
     const std::string& out = line.convert_out;
@@ -82,7 +114,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     return line;
   }
   for (const Subcommand& model : models)
-    if (model.app == &app) model.finish(line, args);
+    if (model.app == &app) finish_model(model);
   return line;
 }
 

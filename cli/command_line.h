@@ -24,6 +24,13 @@ struct FramesCommand {
   LinkOptions links;
 };
 
+//! `dla3d studio`: the growth studio's web server (docs/studio.md), run by Python.
+struct StudioCommand {
+  std::string host = "127.0.0.1";  //!< the address it listens on: loopback unless asked
+  int port = 8765;                 //!< 0: a free port, printed
+  bool open = false;               //!< open the page in the browser
+};
+
 //! What the command line asks for.
 struct CommandLine {
   enum class Kind {
@@ -32,18 +39,21 @@ struct CommandLine {
     convert,  //!< dla3d convert IN OUT.stl
     analyze,  //!< dla3d analyze PREFIX.csv
     frames,   //!< dla3d frames PREFIX.csv: `frames` holds the options
-    print,    //!< --help or --version: `text` goes to stdout, exit 0
+    studio,   //!< dla3d studio: `studio` holds the options
+    print,    //!< --help, --version or `options`: `text` goes to stdout, exit 0
   };
   Kind kind = Kind::run;
   RunOptions run;
   bool quiet = false;                //!< -q: no progress bar and no summary
   std::string checkpoint_path;       //!< DLA: --checkpoint FILE; empty: none
+  std::string stream_path;           //!< --stream FILE (stream.h); empty: none
   double checkpoint_every = 60.0;    //!< seconds
   std::string resume_path;
   std::optional<int> threads;        //!< with --resume: replaces the checkpoint's thread count
   std::string convert_in, convert_out;
   std::string analyze_csv;
   FramesCommand frames;
+  StudioCommand studio;
   std::string text;
 };
 

@@ -40,4 +40,9 @@ int frames(const FramesCommand& command, bool quiet, const StopSignals& stop);
 //! `dla3d analyze PREFIX.csv`: the fractal dimension of a grown structure, as JSON on stdout.
 int analyze(const std::string& path);
 
+//! `dla3d studio`: runs the studio's server (studio/server.py, installed beside dla3d) in
+//! Python in place of this process, so that Ctrl-C and SIGTERM reach it. Returns only on
+//! failure, by throwing IOError.
+int studio(const StudioCommand& command);
+
 }  // namespace dla::cli

@@ -25,13 +25,15 @@ struct GrowWords {
   std::unique_ptr<OutputWords> files;
 };
 
-//! Only -q and --threads may go with --resume: every other option comes from the checkpoint.
+//! Only -q, --threads and --stream may go with --resume: every other option comes from the
+//! checkpoint.
 void check_resume_company(const std::vector<std::string>& args) {
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
-    if (arg == "--resume" || arg == "--threads") ++i;
-    else if (arg.rfind("--resume=", 0) != 0 && arg.rfind("--threads=", 0) != 0 && arg != "-q" && arg != "--quiet")
-      throw InvalidInput("--resume takes no other options but -q and --threads: they come from the checkpoint");
+    if (arg == "--resume" || arg == "--threads" || arg == "--stream") ++i;
+    else if (arg.rfind("--resume=", 0) != 0 && arg.rfind("--threads=", 0) != 0 && arg.rfind("--stream=", 0) != 0 &&
+             arg != "-q" && arg != "--quiet")
+      throw InvalidInput("--resume takes no other options but -q, --threads and --stream: they come from the checkpoint");
   }
 }
 

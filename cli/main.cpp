@@ -45,6 +45,7 @@ int run(const std::vector<std::string>& args) {
     case Kind::print: std::fputs(line.text.c_str(), stdout); return 0;
     case Kind::convert: return dla::cli::convert(line.convert_in, line.convert_out, line.quiet);
     case Kind::analyze: return dla::cli::analyze(line.analyze_csv);
+    case Kind::studio: return dla::cli::studio(line.studio);
     case Kind::frames:
       catch_stop_signals();
       return dla::cli::frames(line.frames, line.quiet, stop_signals);
@@ -65,9 +66,10 @@ int run(const std::vector<std::string>& args) {
   }
   if (line.threads) command.insert(command.end(), {"--threads", std::to_string(*line.threads)});
   if (line.quiet) command.push_back("-q");
-  const dla::cli::CommandLine resumed = dla::cli::parse_command_line(command);
+  dla::cli::CommandLine resumed = dla::cli::parse_command_line(command);
   if (resumed.kind != Kind::run || resumed.run.index() != 0)
     throw dla::InvalidInput(line.resume_path + ": its command is not a growth run");
+  resumed.stream_path = line.stream_path;  // a checkpoint's command never holds one: run.cpp
   catch_stop_signals();
   return dla::cli::run(resumed, command, {&checkpoint.cluster, &checkpoint.walk, checkpoint.input_hash}, stop_signals);
 }

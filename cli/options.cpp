@@ -142,6 +142,11 @@ OutputWords::OutputWords(CLI::App& app, OutputOptions& f, bool& quiet, std::stri
   up_option_ = app.add_option("--up", up_, "POV-Ray: the axis that is up in the picture, x, y or z; with a mesh, "
                                            "default: its longest side's")->capture_default_str()->group(outputs);
   app.add_flag("-q,--quiet", quiet, "no progress bar and no summary")->group(outputs);
+  // `dla3d frames` (whose default is glb alone) draws a finished CSV: nothing attaches to stream.
+  if (formats_ != "glb")
+    app.add_option("--stream", "write each particle as it attaches to FILE (a pipe for a live view), binary: "
+                               "docs/studio.md#the-stream")
+        ->type_name("FILE")->group(outputs);
 }
 
 void OutputWords::finish(OutputOptions& f) const {

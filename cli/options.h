@@ -32,6 +32,11 @@ struct Subcommand {
   std::function<void(CommandLine& line, const std::vector<std::string>& args)> finish;
 };
 
+//! `dla3d options`: every growth model's options (`models`, in the library's order) as `--help`
+//! shows them, as JSON read from the parser itself, for front ends that build a form from them
+//! (the studio). In options_json.cpp.
+std::string options_json(const std::vector<Subcommand>& models);
+
 //! The Output and Look options, the same for every growth model and for `frames`: added to
 //! `app`, bound to words kept here, then turned into `files` by finish().
 class OutputWords {

@@ -3,6 +3,7 @@
 
 #include "commands.h"
 #include "progress.h"
+#include "stream.h"
 
 #include "dla/io/checkpoint.h"
 
@@ -13,14 +14,34 @@
 
 namespace dla::cli {
 
-int run(const CommandLine& line, const std::vector<std::string>& args, const Resumed& resumed, const StopSignals& stop) {
+namespace {
+
+//! The command without --stream: where a live view read the run is no part of what it grew, so
+//! the JSON's command and a checkpoint's leave it out.
+std::vector<std::string> without_stream(const std::vector<std::string>& args) {
+  std::vector<std::string> kept;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--stream") ++i;
+    else if (args[i].rfind("--stream=", 0) != 0) kept.push_back(args[i]);
+  }
+  return kept;
+}
+
+}  // namespace
+
+int run(const CommandLine& line, const std::vector<std::string>& given, const Resumed& resumed, const StopSignals& stop) {
+  const std::vector<std::string> args = without_stream(given);
   const OutputOptions& asked = output_of(line.run);
   check_glb_options(asked);
   check_writable(file_names(asked).front());  // before a mesh's set-up and a long run
   const std::string& checkpoint = line.checkpoint_path;
   if (!checkpoint.empty()) check_writable(checkpoint);
+  check_stream_path(line.stream_path);
   const std::unique_ptr<Run> prepared = prepare_run(line.run, {}, resumed);
   Run& run = *prepared;
+  // A reader that closes the pipe ends the stream with EPIPE, not the run with SIGPIPE.
+  if (!line.stream_path.empty()) std::signal(SIGPIPE, SIG_IGN);
+  ParticleStream stream(line.stream_path);
   // Only once every option is known good: bad input gets its one line and nothing else.
   if (!line.quiet && !run.mesh_line.empty()) std::fprintf(stderr, "dla3d: %s\n", run.mesh_line.c_str());
   if (!line.quiet && !run.forecast_line.empty())
@@ -43,6 +64,7 @@ int run(const CommandLine& line, const std::vector<std::string>& args, const Res
   };
   const auto progress = [&](const Cluster& so_far) {
     bar.update(run.done(so_far), run.filled(), run.fill);
+    stream.send(so_far, run.done(so_far), run.total);
     if (stop.first.load()) return false;
     if (!checkpoint.empty() && Clock::now() - saved >= std::chrono::duration<double>(line.checkpoint_every)) {
       save(so_far);
@@ -56,6 +78,7 @@ int run(const CommandLine& line, const std::vector<std::string>& args, const Res
   const Cluster cluster = grow_recorded(run, progress, &stop.first, record, links_bar.progress());
   bar.clear();
   links_bar.clear();
+  stream.send(cluster, run.done(cluster), run.total);
   const bool failed = !record.stopped_by.empty();  // part way, by an error
   // A stop in growth or links: what grew is written, but not the solid or the levels of detail,
   // which take seconds to minutes; a second signal stops the writing too. Otherwise the first

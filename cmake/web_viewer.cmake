@@ -45,3 +45,34 @@ else()
     DEPENDS ${PROJECT_SOURCE_DIR}/cmake/embed_text.cmake
     VERBATIM)
 endif()
+
+# The growth studio (dla3d studio, docs/studio.md): its server, page and script, with three.js
+# bundled the viewer's way, beside dla3d in the build tree and in share/dla3d/studio installed.
+# The bust (CGAL's data set) goes with it, for its "The bust" button.
+set(studio_dir ${PROJECT_BINARY_DIR}/studio)
+set(studio_files ${studio_dir}/server.py ${studio_dir}/index.html)
+foreach(file server.py index.html)
+  add_custom_command(OUTPUT ${studio_dir}/${file}
+    COMMAND ${CMAKE_COMMAND} -E copy_if_different ${PROJECT_SOURCE_DIR}/studio/${file} ${studio_dir}/${file}
+    DEPENDS ${PROJECT_SOURCE_DIR}/studio/${file}
+    VERBATIM)
+endforeach()
+if(DLA_WEB_VIEWER)
+  add_custom_command(OUTPUT ${studio_dir}/studio.js
+    COMMAND ${CMAKE_COMMAND} -E copy_if_different ${PROJECT_SOURCE_DIR}/studio/studio.js ${viewer_dir}/studio.js
+    COMMAND ${viewer_dir}/node_modules/.bin/esbuild ${viewer_dir}/studio.js --bundle --minify --format=iife
+            --charset=ascii --legal-comments=eof --log-level=warning --outfile=${studio_dir}/studio.js
+    DEPENDS ${PROJECT_SOURCE_DIR}/studio/studio.js ${viewer_dir}/npm.stamp
+    COMMENT "Bundling the studio's script with three.js"
+    VERBATIM)
+  list(APPEND studio_files ${studio_dir}/studio.js)
+endif()
+if(EXISTS ${DLA_BUST_OFF})
+  add_custom_command(OUTPUT ${studio_dir}/bust.off
+    COMMAND ${CMAKE_COMMAND} -E copy_if_different ${DLA_BUST_OFF} ${studio_dir}/bust.off
+    DEPENDS ${DLA_BUST_OFF}
+    VERBATIM)
+  list(APPEND studio_files ${studio_dir}/bust.off)
+endif()
+add_custom_target(dla_studio ALL DEPENDS ${studio_files})
+install(FILES ${studio_files} DESTINATION ${CMAKE_INSTALL_DATADIR}/dla3d/studio)

@@ -132,6 +132,7 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--tips-exclude-paint", {"red", "ff0000,0.2", "blue", "mauve", "red,1"}},
       {"--up", {"x", "y", "z", "w"}},
       {"--quiet", {}},
+      {"--stream", {"live.bin", "live.bin", "nofolder/live.bin", "dir", "''"}},
       {"--checkpoint", {"run.ck", "nofolder/run.ck"}},
       {"--checkpoint-every", {"0", "0.5", "60", "-1", "nan", "inf"}},
       {"--resume", {"saved.ck", "missing.ck", "out.csv", "noise.stl", "folder.stl", "pipe.stl", "zero.stl", "empty.stl", "cut.ck"}},
@@ -616,6 +617,29 @@ std::set<std::string> expected_files(const std::string& prefix, const std::strin
   return expected;
 }
 
+//! What is wrong with a --stream file of a run that ended (cli/stream.h), or "": whole frames,
+//! each starting where the last ended (or at 0, as a resumed run does), the last one done.
+std::string stream_fault(const std::filesystem::path& path) {
+  const std::string bytes = read_file(path);
+  std::uint64_t sent = 0, done = 0, total = 0;
+  for (std::size_t at = 0; at < bytes.size();) {
+    if (bytes.size() - at < 32 || bytes.compare(at, 4, "DLAs") != 0) return "a frame's header is cut or wrong";
+    std::uint32_t count = 0;
+    std::uint64_t first = 0;
+    std::memcpy(&count, bytes.data() + at + 4, 4);
+    std::memcpy(&first, bytes.data() + at + 8, 8);
+    std::memcpy(&done, bytes.data() + at + 16, 8);
+    std::memcpy(&total, bytes.data() + at + 24, 8);
+    if (first != sent && first != 0) return "a frame starts at " + std::to_string(first) + ", not " + std::to_string(sent);
+    if (bytes.size() - at - 32 < 16ull * count) return "a frame's particles are cut";
+    sent = first + count;
+    at += 32 + 16ull * count;
+  }
+  if (sent == 0) return "no particle was streamed";
+  if (done > total) return "done is past the total";
+  return "";
+}
+
 //! Checks the files of a run that exited 0 under `prefix` in `dir`, writing `formats` (a
 //! --formats value) with `lods` levels of the glb: exactly those files, each read back whole,
 //! and, with the JSON, against its counts; returns what is wrong.
@@ -938,7 +962,7 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
       "--output", "--ply-format", "--formats", "--png-scale", "--png-bands", "--radius", "--base-radius",
       "--tip-radius", "--pipe-exponent", "--color-by", "--look", "--tube-sides", "--tube-tolerance",
       "--tube-min-branch", "--uv-scale", "--lod", "--leaf", "--instances", "--tips-within", "--tips-every",
-      "--tips-exclude-paint", "--up", "--quiet", "--help"};
+      "--tips-exclude-paint", "--up", "--quiet", "--stream", "--help"};
   const auto flags_of = [&](const Table& table) {
     std::vector<std::string> model_flags(shared.begin(), shared.end());
     for (const auto& [flag, values] : table) model_flags.push_back(flag);
@@ -1054,6 +1078,9 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
         }
         ASSERT_EQ(check_files(dir, prefix, last_value(command, "--formats", "pov,csv,ply,json"),
                               std::atoi(last_value(command, "--lod", "0").c_str())), "");
+        if (last_value(command, "--stream", "") == "live.bin") {
+          ASSERT_EQ(stream_fault(dir / "live.bin"), "");
+        }
         stop_again();
         break;
       }
@@ -1087,6 +1114,63 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
   EXPECT_GT(stops[130] + stops[143], exits[0] / 12) << "too few runs were stopped by their signal";
   EXPECT_GT(exits[0], runs / 10) << "too few command lines grew anything: the table draws too many faults";
   EXPECT_GT(exits[2], runs / 10) << "too few faults drawn";
+}
+
+//! `dla3d studio`'s options, drawn as the others; every option of `dla3d studio --help`.
+const std::map<std::string, std::vector<std::string>>& studio_table() {
+  static const std::map<std::string, std::vector<std::string>> table = {
+      {"--host", {"127.0.0.1", "localhost", "::1", "256.0.0.1", "''", "'a b'", "no.such.host.invalid"}},
+      {"--port", {"0", "0", "-1", "65536", "x", "''"}},
+      {"--open", {}},
+      {"--help", {}},
+  };
+  return table;
+}
+
+// The studio, started with random options and stopped by Ctrl-C once it printed its address:
+// it exits 0, or gives one error line (exit 2 for a bad option, 1 when it cannot listen).
+TEST(CliProperty, TheStudioStartsAndStopsWithRandomOptions) {
+  ScratchDir root;
+  for (const std::string& name : options_of_help(root, "studio"))
+    EXPECT_TRUE(studio_table().count(name)) << name << " is in dla3d studio --help but not in the property test's table";
+  std::mt19937_64 rng(69);
+  const auto pick = [&](std::size_t n) { return static_cast<std::size_t>(rng() % n); };
+  std::vector<std::string> flags;
+  for (const auto& [flag, values] : studio_table()) flags.push_back(flag);
+  std::map<int, int> exits;
+  for (int run = 0; run < 16; ++run) {
+    std::string args = " studio --port 0";
+    for (std::size_t i = 0, n = pick(4); i < n; ++i) {
+      const std::string& flag = flags[pick(flags.size())];
+      if (flag == "--help" && pick(4) != 0) continue;
+      const std::vector<std::string>& values = studio_table().at(flag);
+      args += " " + flag;
+      if (!values.empty()) args += " " + values[pick(3) == 0 ? pick(values.size()) : 0];
+    }
+    ScratchDir dir;
+    // The address line is the event Ctrl-C waits for; a studio that never prints one and never
+    // exits is killed at the bound, which fails below.
+    const std::string script = "cd '" + dir.path().string() + "' && { BROWSER=true timeout -s KILL 60 '" DLA3D_PATH "'" +
+                               args + " > out.txt 2> err.txt & pid=$!; for i in $(seq 600); do "
+                               "grep -q http:// out.txt && break; kill -0 $pid 2> /dev/null || break; sleep 0.1; done; "
+                               "kill -INT $pid 2> /dev/null; wait $pid; echo $? > rc.txt; }";
+    ASSERT_EQ(std::system(script.c_str()), 0);
+    const int code = std::atoi(read_file(dir / "rc.txt").c_str());
+    const std::string out = read_file(dir / "out.txt"), err = read_file(dir / "err.txt");
+    SCOPED_TRACE("dla3d" + args + "\nstdout: " + out + "\nstderr: " + err);
+    ++exits[code];
+    if (args.find("--help") != std::string::npos && code == 0) continue;
+    switch (code) {
+      case 0: EXPECT_EQ(out.rfind("dla3d studio: http://", 0), 0u); break;
+      case 1:
+      case 2:
+        EXPECT_EQ(err.rfind("dla3d: error: ", 0), 0u);
+        EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1);
+        break;
+      default: FAIL() << "exit " << code;
+    }
+  }
+  EXPECT_GT(exits[0], 3) << "too few studios started";
 }
 
 }  // namespace

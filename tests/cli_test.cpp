@@ -2,6 +2,7 @@
 // is one line on stderr, a non-zero exit and no files.
 
 #include "dla/io/csv_reader.h"
+#include "dla/run/run.h"
 #include "dla/mesh/mesh.h"
 #include "dla/mesh/shapes.h"
 #include "cli_util.h"
@@ -12,6 +13,8 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -1105,4 +1108,120 @@ TEST(Cli, SeedMeshGrowsFromWhereARodEnters) {
   expect_refused(dir, {"--seed-mesh rod.stl",
                        "--stl ball.stl --seed-mesh rod.stl --seed-paint red", "--stl ball.stl --seed-mesh rod.stl --seed-surface",
                        "--stl ball.stl --seed-mesh rod.stl --seed-at 0,0,0"});
+}
+
+namespace {
+
+//! The particles of a --stream file (cli/stream.h), each frame written at its `first`, and the
+//! last frame's done and total; an empty string, or what is wrong with it.
+struct Streamed {
+  std::vector<std::array<float, 3>> positions;
+  std::vector<std::int32_t> parents;
+  std::uint64_t done = 0, total = 0;
+  std::size_t frames = 0;
+  std::string fault;
+};
+
+Streamed read_stream(const std::filesystem::path& path) {
+  const std::string bytes = read_file(path);
+  Streamed s;
+  std::size_t at = 0;
+  while (at < bytes.size()) {
+    if (bytes.size() - at < 32 || bytes.compare(at, 4, "DLAs") != 0) return s.fault = "a frame's header is cut or wrong", s;
+    std::uint32_t count = 0;
+    std::uint64_t first = 0;
+    std::memcpy(&count, bytes.data() + at + 4, 4);
+    std::memcpy(&first, bytes.data() + at + 8, 8);
+    std::memcpy(&s.done, bytes.data() + at + 16, 8);
+    std::memcpy(&s.total, bytes.data() + at + 24, 8);
+    if (bytes.size() - at - 32 < 16ull * count) return s.fault = "a frame's particles are cut", s;
+    if (first > s.positions.size()) return s.fault = "a frame leaves a gap", s;
+    s.positions.resize(std::max<std::size_t>(s.positions.size(), first + count));
+    s.parents.resize(s.positions.size());
+    std::memcpy(&s.positions[first], bytes.data() + at + 32, 12ull * count);
+    std::memcpy(&s.parents[first], bytes.data() + at + 32 + 12ull * count, 4ull * count);
+    at += 32 + 16ull * count;
+    ++s.frames;
+  }
+  return s;
+}
+
+void expect_stream_is(const Streamed& s, const dla::Cluster& grown) {
+  ASSERT_EQ(s.fault, "");
+  ASSERT_EQ(s.positions.size(), grown.particles.size());
+  for (std::size_t i = 0; i < s.positions.size(); ++i) {
+    for (int axis = 0; axis < 3; ++axis)
+      ASSERT_EQ(s.positions[i][axis], static_cast<float>(grown.particles[i].position[axis])) << i;
+    ASSERT_EQ(s.parents[i], grown.particles[i].parent) << i;
+  }
+}
+
+}  // namespace
+
+TEST(Cli, StreamSendsEachParticleAsItAttachesAndChangesNoFile) {
+  ScratchDir dir;
+  ASSERT_EQ(dla3d(dir, "-n 60000 -q --formats csv,json -o streamed --stream live.bin").exit_code, 0);
+  ASSERT_EQ(dla3d(dir, "-n 60000 -q --formats csv,json -o plain").exit_code, 0);
+  EXPECT_EQ(read_file(dir / "streamed.csv"), read_file(dir / "plain.csv"));
+  // The run's record leaves the stream out: it is no part of what grew.
+  EXPECT_EQ(read_file(dir / "streamed.json").find("live.bin"), std::string::npos);
+  const Streamed s = read_stream(dir / "live.bin");
+  expect_stream_is(s, dla::read_csv(dir / "plain.csv"));
+  EXPECT_EQ(s.done, 60000u);
+  EXPECT_EQ(s.total, 60000u);
+  EXPECT_GE(s.frames, 2u);
+  // Every model streams.
+  for (const char* model : {"colonize --attractors 3000", "eden -n 2000", "drop -n 500", "ballistic -n 500",
+                            "breakdown -n 300"}) {
+    SCOPED_TRACE(model);
+    ASSERT_EQ(dla3d(dir, std::string(model) + " -q --formats csv -o model --stream model.bin").exit_code, 0);
+    expect_stream_is(read_stream(dir / "model.bin"), dla::read_csv(dir / "model.csv"));
+  }
+}
+
+TEST(Cli, StreamToAClosedPipeEndsTheStreamNotTheRun) {
+  ScratchDir dir;
+  // `head -c 100` takes a frame's start and goes away: the run goes on and writes its files.
+  ASSERT_EQ(std::system(("cd '" + dir.path().string() + "' && '" DLA3D_PATH
+                         "' -n 100000 -q --formats csv -o piped --stream /dev/stdout | head -c 100 > /dev/null")
+                            .c_str()),
+            0);
+  EXPECT_EQ(dla::read_csv(dir / "piped.csv").particles.size(), 100001u);
+}
+
+TEST(Cli, StreamResumedStartsAgainAtTheFirstParticle) {
+  ScratchDir dir;
+  const std::string run = "-n 150000 -q --rng-seed 3";
+  ASSERT_EQ(interrupted(dir, run + " -o part --checkpoint part.ck --checkpoint-every 0.2", SIGINT, 0.0, "part.ck"), 130);
+  const CliRun resumed = dla3d(dir, "--resume part.ck --stream resumed.bin");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  expect_stream_is(read_stream(dir / "resumed.bin"), dla::read_csv(dir / "part.csv"));
+}
+
+TEST(Cli, StreamToAFolderOrNowhereIsOneLineAndNoFile) {
+  ScratchDir dir;
+  std::filesystem::create_directory(dir / "folder");
+  for (const char* where : {"folder", "missing/live.bin", "''"}) {
+    const CliRun run = dla3d(dir, std::string("-n 10 -q -o bad --stream ") + where);
+    SCOPED_TRACE(where);
+    EXPECT_EQ(run.exit_code, 2) << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad.csv"));
+  }
+  EXPECT_EQ(dla3d(dir, "frames bad.csv --stream x.bin").exit_code, 2) << "frames grows nothing to stream";
+}
+
+TEST(Cli, OptionsDescribesEveryModelsHelp) {
+  ScratchDir dir;
+  ASSERT_EQ(std::system(("cd '" + dir.path().string() + "' && '" DLA3D_PATH "' options > options.json").c_str()), 0);
+  const std::string json = read_file(dir / "options.json");
+  for (const dla::Model& model : dla::models()) {
+    SCOPED_TRACE(model.name);
+    EXPECT_NE(json.find("{\"name\": \"" + std::string(model.name) + "\""), std::string::npos);
+  }
+  // Each of --help's options of DLA is there, with its default.
+  for (const char* entry : {"\"name\": \"--particles\", \"short\": [\"-n\"]", "\"default\": \"10000\"",
+                            "\"name\": \"--eta\"", "\"name\": \"--stream\"", "\"name\": \"--seed-paint\""})
+    EXPECT_NE(json.find(entry), std::string::npos) << entry;
+  EXPECT_EQ(json.find("\"name\": \"--help\""), std::string::npos);
 }
