@@ -8,7 +8,7 @@ namespace {
 
 struct ColonizeWords {
   std::vector<std::string> root_at;
-  std::string attractor_region, attractor_center, attractor_box, noise, tropism, roots_in, collision, venation;
+  std::string attractor_region, attractor_center, attractor_box, attractor_paint, noise, tropism, roots_in, collision, venation;
   long long max_nodes, attractor_count, max_iterations, root_count = 0;
   CLI::Option *attractors, *roots;
   std::unique_ptr<SeedWords> seeds;
@@ -37,6 +37,7 @@ void finish(ColonizeRunOptions& c, const ColonizeWords& w) {
     c.attractors.box_min = box.min;
     c.attractors.box_max = box.max;
   }
+  if (!w.attractor_paint.empty()) c.attractors.paint = parse_paint(w.attractor_paint, "attractor_paint");
   if (!w.noise.empty()) {
     const std::vector<double> n = parse_numbers("--noise", w.noise, 2);
     c.colonization.noise_amplitude = n[0];
@@ -108,6 +109,11 @@ Subcommand add_colonize_command(CLI::App& app, const Model& model) {
   command->add_option("--attractor-falloff", c->attractors.falloff, "grading towards the sphere's centre, "
                                                                     "[0, 100]; 0 is uniform")
       ->capture_default_str()->group(attracting);
+  command->add_option("--attractor-paint", w->attractor_paint, "with --attractors-in surface: only on the part "
+                                                               "of the --stl or --collide mesh painted this colour "
+                                                               "(a name or ff8000), within TOLERANCE per channel, "
+                                                               "[0, 1), default 0.3")
+      ->type_name("COLOR[,TOLERANCE]")->group(attracting)->excludes("--attractors-from");
   CLI::Option* root_at_option =
       command->add_option("--root-at", w->root_at, "a root at x,y,z (repeat for several); default: one at "
                                                    "the attractors' lowest point (-y)")

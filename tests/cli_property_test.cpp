@@ -175,6 +175,7 @@ const std::map<std::string, std::vector<std::string>>& colonize_table() {
       {"--attractor-radius", {"20", "5", "1e-3", "0", "-1", "1e300", "inf"}},
       {"--attractor-box", {"-20,-20,-20,20,20,20", "0,0,0,10,10,0", "1,1,1,0,0,0", "0,0,0,1"}},
       {"--attractor-falloff", {"1", "0", "100", "-1", "nan"}},
+      {"--attractor-paint", {"red", "ff0000,0.5", "blue", "pink", "red,1", "''"}},
       {"--root-at", {"0,-20,0", "5,5,0", "0,0,0", "1e300,0,0", "a,b,c"}},
       {"--roots", {"3", "1", "20", "0", "-2"}},
       {"--roots-in", {"sphere", "mesh", "surface", "cube"}},

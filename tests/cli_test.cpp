@@ -1047,6 +1047,33 @@ TEST(Cli, SeedPaintGrowsFromThePaintedPart) {
                        "--stl painted.ply --seed-paint red --side both", "--stl painted.ply --seed-paint red --seeds 5000"});
 }
 
+// Colonization's attractors on the painted part of the vessel: the tree grows up into the cap.
+TEST(Cli, AttractorPaintGrowsTheTreeToThePaintedPart) {
+  ScratchDir dir;
+  dla::TriangleMesh ball = dla::make_sphere(dla::Vec3::Zero(), 10.0, 12, 24);
+  for (const dla::Vec3& v : ball.vertices) ball.colors.push_back(v.z() > 5.0 ? dla::Vec3(0, 1, 0) : dla::Vec3(1, 1, 1));
+  std::ofstream(dir / "painted.ply") << dla::testing::painted_ply(ball);
+  const std::string common = "colonize -q --stl painted.ply --spacing 0.5 --attractors 400 --root-at 0,0,-8 -n 400 ";
+  const CliRun run = dla3d(dir, common + "--attractors-in surface --attractor-paint 00ff00 -o cap --formats csv,json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const dla::Cluster tree = dla::read_csv(dir / "cap.csv");
+  double highest = -1e9;
+  for (const auto& p : tree.particles) highest = std::max(highest, p.position.z());
+  EXPECT_GT(highest, 5.0) << "the tree reaches the painted cap";
+  EXPECT_NE(read_file(dir / "cap.json").find("\"attractor_paint\": \"00ff00,0.3\""), std::string::npos);
+  dla::write_stl(ball, dir / "plain.stl");
+  for (const char* args : {"--stl painted.ply --attractor-paint green",
+                           "--stl painted.ply --attractors-in surface --attractor-paint red",
+                           "--stl plain.stl --attractors-in surface --attractor-paint green",
+                           "--attractors-in surface --attractor-paint green",
+                           "--stl painted.ply --attractors-in surface --attractor-paint pink"}) {
+    const CliRun refused = dla3d(dir, std::string("colonize -q -o bad -n 50 ") + args);
+    EXPECT_EQ(refused.exit_code, 2) << args << ": " << refused.err;
+    EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << args << ": " << refused.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "bad.csv")) << args;
+  }
+}
+
 // drop and colonize take DLA's mesh controls: seeds (colonize: roots) on the painted part, on the
 // surface, K far apart; DLA's --fill and --shell are refused with why.
 TEST(Cli, DropAndColonizeTakeTheMeshControls) {

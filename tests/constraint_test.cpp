@@ -3,6 +3,7 @@
 // every seed growing, the same files for the same seed.
 
 #include "dla/mesh/constraint.h"
+#include "dla/models/colonization.h"
 #include "dla/models/fill.h"
 #include "dla/models/dla.h"
 #include "dla/mesh/mesh_repair.h"
@@ -394,6 +395,59 @@ TEST(Constraint, PaintedSeedsCoverThePaintAndNothingElse) {
     EXPECT_NE(std::string(e.what()).find("#ffffff on"), std::string::npos) << e.what();
   }
   EXPECT_THROW(MeshConstraint(make_sphere(Vec3::Zero(), 8.0), {}, 0.5).sample_surface(5, &red), InvalidInput);
+}
+
+TEST(Constraint, PaintedAttractorsLieOverThePaintAndFillIt) {
+  const MeshConstraint constraint(painted_sphere(), {}, 0.5);
+  AttractorOptions options;
+  options.count = 2000;
+  options.region = AttractorRegion::surface;
+  options.paint = parse_paint("red", "attractor_paint");
+  const std::vector<Vec3> points = scatter_attractors(options, 7, 3, &constraint);
+  ASSERT_EQ(points.size(), 2000u);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const testing::SampledClosest closest = testing::sampled_closest(constraint.mesh(), points[i]);
+    ASSERT_LE(closest.distance, 0.26) << i;
+    ASSERT_LE((closest.color - Vec3(1, 0, 0)).cwiseAbs().maxCoeff(), 0.35) << i << ": " << points[i].transpose();
+    ASSERT_TRUE(constraint.inside_test().contains(points[i])) << i;
+  }
+  // Uniform by area over the paint: the share above z = 6 is the painted area's share there
+  // (half a spacing in: z = 6 · 8 / 7.75 on the surface), found by quadrature over every
+  // triangle, blend and all.
+  const TriangleMesh& mesh = constraint.mesh();
+  const double z_high = 6.0 * 8.0 / 7.75;
+  double painted = 0.0, painted_high = 0.0;
+  constexpr int steps = 24;
+  for (const auto& tri : mesh.triangles) {
+    const Vec3 &a = mesh.vertices[tri[0]], &b = mesh.vertices[tri[1]], &c = mesh.vertices[tri[2]];
+    const double cell = 0.5 * (b - a).cross(c - a).norm() / (steps * steps);
+    for (int i = 0; i < steps; ++i)
+      for (int j = 0; i + j < steps; ++j)
+        for (const int flip : {0, 1}) {
+          if (flip && i + j + 1 >= steps) continue;
+          // The centroid of each small triangle of the subdivision.
+          const double u = (i + (flip ? 2.0 : 1.0) / 3.0) / steps, v = (j + (flip ? 2.0 : 1.0) / 3.0) / steps;
+          const Vec3 color = (1 - u - v) * mesh.colors[tri[0]] + u * mesh.colors[tri[1]] + v * mesh.colors[tri[2]];
+          if ((color - Vec3(1, 0, 0)).cwiseAbs().maxCoeff() > 0.3) continue;
+          painted += cell;
+          if ((a + u * (b - a) + v * (c - a)).z() > z_high) painted_high += cell;
+        }
+  }
+  const auto high = std::count_if(points.begin(), points.end(), [](const Vec3& p) { return p.z() > 6.0; });
+  EXPECT_NEAR(static_cast<double>(high) / points.size(), painted_high / painted, 0.035);  // 3 sd of 2000 draws
+  EXPECT_EQ(scatter_attractors(options, 7, 3, &constraint), points);
+  // Paint is for the surface alone, and a colour the mesh lacks is an error naming the option.
+  options.region = AttractorRegion::mesh;
+  EXPECT_THROW(scatter_attractors(options, 7, 3, &constraint), InvalidInput);
+  options.region = AttractorRegion::surface;
+  options.paint = parse_paint("blue", "attractor_paint");
+  try {
+    scatter_attractors(options, 7, 3, &constraint);
+    ADD_FAILURE() << "no error";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("attractor_paint"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(to_string(parse_paint("ff8000,0.25", "attractor_paint")), "ff8000,0.25");
 }
 
 TEST(Constraint, PaintedSeedsOnAPatchOfTheBust) {

@@ -9,6 +9,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <optional>
 #include <unordered_map>
 
 namespace dla {
@@ -255,6 +256,54 @@ void require_seedable(double measure, const char* unit, const char* option) {
                        "use a larger spacing");
 }
 
+//! The triangles whose corners' colours could blend to a paint (all of them without one), by
+//! cumulative area: points drawn on them are uniform by area over the painted part.
+class PaintedArea {
+ public:
+  struct Point {
+    Vec3 at, normal;
+    std::uint32_t triangle;
+  };
+
+  PaintedArea(const TriangleMesh& mesh, const Paint* paint) : mesh_(mesh), paint_(paint) {
+    for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
+      const auto& tri = mesh.triangles[t];
+      if (paint && !paint->may_match(mesh.colors[tri[0]], mesh.colors[tri[1]], mesh.colors[tri[2]])) continue;
+      const Vec3 &a = mesh.vertices[tri[0]], &b = mesh.vertices[tri[1]], &c = mesh.vertices[tri[2]];
+      area_ += 0.5 * (b - a).cross(c - a).norm();
+      triangles_.push_back(t);
+      prefix_.push_back(area_);
+    }
+  }
+
+  double area() const { return area_; }
+
+  //! A point uniform by area over the triangles; nothing where the colours there blend to
+  //! other than the paint, so that the painted part alone is drawn from.
+  std::optional<Point> draw(Rng& rng) const {
+    const std::size_t k = std::min<std::size_t>(
+        static_cast<std::size_t>(std::upper_bound(prefix_.begin(), prefix_.end(), rng.uniform() * area_) - prefix_.begin()),
+        triangles_.size() - 1);
+    const auto& tri = mesh_.triangles[triangles_[k]];
+    double u = rng.uniform(), v = rng.uniform();
+    if (u + v > 1.0) {
+      u = 1.0 - u;
+      v = 1.0 - v;
+    }
+    if (paint_ && !paint_->matches((1 - u - v) * mesh_.colors[tri[0]] + u * mesh_.colors[tri[1]] + v * mesh_.colors[tri[2]]))
+      return std::nullopt;
+    const Vec3 &a = mesh_.vertices[tri[0]], &b = mesh_.vertices[tri[1]], &c = mesh_.vertices[tri[2]];
+    return Point{a + u * (b - a) + v * (c - a), (b - a).cross(c - a).normalized(), triangles_[k]};
+  }
+
+ private:
+  const TriangleMesh& mesh_;
+  const Paint* paint_;
+  std::vector<std::uint32_t> triangles_;
+  std::vector<double> prefix_;
+  double area_ = 0.0;
+};
+
 std::string hex(const Vec3& rgb) {
   char text[8];
   std::snprintf(text, sizeof text, "#%02x%02x%02x", static_cast<int>(std::lround(255 * rgb[0])),
@@ -318,42 +367,39 @@ std::vector<Vec3> MeshConstraint::sample_surface(std::uint64_t rng_seed, const P
   if (options_.side == Side::both && !shell_)
     throw InvalidInput(std::string(option) + " needs a growing side to put the seeds on: `side` inside or outside");
   if (paint) require_paint(*paint, "seed_paint");
-  // The triangles whose corners' colours could blend to the paint (all of them without paint),
-  // by cumulative area.
-  std::vector<std::uint32_t> triangles;
-  std::vector<double> prefix;
-  double area = 0.0;
-  for (std::uint32_t t = 0; t < mesh_.triangles.size(); ++t) {
-    const auto& tri = mesh_.triangles[t];
-    if (paint && !paint->may_match(mesh_.colors[tri[0]], mesh_.colors[tri[1]], mesh_.colors[tri[2]])) continue;
-    const Vec3 &a = mesh_.vertices[tri[0]], &b = mesh_.vertices[tri[1]], &c = mesh_.vertices[tri[2]];
-    area += 0.5 * (b - a).cross(c - a).norm();
-    triangles.push_back(t);
-    prefix.push_back(area);
-  }
-  require_seedable(area / (spacing_ * spacing_), "spacings² of surface", option);
+  const PaintedArea painted(mesh_, paint);
+  require_seedable(painted.area() / (spacing_ * spacing_), "spacings² of surface", option);
   Rng rng(rng_seed, ~std::uint64_t{1});  // a stream no walker and no other seeding uses
   Darts darts(spacing_);
-  const auto tries = static_cast<std::size_t>(std::ceil(4.0 * area / (spacing_ * spacing_))) + 1;
-  for (std::size_t i = 0; i < tries; ++i) {
-    const std::size_t k = std::min<std::size_t>(
-        static_cast<std::size_t>(std::upper_bound(prefix.begin(), prefix.end(), rng.uniform() * area) - prefix.begin()),
-        triangles.size() - 1);
-    const auto& tri = mesh_.triangles[triangles[k]];
-    double u = rng.uniform(), v = rng.uniform();
-    if (u + v > 1.0) {
-      u = 1.0 - u;
-      v = 1.0 - v;
-    }
-    if (paint && !paint->matches((1 - u - v) * mesh_.colors[tri[0]] + u * mesh_.colors[tri[1]] + v * mesh_.colors[tri[2]]))
-      continue;
-    const Vec3 &a = mesh_.vertices[tri[0]], &b = mesh_.vertices[tri[1]], &c = mesh_.vertices[tri[2]];
-    darts.throw_at(beside(a + u * (b - a) + v * (c - a), (b - a).cross(c - a).normalized(), rng));
-  }
+  const auto tries = static_cast<std::size_t>(std::ceil(4.0 * painted.area() / (spacing_ * spacing_))) + 1;
+  for (std::size_t i = 0; i < tries; ++i)
+    if (const auto point = painted.draw(rng)) darts.throw_at(beside(point->at, point->normal, rng));
   if (darts.points.empty())
     throw InvalidInput("the painted part of the mesh is too small for a seed at a spacing of " +
                        detail::format_number(spacing_) + ": use a smaller spacing or a larger `seed_paint` tolerance");
   return std::move(darts.points);
+}
+
+std::vector<Vec3> MeshConstraint::draw_near_paint(std::size_t count, Rng& rng, const Paint& paint,
+                                                  const char* option) const {
+  require_paint(paint, option);
+  const PaintedArea painted(mesh_, &paint);
+  constexpr int max_draws = 1'000'000;
+  std::vector<Vec3> points;
+  points.reserve(count);
+  for (std::size_t i = 0; i < count; ++i)
+    for (int draw = 0;; ++draw) {
+      if (draw == max_draws)
+        throw InvalidInput(std::string("no point of the part painted for `") + option + "` in a million draws: " +
+                           "paint more of the mesh, or give a larger tolerance");
+      const auto point = painted.draw(rng);
+      if (!point) continue;
+      const Vec3 p = beside(point->at, point->normal, rng, point->triangle);
+      if (!p.allFinite()) continue;  // a degenerate triangle
+      points.push_back(p);
+      break;
+    }
+  return points;
 }
 
 void MeshConstraint::require_paint(const Paint& paint, const char* option) const {

@@ -254,6 +254,7 @@ class ColonizeRun : public Run {
       out.text("attractors_in", to_string(a.region));
       if (a.region == AttractorRegion::sphere) out.point("attractor_center", a.center).number("attractor_radius", a.radius);
       else if (a.region == AttractorRegion::box) out.points("attractor_box", {a.box_min, a.box_max});
+      if (a.paint) out.text("attractor_paint", to_string(*a.paint));
     }
     out.number("attractor_falloff", a.falloff).points("roots", roots_);
     if (!vessel_file_.empty()) out.text("vessel", vessel_file_);

@@ -155,6 +155,9 @@ Table<ColonizeRunOptions> colonize_table() {
     o.attractors.box_max = b.max;
   };
   t["attractor_falloff"] = [](O& o, py::handle v, Given&) { o.attractors.falloff = number("attractor_falloff", v); };
+  t["attractor_paint"] = [](O& o, py::handle v, Given&) {
+    o.attractors.paint = parse_paint(text("attractor_paint", v), "attractor_paint");
+  };
   t["root_at"] = [](O& o, py::handle v, Given&) { o.root_at = points("root_at", v); };
   t["roots"] = [](O& o, py::handle v, Given&) {
     if ((o.root_count = count("roots", v)) == 0) throw InvalidInput("`roots` 0: there must be a root");

@@ -122,6 +122,10 @@ class MeshConstraint {
   //! same for the same `rng_seed`. Throws InvalidInput for a surface of more than 500,000
   //! spacings², with `--side both`, and for paint on a mesh without colours or not on it.
   std::vector<Vec3> sample_surface(std::uint64_t rng_seed, const Paint* paint = nullptr) const;
+  //! `count` points half a spacing off the part of the surface painted `paint`, on the growing
+  //! side, uniform by its area (`attractor_paint`). Throws InvalidInput as require_paint() does,
+  //! naming `option`.
+  std::vector<Vec3> draw_near_paint(std::size_t count, Rng& rng, const Paint& paint, const char* option) const;
   //! Throws InvalidInput, naming `option`, where the mesh has no vertex colours or no part of
   //! it is painted within the paint's tolerance, saying what colours it has.
   void require_paint(const Paint& paint, const char* option) const;

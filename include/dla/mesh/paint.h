@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <exception>
 #include <string>
@@ -45,6 +47,14 @@ inline Vec3 paint_at(const TriangleMesh& mesh, std::uint32_t t, const Vec3& p) {
   const double v = std::clamp((d11 * d20 - d01 * d21) / denominator, 0.0, 1.0);
   const double w = std::clamp((d00 * d21 - d01 * d20) / denominator, 0.0, 1.0 - v);
   return (1.0 - v - w) * ca + v * cb + w * cc;
+}
+
+//! "ff8000,0.3": the words parse_paint() reads back.
+inline std::string to_string(const Paint& paint) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%02x%02x%02x,", static_cast<int>(std::lround(255 * paint.color[0])),
+                static_cast<int>(std::lround(255 * paint.color[1])), static_cast<int>(std::lround(255 * paint.color[2])));
+  return text + detail::format_number(paint.tolerance);
 }
 
 //! "red", "ff0000", "#ff0000", with ",TOLERANCE" after it or not. Throws InvalidInput naming

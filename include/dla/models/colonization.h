@@ -81,6 +81,9 @@ struct AttractorOptions {
   //! R u^((1 + f) / d) for u uniform in [0, 1) (d the dimensions), denser towards the centre
   //! as f grows, so that roots spread out do not run dry (the Hyphae write-up's fourth test).
   double falloff = 0.0;
+  //! With the `surface` region, only its part painted this colour (`attractor_paint`): the
+  //! tree grows towards what was painted.
+  std::optional<Paint> paint;
 };
 
 inline void validate(const AttractorOptions& o) {
@@ -93,6 +96,8 @@ inline void validate(const AttractorOptions& o) {
   detail::require_in("attractor falloff", o.falloff, 0.0, 100.0);
   if (o.region == AttractorRegion::box && !(o.box_min.array() < o.box_max.array()).head<2>().all())
     throw InvalidInput("the attractor box's min corner is not below its max corner");
+  if (o.paint && o.region != AttractorRegion::surface)
+    throw InvalidInput("`attractor_paint` puts the attractors on the painted part of the surface: `attractors_in` surface");
 }
 
 //! `options.count` points drawn with the generator seeded by `seed`, in z = 0 for 2D. The
@@ -105,6 +110,7 @@ inline std::vector<Vec3> scatter_attractors(const AttractorOptions& options, std
   if (on_mesh && !mesh) throw InvalidInput("attractors in or on a mesh need one: a vessel or a collision mesh");
   if (on_mesh && dimensions != 3) throw InvalidInput("attractors in a mesh need 3 dimensions");
   Rng rng(seed, 0x617474726163746fULL);  // a stream of its own: "attracto"
+  if (options.paint) return mesh->draw_near_paint(options.count, rng, *options.paint, "attractor_paint");
   std::vector<Vec3> points;
   points.reserve(options.count);
   for (std::size_t i = 0; i < options.count; ++i) {
