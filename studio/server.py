@@ -22,9 +22,11 @@ import re
 import secrets
 import shutil
 import signal
+import socket
 import struct
 import sys
 import tempfile
+import threading
 import webbrowser
 
 try:
@@ -48,6 +50,11 @@ STREAM_FRAME_LIMIT = 1 << 24  # particles in one frame: far above ten a second o
 # belong to the server's own handling of the run.
 SERVER_OPTIONS = {"--output", "--stl", "--mesh", "--font", "--checkpoint", "--checkpoint-every", "--resume",
                   "--stream", "--quiet", "--help", "--version"}
+
+# Options whose value is a word or else a file's name: only the words, as no client path may
+# reach the file system.
+NAMED_ONLY = {"--mask": {"A", "B", "C", "D"}}
+MASK_SIZE = 17  # sites a side of a painted Eden mask: each within 8 of the dropped one
 
 
 def one_line(text):
@@ -251,6 +258,8 @@ class Studio:
                 raise ValueError(f"{model} has no option '{name[:50]}'")
             if name in SERVER_OPTIONS or "FILE" in option["type"]:
                 raise ValueError(f"{name} names a file: the studio chooses those")
+            if name in NAMED_ONLY and value not in NAMED_ONLY[name]:
+                raise ValueError(f"{name} is one of " + ", ".join(sorted(NAMED_ONLY[name])) + " here: no file names")
             if name in seen and not option["repeats"]:
                 raise ValueError(f"{name} is given twice")
             seen.add(name)
@@ -268,6 +277,19 @@ class Studio:
                 raise ValueError(f"{model} grows in no mesh")
             words += ["--stl", mesh]
         return words + ["-o", "run"]
+
+
+def mask_text(rows):
+    """A painted Eden mask, rows of '.', 'x' (a site it counts) and one 'o' (the dropped site),
+    top row first, as the text of a --mask file (docs/eden.md), or ValueError's line."""
+    if not (isinstance(rows, list) and 1 <= len(rows) <= MASK_SIZE and all(isinstance(r, str) for r in rows)):
+        raise ValueError(f"a mask is a list of 1 to {MASK_SIZE} rows of text")
+    if any(len(r) > MASK_SIZE or not re.fullmatch(r"[.xo]+", r) for r in rows):
+        raise ValueError(f"a mask's rows are 1 to {MASK_SIZE} of '.', 'x' and 'o'")
+    text = "".join(rows)
+    if text.count("o") != 1 or "x" not in text:
+        raise ValueError("a mask has one 'o', the dropped site, and at least one 'x'")
+    return "; painted in dla3d studio\n" + "\n".join(rows) + "\n"
 
 
 def is_loopback(host):
@@ -307,6 +329,13 @@ class Session:
                 mesh = "painted.ply" if painted else "mesh.stl"
             try:
                 words = self.studio.command_of(asked.get("model"), asked.get("options", []), mesh)
+                if asked.get("mask") is not None:
+                    if words[0] != "eden" or "--mask" in words:
+                        raise ValueError("a painted mask is Eden's --mask, in place of A, B, C or D")
+                    mask = mask_text(asked["mask"])
+                    with open(os.path.join(self.folder, "mask.txt"), "w") as f:
+                        f.write(mask)
+                    words[-2:-2] = ["--mask", "mask.txt"]
             except ValueError as e:
                 return await self.send({"type": "error", "line": str(e)})
             self.command = words
@@ -404,7 +433,27 @@ class Session:
         shutil.rmtree(self.folder, ignore_errors=True)
 
 
+def resolves(host, seconds=10):
+    """Whether `host` names an address. The resolver is asked on a thread of its own, so that
+    one that never answers (a machine without a network) holds the studio `seconds` at most."""
+    found = []
+
+    def ask():
+        try:
+            found.append(bool(socket.getaddrinfo(host, None, type=socket.SOCK_STREAM)))
+        except (OSError, UnicodeError):
+            found.append(False)
+
+    thread = threading.Thread(target=ask, daemon=True)
+    thread.start()
+    thread.join(seconds)
+    return bool(found and found[0])
+
+
 async def serve(arguments):
+    if not resolves(arguments.host):
+        print(f"dla3d: error: cannot listen on {arguments.host}: no address has that name", file=sys.stderr)
+        return 1
     options = await asyncio.create_subprocess_exec(arguments.dla3d, "options", stdout=asyncio.subprocess.PIPE)
     out, _ = await options.communicate()
     studio = Studio(arguments.dla3d, arguments.host, json.loads(out))

@@ -14,7 +14,7 @@ const api = (path, query = {}) => {
   const q = new URLSearchParams({ token, ...query });
   return `${path}?${q}`;
 };
-const PAINT = { seeds: [255, 0, 0], bare: [0, 0, 255], erase: [255, 255, 255] };
+const PAINT = { seeds: [255, 0, 0], attractors: [0, 255, 0], bare: [0, 0, 255], erase: [255, 255, 255] };
 
 // -- the view ----------------------------------------------------------------------------------
 const view = $('view');
@@ -84,7 +84,7 @@ function reserve(count) {
   }
 }
 
-const colour = new THREE.Color();
+const colour = new THREE.Color(), at = new THREE.Vector3();
 function receive(buffer) {
   const head = new DataView(buffer, 0, 32);
   if (head.getUint32(0, true) !== 0x73414c44) return;  // "DLAs"
@@ -100,8 +100,9 @@ function receive(buffer) {
     const k = first + i;
     colour.setHSL(0.62 - 0.62 * Math.min(1, k / Math.max(1, total)), 0.85, 0.6);
     colours.array[3 * k] = colour.r; colours.array[3 * k + 1] = colour.g; colours.array[3 * k + 2] = colour.b;
-    structure.min.min(new THREE.Vector3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]));
-    structure.max.max(new THREE.Vector3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]));
+    at.set(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    structure.min.min(at);
+    structure.max.max(at);
   }
   position.needsUpdate = true;
   colours.needsUpdate = true;
@@ -228,7 +229,7 @@ $('clear-paint').addEventListener('click', () => {
 function paintedPly() {
   const position = mesh.geometry.getAttribute('position'), colours = mesh.geometry.getAttribute('color');
   const index = mesh.geometry.index.array, n = position.count, faces = index.length / 3;
-  const header = 'ply\nformat binary_little_endian 1.0\ncomment dla3d studio: seeds red, bare tips blue\n' +
+  const header = 'ply\nformat binary_little_endian 1.0\ncomment dla3d studio: seeds red, attractors green, bare tips blue\n' +
     `element vertex ${n}\nproperty float x\nproperty float y\nproperty float z\n` +
     'property uchar red\nproperty uchar green\nproperty uchar blue\n' +
     `element face ${faces}\nproperty list uchar int vertex_indices\nend_header\n`;
@@ -267,6 +268,7 @@ const has = (name) => model().options.some((o) => o.name === name);
 function buildPanel() {
   const m = model();
   $('summary').textContent = m.summary;
+  $('mask-painter').hidden = !has('--mask');
   const groups = new Map();
   for (const option of m.options) {
     if (serverOptions.has(option.name) || option.type.includes('FILE')) continue;
@@ -310,6 +312,24 @@ function buildPanel() {
   }
 }
 
+// -- Eden's mask, painted on a grid: the sites it counts around the dropped one -------------
+const MASK_SIDE = 9;
+for (let k = 0; k < MASK_SIDE * MASK_SIDE; ++k) {
+  const cell = document.createElement('span');
+  cell.dataset.cell = String(k);
+  if (k === (MASK_SIDE * MASK_SIDE - 1) / 2) cell.className = 'drop';
+  else cell.addEventListener('click', () => cell.classList.toggle('on'));
+  $('mask').appendChild(cell);
+}
+//! The grid as a mask file's rows, top row first: 'o' the dropped site, 'x' a counted one.
+function maskRows() {
+  const cells = [...$('mask').children], rows = [];
+  for (let y = 0; y < MASK_SIDE; ++y)
+    rows.push(cells.slice(y * MASK_SIDE, (y + 1) * MASK_SIDE)
+      .map((c) => (c.className === 'drop' ? 'o' : c.classList.contains('on') ? 'x' : '.')).join(''));
+  return rows;
+}
+
 //! The options the panel gives, as [name, value] pairs; a repeated option's values split at ';'.
 function chosenOptions() {
   const chosen = [];
@@ -326,7 +346,7 @@ function chosenOptions() {
 }
 
 // -- growing -----------------------------------------------------------------------------------
-let socket = null, session = null, running = false, files = [], meshUsed = null;
+let socket = null, session = null, running = false, files = [], meshUsed = null, maskUsed = false;
 function setRunning(on) {
   running = on;
   $('grow').disabled = on;
@@ -352,12 +372,17 @@ async function grow() {
       const colours = paintedColours();
       const placed = ['--seeds', '--seed-at', '--seed-surface', '--seed-paint', '--seed-mesh'].some((n) => given.has(n));
       if (colours.has('seeds') && has('--seed-paint') && !placed) options.push(['--seed-paint', 'ff0000']);
+      // Colonization's attractors on the painted part of the surface: the tree grows to it.
+      if (colours.has('attractors') && has('--attractor-paint') && !given.has('--attractor-paint') &&
+          !given.has('--attractors-in')) options.push(['--attractors-in', 'surface'], ['--attractor-paint', '00ff00']);
       if (colours.has('bare') && has('--tips-exclude-paint') && !given.has('--tips-exclude-paint'))
         options.push(['--tips-exclude-paint', '0000ff']);
     }
   }
+  maskUsed = has('--mask') && $('mask-use').checked;
   setRunning(true);
-  socket.send(JSON.stringify({ type: 'grow', model: model().name, options, mesh: meshUsed }));
+  socket.send(JSON.stringify({ type: 'grow', model: model().name, options, mesh: meshUsed,
+                               ...(maskUsed ? { mask: maskRows() } : {}) }));
 }
 $('grow').addEventListener('click', grow);
 $('stop').addEventListener('click', () => socket.send(JSON.stringify({ type: 'stop' })));
@@ -376,6 +401,7 @@ function showFiles(names) {
   const all = [...names];
   if (meshUsed === 'painted') all.push('painted.ply');
   else if (meshUsed === 'mesh') all.push('mesh.stl');
+  if (maskUsed) all.push('mask.txt');
   for (const name of all) {
     const a = document.createElement('a');
     a.href = api('/api/file', { session, name });

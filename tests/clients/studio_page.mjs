@@ -1,6 +1,6 @@
 // Drives the growth studio (dla3d studio) in Debian's Chromium, headless, as a user would: load
 // the bust, paint a patch of seeds, grow PARTICLES, stop part way, go on, finish, and download
-// the files. Every request off the studio's own address is refused. Prints one JSON line: the
+// the files; then paint an Eden mask on its grid and grow with it. Every request off the studio's own address is refused. Prints one JSON line: the
 // console's errors, the requests refused, every particle count the page showed, the count when
 // stopped, the final count, the command the page shows and the files saved in OUT_DIR (with
 // screenshots of the view before growth and at the end).
@@ -85,7 +85,28 @@ try {
     await download.saveAs(path.join(out, name));
     saved.push(name);
   }
-  console.log('DLA3D ' + JSON.stringify({ messages, refused, painted, stopped, end, saved }));
+  // Eden with a mask painted on its grid: the sites left of and above the dropped one.
+  await page.locator('#model').selectOption('eden');
+  const maskShown = await page.locator('#mask-painter').isVisible();
+  for (const cell of [39, 31]) await page.locator(`#mask span[data-cell="${cell}"]`).click();
+  await page.locator('#mask-use').check();
+  await page.evaluate(() => document.querySelectorAll('#options details').forEach((group) => { group.open = true; }));
+  await page.locator('input[data-option="--mode"]').fill('drop');
+  await page.locator('input[data-option="--sites"]').fill('2000');
+  await page.locator('input[data-option="--formats"]').fill('csv');
+  await page.locator('#grow').click();
+  await page.waitForFunction(() => ['done', 'error'].includes(document.body.dataset.state) && document.body.dataset.running === 'false',
+    null, { timeout: minutes });
+  const eden = await page.evaluate(() => ({ state: document.body.dataset.state, count: Number(document.body.dataset.count),
+    command: document.querySelector('#command').textContent, error: document.querySelector('#error').textContent }));
+  eden.shown = maskShown;
+  const maskLink = page.locator('#files a[data-file="mask.txt"]');
+  if (await maskLink.count() > 0) {
+    const [download] = await Promise.all([page.waitForEvent('download'), maskLink.click()]);
+    await download.saveAs(path.join(out, 'mask.txt'));
+    saved.push('mask.txt');
+  }
+  console.log('DLA3D ' + JSON.stringify({ messages, refused, painted, stopped, end, saved, eden }));
 } finally {
   await browser.close();
 }

@@ -278,6 +278,43 @@ def test_a_run_streams_and_its_files_are_the_commands(studio, tmp_path):
         assert positions[k] == pytest.approx((x, y, z), rel=1e-6, abs=1e-5), k
 
 
+def test_a_painted_eden_mask_is_the_commands_mask_file(studio, tmp_path):
+    rows = [".....", "..x..", ".xox.", ".....", "....."]
+    async def go():
+        async with aiohttp.ClientSession() as client:
+            ws, session = await session_of(studio, client)
+            bad = [{"mask": [".x.", "xxq"]}, {"mask": ["xoo"]}, {"mask": ["..o"]}, {"mask": ["x"] * 18},
+                   {"mask": "xo"}, {"mask": ["", "xo"]}, {"mask": rows, "model": "grow", "options": []},
+                   {"mask": rows, "options": [["--mask", "A"]]}]
+            for case in bad:
+                await ws.send_json({"type": "grow", "model": "eden", "options": [["--mode", "drop"]], **case})
+                reply = await ws.receive_json(timeout=60)
+                assert reply["type"] == "error" and "\n" not in reply["line"], (case, reply)
+            await ws.send_json({"type": "grow", "model": "eden", "mask": rows,
+                                "options": [["--mode", "drop"], ["--sites", "3000"], ["--formats", "csv"]]})
+            positions, _, end = await run_to_end(ws)
+            assert end["type"] == "done" and not end["stopped"], end
+            assert "--mask" in end["command"] and end["command"][end["command"].index("--mask") + 1] == "mask.txt"
+            served = {}
+            for name in ("run.csv", "mask.txt"):
+                async with client.get(f"{studio.base}/api/file", headers={"Origin": studio.base},
+                                      params={"token": studio.token, "session": session, "name": name}) as r:
+                    assert r.status == 200, name
+                    served[name] = await r.read()
+            await ws.close()
+            return positions, served, end["command"]
+    positions, served, command = asyncio.run(go())
+    assert served["mask.txt"].decode().splitlines()[1:] == rows
+    (tmp_path / "mask.txt").write_bytes(served["mask.txt"])
+    subprocess.run([DLA3D, *command[1:], "-q"], cwd=tmp_path, check=True, timeout=300)
+    assert (tmp_path / "run.csv").read_bytes() == served["run.csv"], "the studio's CSV is not the command's"
+    assert len(positions) == 3000
+    # The painted mask is the one the run read: the paper's mask A grows another cluster.
+    paper = ["A" if word == "mask.txt" else "paper" if word == "run" else word for word in command[1:]]
+    subprocess.run([DLA3D, *paper, "-q"], cwd=tmp_path, check=True, timeout=300)
+    assert (tmp_path / "paper.csv").read_bytes() != served["run.csv"]
+
+
 def test_stop_keeps_what_grew_and_go_on_ends_as_the_uninterrupted_run(studio, tmp_path):
     """Stop, as soon as a partial frame arrived; Go on; the end equals one run of the command,
     for DLA (resumed from its checkpoint) and for another model (grown again from its seed)."""
@@ -323,6 +360,8 @@ def test_bad_options_get_one_line_each(studio):
                 {"type": "grow", "model": "grow", "options": [["--output", "/tmp/x"]]},
                 {"type": "grow", "model": "grow", "options": [["--stl", "/etc/passwd"]]},
                 {"type": "grow", "model": "grow", "options": [["--seed-mesh", "x.stl"]]},
+                {"type": "grow", "model": "eden", "options": [["--mask", "/etc/passwd"]]},
+                {"type": "grow", "model": "eden", "options": [["--mask", "run.ck"]]},
                 {"type": "grow", "model": "grow", "options": [["--nope", "1"]]},
                 {"type": "grow", "model": "grow", "options": [["--particles", "1"], ["--particles", "2"]]},
                 {"type": "grow", "model": "grow", "options": "--particles 5"},
@@ -501,7 +540,13 @@ def test_the_page_in_chromium_paints_grows_stops_goes_on_and_downloads(studio, t
     partial = {c for c in end["seen"] if 0 < c < end["count"]}
     assert len(partial) >= 3, end["seen"]
     assert seen["stopped"]["state"] == "stopped" and seen["stopped"]["count"] < end["count"], seen["stopped"]
-    assert sorted(seen["saved"]) == ["painted.ply", "run.csv", "run.glb"]
+    assert sorted(seen["saved"]) == ["mask.txt", "painted.ply", "run.csv", "run.glb"]
+    # Eden's mask, painted on the grid: the site left of the dropped one and the one above it.
+    eden = seen["eden"]
+    assert eden["shown"] and eden["state"] == "done" and eden["count"] == 2000 and eden["error"] == "", eden
+    assert "--mask mask.txt" in eden["command"], eden
+    assert (tmp_path / "mask.txt").read_text().splitlines()[1:] == ["........."] * 3 + ["....x....", "...xo...."] + \
+        ["........."] * 4
     # The shown command, run on the downloaded painted mesh, writes the same CSV.
     command = end["command"].split()
     assert command[0] == "dla3d" and "--seed-paint" in command and "painted.ply" in command, command
