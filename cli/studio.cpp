@@ -6,6 +6,7 @@
 
 #include "dla/core/errors.h"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -40,7 +41,16 @@ int studio(const StudioCommand& command) {
   for (std::string& word : words) argv.push_back(word.data());
   argv.push_back(nullptr);
   std::fflush(stdout);
+  // Python's start-up turns a Ctrl-C into a fatal error; held blocked across execv, a stop
+  // signal waits for server.py, which unblocks it once it can end quietly.
+  sigset_t stop_signals;
+  sigemptyset(&stop_signals);
+  sigaddset(&stop_signals, SIGINT);
+  sigaddset(&stop_signals, SIGTERM);
+  sigset_t unblocked;
+  sigprocmask(SIG_BLOCK, &stop_signals, &unblocked);
   execv(argv.front(), argv.data());
+  sigprocmask(SIG_SETMASK, &unblocked, nullptr);
   throw IOError(std::string("cannot run /usr/bin/python3 for the studio: ") + std::strerror(errno));
 }
 

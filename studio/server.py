@@ -29,6 +29,13 @@ import tempfile
 import threading
 import webbrowser
 
+# Until serve() puts its own handlers in place, Ctrl-C ends the studio quietly, not with a
+# traceback. dla3d hands the stop signals over blocked (cli/studio.cpp): one that came during
+# Python's start-up lands here.
+if signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT, signal.SIGTERM})
+
 try:
     from aiohttp import WSMsgType, web
 except ImportError:
@@ -451,11 +458,25 @@ def resolves(host, seconds=10):
 
 
 async def serve(arguments):
+    # Handlers first: a Ctrl-C at any point from here on, even while the browser opens, stops
+    # cleanly; one before the studio listens ends it as the signal does the command line's runs.
+    stop = asyncio.Event()
+    stopped_by = []
+    loop = asyncio.get_running_loop()
+    for number in (signal.SIGINT, signal.SIGTERM):
+        loop.add_signal_handler(number, lambda number=number: (stopped_by.append(number), stop.set()))
     if not resolves(arguments.host):
+        if stop.is_set():
+            return 128 + stopped_by[0]
         print(f"dla3d: error: cannot listen on {arguments.host}: no address has that name", file=sys.stderr)
         return 1
     options = await asyncio.create_subprocess_exec(arguments.dla3d, "options", stdout=asyncio.subprocess.PIPE)
     out, _ = await options.communicate()
+    if stop.is_set():
+        return 128 + stopped_by[0]
+    if options.returncode != 0:
+        print(f"dla3d: error: `{arguments.dla3d} options` failed with exit {options.returncode}", file=sys.stderr)
+        return 1
     studio = Studio(arguments.dla3d, arguments.host, json.loads(out))
     app = web.Application(middlewares=[studio.guard], client_max_size=UPLOAD_LIMIT + 4096)
     app.add_routes([web.get("/", studio.page), web.get("/studio.js", studio.script),
@@ -480,10 +501,6 @@ async def serve(arguments):
         print("dla3d studio: listening beyond this machine: anyone with the address can grow on it", flush=True)
     if arguments.open:
         webbrowser.open(address)
-    stop = asyncio.Event()
-    loop = asyncio.get_running_loop()
-    for number in (signal.SIGINT, signal.SIGTERM):
-        loop.add_signal_handler(number, stop.set)
     await stop.wait()
     for session in list(studio.sessions.values()):
         await session.ws.close()
