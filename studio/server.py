@@ -247,8 +247,9 @@ class Studio:
             await session.close()
         return ws
 
-    def command_of(self, model, options, mesh):
-        """The dla3d command (without the program) for a page's choice, or HTTPBadRequest's line."""
+    def command_of(self, model, options, mesh, files=()):
+        """The dla3d command (without the program) for a page's choice, with `files`, the
+        [name, file] options the server wrote for it, or ValueError's line."""
         if not isinstance(model, str) or model not in self.options:
             raise ValueError(f"no model '{str(model)[:50]}': one of " + ", ".join(self.options))
         known = self.options[model]
@@ -283,6 +284,10 @@ class Studio:
             if "--stl" not in known:
                 raise ValueError(f"{model} grows in no mesh")
             words += ["--stl", mesh]
+        for name, file in files:
+            if name not in known or name in seen:
+                raise ValueError(f"{name} is the studio's to write here, and {model} takes it from the page once")
+            words += [name, file]
         return words + ["-o", "run"]
 
 
@@ -335,14 +340,15 @@ class Session:
                 painted = asked["mesh"] == "painted" and os.path.exists(os.path.join(self.folder, "painted.ply"))
                 mesh = "painted.ply" if painted else "mesh.stl"
             try:
-                words = self.studio.command_of(asked.get("model"), asked.get("options", []), mesh)
+                files = []
                 if asked.get("mask") is not None:
-                    if words[0] != "eden" or "--mask" in words:
+                    if asked.get("model") != "eden":
                         raise ValueError("a painted mask is Eden's --mask, in place of A, B, C or D")
                     mask = mask_text(asked["mask"])
                     with open(os.path.join(self.folder, "mask.txt"), "w") as f:
                         f.write(mask)
-                    words[-2:-2] = ["--mask", "mask.txt"]
+                    files.append(["--mask", "mask.txt"])
+                words = self.studio.command_of(asked.get("model"), asked.get("options", []), mesh, files)
             except ValueError as e:
                 return await self.send({"type": "error", "line": str(e)})
             self.command = words

@@ -297,7 +297,9 @@ TEST(BreakdownCharges, KeptSumsAreThePotentialSummedAfresh) {
           }
           // A site summed after some charges, then kept as the rest came: float rounding only.
           EXPECT_NEAR(field.sum(i), exact, 2e-5 * scale + 1e-5) << i;
-          if (near) EXPECT_FALSE(field.open(i)) << i;
+          if (near) {
+            EXPECT_FALSE(field.open(i)) << i;
+          }
           if (field.open(i)) ++open;
         }
         EXPECT_EQ(field.open_sites(), open);

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <functional>
 #include <limits>
 #include <map>
@@ -304,17 +303,10 @@ class PaintedArea {
   double area_ = 0.0;
 };
 
-std::string hex(const Vec3& rgb) {
-  char text[8];
-  std::snprintf(text, sizeof text, "#%02x%02x%02x", static_cast<int>(std::lround(255 * rgb[0])),
-                static_cast<int>(std::lround(255 * rgb[1])), static_cast<int>(std::lround(255 * rgb[2])));
-  return text;
-}
-
 //! "#ffffff on 9,120 vertices, #ff0000 on 310": the most common colours, to say what there is.
 std::string colors_used(const std::vector<Vec3>& colors) {
   std::map<std::string, std::size_t> counts;
-  for (const Vec3& c : colors) ++counts[hex(c)];
+  for (const Vec3& c : colors) ++counts["#" + hex_digits(c)];
   std::vector<std::pair<std::size_t, std::string>> order;
   for (const auto& [name, n] : counts) order.emplace_back(n, name);
   std::sort(order.begin(), order.end(), std::greater<>());
@@ -409,7 +401,7 @@ void MeshConstraint::require_paint(const Paint& paint, const char* option) const
   for (const auto& tri : mesh_.triangles)
     if (paint.may_match(mesh_.colors[tri[0]], mesh_.colors[tri[1]], mesh_.colors[tri[2]])) return;
   throw InvalidInput("no part of the mesh is painted within " + detail::format_number(paint.tolerance) + " of " +
-                     hex(paint.color) + " for `" + option + "`; its colours: " + colors_used(mesh_.colors));
+                     "#" + hex_digits(paint.color) + " for `" + option + "`; its colours: " + colors_used(mesh_.colors));
 }
 
 std::vector<Vec3> MeshConstraint::sample_intersection(const std::vector<TriangleMesh>& others,

@@ -49,12 +49,17 @@ inline Vec3 paint_at(const TriangleMesh& mesh, std::uint32_t t, const Vec3& p) {
   return (1.0 - v - w) * ca + v * cb + w * cc;
 }
 
+//! "ff8000": a colour of channels in [0, 1] as six hex digits, each channel rounded to 8 bits.
+inline std::string hex_digits(const Vec3& rgb) {
+  char text[8];
+  std::snprintf(text, sizeof text, "%02x%02x%02x", static_cast<int>(std::lround(255 * rgb[0])),
+                static_cast<int>(std::lround(255 * rgb[1])), static_cast<int>(std::lround(255 * rgb[2])));
+  return text;
+}
+
 //! "ff8000,0.3": the words parse_paint() reads back.
 inline std::string to_string(const Paint& paint) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%02x%02x%02x,", static_cast<int>(std::lround(255 * paint.color[0])),
-                static_cast<int>(std::lround(255 * paint.color[1])), static_cast<int>(std::lround(255 * paint.color[2])));
-  return text + detail::format_number(paint.tolerance);
+  return hex_digits(paint.color) + "," + detail::format_number(paint.tolerance);
 }
 
 //! "red", "ff0000", "#ff0000", with ",TOLERANCE" after it or not. Throws InvalidInput naming
