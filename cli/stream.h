@@ -1,6 +1,6 @@
 #pragma once
 // --stream FILE: each particle as it attaches, for a live view (the studio, docs/studio.md), in
-// frames written at every progress update (about ten a second) and flushed at once.
+// frames written at every progress update (about twenty a second) and flushed at once.
 //
 // A frame, little-endian: "DLAs", u32 count, u64 first (the index of its first particle), u64
 // done and u64 total (as the progress bar counts them), then count x 3 float32 positions and

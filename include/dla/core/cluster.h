@@ -50,9 +50,9 @@ struct Cluster {
 // What growth counted (DLA's walks, the drops, the lines) each model returns beside the
 // structure: DlaStats (walk.h), DropStats, BallisticStats.
 
-//! Called as growth begins, about every 0.1 s as it goes on (model_shell.h), and at the end,
-//! with the structure so far; returning false stops growth early and the cluster comes back
-//! marked incomplete.
+//! Called as growth begins, about every 0.05 s as it goes on (kProgressSeconds, model_shell.h),
+//! and at the end, with the structure so far; returning false stops growth early and the
+//! cluster comes back marked incomplete.
 using ProgressFn = std::function<bool(const Cluster& so_far)>;
 
 //! Set from another thread or a signal handler (a lock-free atomic store is async-signal-safe)
