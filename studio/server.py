@@ -51,7 +51,7 @@ MESSAGE_LIMIT = 64 << 10  # bytes of one message from the page
 CONVERT_SECONDS = 120  # reading and repairing an upload
 MESH_TYPES = ("stl", "obj", "ply", "off")
 STREAM_HEADER = struct.Struct("<4sIQQQ")  # "DLAs", count, first, done, total
-STREAM_FRAME_LIMIT = 1 << 24  # particles in one frame: far above ten a second of any model
+STREAM_FRAME_LIMIT = 1 << 24  # particles in one frame: far above a twentieth of a second of any model
 
 # Options the page may not give: they name files and folders (the server picks those), or
 # belong to the server's own handling of the run.
@@ -224,8 +224,13 @@ class Studio:
     async def socket(self, request):
         if len(self.sessions) >= SESSION_LIMIT:
             return refuse(503, f"busy: {SESSION_LIMIT} pages are open; close one")
-        ws = web.WebSocketResponse(max_msg_size=MESSAGE_LIMIT, heartbeat=30)
+        # No WebSocket heartbeat: its ping waits behind the stream's frames, and a page that
+        # draws them slowly (a big run, a browser without a GPU) answers too late and is cut
+        # off. The kernel's keepalive probes, answered by the other end's kernel, find a client
+        # that is gone instead.
+        ws = web.WebSocketResponse(max_msg_size=MESSAGE_LIMIT)
         await ws.prepare(request)
+        keep_alive(request.transport)
         session = Session(self, ws)
         self.sessions[session.id] = session
         try:
@@ -289,6 +294,18 @@ class Studio:
                 raise ValueError(f"{name} is the studio's to write here, and {model} takes it from the page once")
             words += [name, file]
         return words + ["-o", "run"]
+
+
+def keep_alive(transport):
+    """TCP keepalive on a connection: one silent for 30 s is probed every 10 s, and closed
+    after 3 probes go unanswered."""
+    sock = transport.get_extra_info("socket") if transport is not None else None
+    if sock is None:
+        return
+    sock.setsockopt(socket.SOL_SOCKET, socket.SO_KEEPALIVE, 1)
+    for option, value in (("TCP_KEEPIDLE", 30), ("TCP_KEEPINTVL", 10), ("TCP_KEEPCNT", 3)):
+        if hasattr(socket, option):
+            sock.setsockopt(socket.IPPROTO_TCP, getattr(socket, option), value)
 
 
 def mask_text(rows):

@@ -573,3 +573,26 @@ def test_the_page_in_chromium_paints_grows_stops_goes_on_and_downloads(studio, t
     assert changed.sum() > bust.sum() // 20, "the structure does not show"
     inside = changed[ys.min():ys.max() + 1, xs.min():xs.max() + 1].sum()
     assert inside > 0.95 * changed.sum(), "the structure shows outside the bust"
+
+
+@pytest.mark.skipif(browser_client() is None, reason="Chromium: needs chromium, node and Playwright "
+                                                      "(the README's ci:clients step)")
+def test_the_page_draws_a_million_points(studio, tmp_path):
+    # In the full tier (ctest -L full: python_studio_million), as its run takes a while.
+    import numpy as np
+    done = subprocess.run(["node", os.path.join(CLIENTS, "studio_million.mjs"), studio.address, str(tmp_path), "1000000"],
+                          capture_output=True, text=True, timeout=1500, cwd=CLIENTS)
+    assert done.returncode == 0, done.stderr
+    seen = json.loads(done.stdout.split("DLA3D ", 1)[1])
+    assert seen["messages"] == [], seen["messages"]
+    end = seen["end"]
+    assert end["state"] == "done" and end["error"] == "" and end["count"] == 1000001, end  # and the seed
+    assert end["command"] == "dla3d --particles 1000000 --formats csv -o run", end["command"]
+    # Drawn as they came, not once at the end: many partial counts, rising.
+    partial = [c for c in end["seen"] if 0 < c < end["count"]]
+    assert len(set(partial)) >= 10 and partial == sorted(partial), end["seen"][:50]
+    # The view shows the structure: much of it is not the background.
+    view = png_pixels(tmp_path / "million.png")
+    drawn = np.any(view != view[-1, -1], axis=2)
+    drawn[:40] = False  # the count, drawn over the view's top left
+    assert drawn.sum() > drawn.size // 10, drawn.sum()
