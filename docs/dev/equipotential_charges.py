@@ -40,6 +40,25 @@ def directions(dim, rng, k):
     return axes[:k]
 
 
+def sites_beside(p, i, dim, rng, k):
+    """The candidate sites beside particle i no nearer any particle than a spacing, and their
+    distances to particles 0..i."""
+    new = p[i] + directions(dim, rng, k)
+    gap = np.linalg.norm(new[:, None, :] - p[None, : i + 1, :], axis=2)
+    keep = gap.min(axis=1) > 1.0 - 1e-9
+    return new[keep], gap[keep]
+
+
+def gyration_dimension(p, count):
+    """D from the radius of gyration against the count, over the last decade of growth."""
+    counts = np.arange(1, count + 1)
+    centre = np.cumsum(p, axis=0) / counts[:, None]
+    square = np.cumsum((p**2).sum(axis=1)) / counts
+    gyration = np.sqrt(np.maximum(square - (centre**2).sum(axis=1), 1e-12))
+    last = counts >= count // 10
+    return np.polyfit(np.log(gyration[last]), np.log(counts[last]), 1)[0]
+
+
 def choose(rng, eta, weights, q, phi, live, owner):
     """The site that grows: by phi^eta over the open sites ("site"), or a particle by its charge
     to the power eta and then one of its open sites by phi^eta ("parent")."""
@@ -71,10 +90,7 @@ def grow(dim, eta, count, seed, k, weights):
 
     def add_sites(i):
         nonlocal n_sites
-        new = p[i] + directions(dim, rng, k)
-        gap = np.linalg.norm(new[:, None, :] - p[None, : i + 1, :], axis=2)
-        keep = gap.min(axis=1) > 1.0 - 1e-9
-        new, gap = new[keep], gap[keep]
+        new, gap = sites_beside(p, i, dim, rng, k)
         m = len(new)
         sites[n_sites : n_sites + m] = new
         owner[n_sites : n_sites + m] = i
@@ -83,7 +99,6 @@ def grow(dim, eta, count, seed, k, weights):
         n_sites += m
 
     add_sites(0)
-    gyration = np.zeros(count)
     for n in range(1, count):
         q = inverse[:n, :n].sum(axis=1)
         phi = np.clip(1.0 - to_charges[:n_sites, :n] @ q, 0.0, None)
@@ -103,12 +118,7 @@ def grow(dim, eta, count, seed, k, weights):
         open_[:n_sites] &= d > 1.0 - 1e-9
         to_charges[:n_sites, n] = kernel(dim, np.maximum(d, 1e-9))
         add_sites(n)
-        centre = p[: n + 1].mean(axis=0)
-        gyration[n] = np.sqrt(((p[: n + 1] - centre) ** 2).sum(axis=1).mean())
-    counts = np.arange(1, count + 1)
-    last = counts >= count // 10
-    slope = np.polyfit(np.log(gyration[last]), np.log(counts[last]), 1)[0]
-    return slope
+    return gyration_dimension(p, count)
 
 
 def grow_local(dim, eta, count, seed, k, radius, sweeps, every, weights):
@@ -133,10 +143,7 @@ def grow_local(dim, eta, count, seed, k, radius, sweeps, every, weights):
 
     def add_sites(i):
         nonlocal n_sites
-        new = p[i] + directions(dim, rng, k)
-        gap = np.linalg.norm(new[:, None, :] - p[None, : i + 1, :], axis=2)
-        keep = gap.min(axis=1) > 1.0 - 1e-9
-        new, gap = new[keep], gap[keep]
+        new, gap = sites_beside(p, i, dim, rng, k)
         m = len(new)
         sites[n_sites : n_sites + m] = new
         owner[n_sites : n_sites + m] = i
@@ -145,7 +152,6 @@ def grow_local(dim, eta, count, seed, k, radius, sweeps, every, weights):
         n_sites += m
 
     add_sites(0)
-    gyration = np.zeros(count)
     next_solve = 8
     for n in range(1, count):
         if n >= next_solve:
@@ -167,11 +173,7 @@ def grow_local(dim, eta, count, seed, k, radius, sweeps, every, weights):
         open_[:n_sites] &= ds > 1.0 - 1e-9
         to_charges[:n_sites, n] = kernel(dim, np.maximum(ds, 1e-9))
         add_sites(n)
-        centre = p[: n + 1].mean(axis=0)
-        gyration[n] = np.sqrt(((p[: n + 1] - centre) ** 2).sum(axis=1).mean())
-    counts = np.arange(1, count + 1)
-    last = counts >= count // 10
-    return np.polyfit(np.log(gyration[last]), np.log(counts[last]), 1)[0]
+    return gyration_dimension(p, count)
 
 
 def grow_parents(dim, eta, count, seed, k, radius, sweeps, every, iterations):
@@ -194,9 +196,7 @@ def grow_parents(dim, eta, count, seed, k, radius, sweeps, every, iterations):
 
     def add_sites(i):
         nonlocal n_sites
-        new = p[i] + directions(dim, rng, k)
-        gap = np.linalg.norm(new[:, None, :] - p[None, : i + 1, :], axis=2)
-        new = new[gap.min(axis=1) > 1.0 - 1e-9]
+        new, _ = sites_beside(p, i, dim, rng, k)
         m = len(new)
         sites[n_sites : n_sites + m] = new
         owner[n_sites : n_sites + m] = i
@@ -222,7 +222,6 @@ def grow_parents(dim, eta, count, seed, k, radius, sweeps, every, iterations):
         q[:n] = x
 
     add_sites(0)
-    gyration = np.zeros(count)
     next_solve = 8
     for n in range(1, count):
         if n >= next_solve:
@@ -251,11 +250,7 @@ def grow_parents(dim, eta, count, seed, k, radius, sweeps, every, iterations):
         np.subtract.at(open_count, owner[:n_sites][closing], 1)
         open_[:n_sites] &= ~closing
         add_sites(n)
-        centre = p[: n + 1].mean(axis=0)
-        gyration[n] = np.sqrt(((p[: n + 1] - centre) ** 2).sum(axis=1).mean())
-    counts = np.arange(1, count + 1)
-    last = counts >= count // 10
-    return np.polyfit(np.log(gyration[last]), np.log(counts[last]), 1)[0]
+    return gyration_dimension(p, count)
 
 
 def main():
