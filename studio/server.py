@@ -51,7 +51,7 @@ MESSAGE_LIMIT = 64 << 10  # bytes of one message from the page
 CONVERT_SECONDS = 120  # reading and repairing an upload
 MESH_TYPES = ("stl", "obj", "ply", "off")
 STREAM_HEADER = struct.Struct("<4sIQQQ")  # "DLAs", count, first, done, total
-STREAM_FRAME_LIMIT = 1 << 24  # particles in one frame: far above a twentieth of a second of any model
+STREAM_FRAME_LIMIT = 1 << 24  # particles in one frame, what grew in 0.05 s: far above any model's
 
 # Options the page may not give: they name files and folders (the server picks those), or
 # belong to the server's own handling of the run.
