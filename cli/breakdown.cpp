@@ -39,8 +39,10 @@ Subcommand add_breakdown_command(CLI::App& app, const Model& model) {
                                       "1 is DLA, 0 compact, 2 to 4 lightning")
       ->capture_default_str()->group(discharge);
   command->add_option("--field", w->field, "how the field is measured: walkers (DLA's first contacts: exact, "
-                                           "insulators shape it, slower as eta grows) or charges (a point charge a "
-                                           "particle: fast at any eta, blind to insulators); docs/breakdown.md")
+                                           "insulators shape it, slower as eta grows), conductor (point charges "
+                                           "that hold the structure at one potential: fast at any eta, the model's "
+                                           "dimensions, blind to insulators) or charges (equal point charges: "
+                                           "fastest, too dense a structure); docs/breakdown.md")
       ->capture_default_str()->group(discharge);
   command->add_option("--walkers", o.walkers, "walkers that measure the field before each particle, 1-4096; "
                                               "0: 1 at eta 1, 8 below, doubling with each step of eta "

@@ -46,7 +46,9 @@ class DLA3DSettings(bpy.types.PropertyGroup):
     field: bpy.props.EnumProperty(
         name="Field", default="walkers",
         items=[("walkers", "Walkers", "Discharge: the exact field of random walkers; slower as eta grows"),
-               ("charges", "Charges", "Discharge: a point charge a particle; fast at any eta, blind to the mesh")])
+               ("conductor", "Conductor", "Discharge: charges that hold the structure at one potential; fast at "
+                                          "any eta, blind to the mesh"),
+               ("charges", "Charges", "Discharge: equal point charges; fastest, denser than the model")])
     rng_seed: bpy.props.IntProperty(name="Random seed", default=1, min=0,
                                     description="The same seed grows the same structure")
     radius: bpy.props.EnumProperty(

@@ -253,7 +253,7 @@ const std::map<std::string, std::vector<std::string>>& breakdown_table() {
   static const std::map<std::string, std::vector<std::string>> table = [] {
     std::map<std::string, std::vector<std::string>> t = {
         {"--eta", {"2", "0.5", "3", "0", "10", "1", "-1", "10.5", "nan", "x"}},
-        {"--field", {"charges", "walkers", "charges", "both", ""}},
+        {"--field", {"conductor", "charges", "walkers", "conductor", "both", ""}},
         {"--walkers", {"4", "0", "1", "4096", "-1", "4097", "x"}},
         {"--target-point", {"0,-15,0", "20,0,0", "0,0,0", "0.5,0,0", "0,0,4", "nan,0,0", "1e300,0,0", "x"}},
         {"--target-plane", {"y=-15", "x,12", "z=-8", "y=0", "w=3", "y=nan", "y", "=4"}},

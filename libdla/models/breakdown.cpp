@@ -8,6 +8,7 @@
 #include "dla/models/electrode.h"
 #include "dla/models/model_shell.h"
 #include "models/breakdown_charges.h"
+#include "models/breakdown_conductor.h"
 #include "models/crew.h"
 
 #include <algorithm>
@@ -28,12 +29,12 @@ void validate(const BreakdownOptions& o, const DlaOptions& walk) {
     throw InvalidInput("`eta` " + detail::format_number(o.eta) + " is not in [0, 10]");
   if (o.walkers < 0 || o.walkers > kMaxBreakdownWalkers)
     throw InvalidInput("`walkers` " + std::to_string(o.walkers) + " is not in [1, 4096] (0: chosen by eta)");
-  if (o.field == BreakdownField::charges) {
-    // What only walkers have: the charges field sends none.
-    if (o.walkers != 0) throw InvalidInput("`walkers` measure the walkers field; the charges field sends none");
-    if (walk.stickiness != 1.0) throw InvalidInput("`stickiness` is a walker's; the charges field sends none");
-    if (walk.spawn != SpawnMode::sphere)
-      throw InvalidInput("`spawn` is where walkers start; the charges field sends none");
+  if (o.field != BreakdownField::walkers) {
+    // What only walkers have: the point-charge fields send none.
+    const std::string none = "; the " + std::string(to_string(o.field)) + " field sends none";
+    if (o.walkers != 0) throw InvalidInput("`walkers` measure the walkers field" + none);
+    if (walk.stickiness != 1.0) throw InvalidInput("`stickiness` is a walker's" + none);
+    if (walk.spawn != SpawnMode::sphere) throw InvalidInput("`spawn` is where walkers start" + none);
   }
   const Target& t = o.target;
   if (t.kind == TargetKind::none) return;
@@ -257,6 +258,8 @@ Cluster breakdown(const DlaOptions& walk, const BreakdownOptions& options, const
   counted.feed = feed;
   if (options.field == BreakdownField::charges)
     return detail::grow_by_charges(walk, options, constraint, progress, stop, counted);
+  if (options.field == BreakdownField::conductor)
+    return detail::grow_by_conductor(walk, options, constraint, progress, stop, counted);
   Discharge discharge(walk, options, constraint, stop, counted);
   return discharge.run(progress);
 }

@@ -363,17 +363,74 @@ std::ptrdiff_t ChargeField::draw(Rng& rng, double eta) const {
 
 namespace {
 
-// Streams of their own, apart from the walkers field's: the draw of particle k, the frame of
-// particle id's sites, and the points that carry a target mesh's charge.
-constexpr std::uint64_t kChoiceStreams = std::uint64_t{1} << 63;
-constexpr std::uint64_t kFrameStreams = std::uint64_t{1} << 62;
-constexpr std::uint64_t kTargetStreams = kFrameStreams + (std::uint64_t{1} << 61);
-
-//! Sites a particle opens: the six directions of a random frame (an octahedron's in 3D, a
-//! hexagon's in 2D), a frame a particle so that no direction is favoured over the structure.
+//! Sites a particle opens at most.
 constexpr int kSitesPerParticle = 6;
 //! Points a target mesh's charge is spread over, uniformly by area.
 constexpr int kTargetMeshCharges = 512;
+
+//! The six directions of a random frame: the axes of a uniform rotation both ways in 3D, a
+//! hexagon's at a uniform turn in 2D.
+std::vector<Vec3> site_frame(Rng& rng, int dimensions) {
+  constexpr double two_pi = 6.283185307179586;
+  std::vector<Vec3> directions;
+  if (dimensions == 2) {
+    const double turn = two_pi * rng.uniform();
+    for (int i = 0; i < kSitesPerParticle; ++i) {
+      const double angle = turn + two_pi * i / kSitesPerParticle;
+      directions.emplace_back(std::cos(angle), std::sin(angle), 0.0);
+    }
+    return directions;
+  }
+  // A uniform rotation (Shoemake's quaternion from three uniform numbers); its axes both ways.
+  const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
+  const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
+  const Eigen::Matrix3d turn =
+      Eigen::Quaterniond(b * std::cos(two_pi * u3), a * std::sin(two_pi * u2), a * std::cos(two_pi * u2),
+                         b * std::sin(two_pi * u3))
+          .toRotationMatrix();
+  for (int axis = 0; axis < 3; ++axis) {
+    directions.push_back(turn.col(axis));
+    directions.push_back(-turn.col(axis));
+  }
+  return directions;
+}
+
+}  // namespace
+
+std::vector<Vec3> target_charge_points(const Target& target, std::uint64_t rng_seed) {
+  std::vector<Vec3> points;
+  if (target.kind == TargetKind::point) points.push_back(target.point);
+  if (target.kind == TargetKind::mesh) {
+    Rng rng(rng_seed, kTargetStreams);
+    for (int i = 0; i < kTargetMeshCharges; ++i) points.push_back(target.mesh->draw_near_surface(rng));
+  }
+  return points;
+}
+
+bool free_at(const GridIndex& index, const Vec3& c, std::int32_t parent, double spacing) {
+  bool free = true;
+  index.for_each_within(c, spacing * (1.0 - 1e-9), [&](std::int32_t id, double) {
+    if (id != parent) free = false;
+  });
+  return free;
+}
+
+void sites_beside(std::int32_t id, const Vec3& from, const DlaOptions& walk, const MeshConstraint* constraint,
+                  const GridIndex& index, std::vector<Vec3>& out) {
+  Rng rng(walk.rng_seed, kFrameStreams + static_cast<std::uint64_t>(id));
+  out.clear();
+  for (const Vec3& direction : site_frame(rng, walk.dimensions)) {
+    Vec3 at = from + walk.spacing * direction;
+    if (constraint) {
+      const BranchCheck check = constraint->check_branch(from, at);
+      if (!check.accepted) continue;
+      at = check.end;
+    }
+    if (free_at(index, at, id, walk.spacing)) out.push_back(at);
+  }
+}
+
+namespace {
 
 class ChargeDischarge {
  public:
@@ -390,11 +447,7 @@ class ChargeDischarge {
                o.target.kind == TargetKind::plane ? static_cast<int>(o.target.axis) : -1, o.target.at),
         crew_(walk.threads) {
     if (o.target.kind != TargetKind::none) electrode_.emplace(o.target, cluster_.center, walk.spacing, walk.dimensions);
-    if (o.target.kind == TargetKind::mesh) {
-      Rng rng(walk.rng_seed, kTargetStreams);
-      for (int i = 0; i < kTargetMeshCharges; ++i) target_charges_.push_back(o.target.mesh->draw_near_surface(rng));
-    }
-    if (o.target.kind == TargetKind::point) target_charges_.push_back(o.target.point);
+    target_charges_ = target_charge_points(o.target, walk.rng_seed);
     cluster_.particles.reserve(cluster_.particles.size() + walk.particles);
     index_.reserve(cluster_.particles.capacity());
   }
@@ -440,7 +493,7 @@ class ChargeDischarge {
         throw GrowthError("no free site is left next to the structure after " + std::to_string(k) +
                           " particles: the mesh holds no more");
       const std::size_t s = static_cast<std::size_t>(site);
-      if (!free_at(field_.at(s), field_.parent(s))) {
+      if (!free_at(index_, field_.at(s), field_.parent(s), walk_.spacing)) {
         field_.close(s);
         continue;
       }
@@ -463,59 +516,12 @@ class ChargeDischarge {
     field_.add_charge(p.position, crew_);
   }
 
-  //! Whether a particle at c, next to `parent`, is a spacing from every other one.
-  bool free_at(const Vec3& c, std::int32_t parent) const {
-    bool free = true;
-    index_.for_each_within(c, walk_.spacing * (1.0 - 1e-9), [&](std::int32_t id, double) {
-      if (id != parent) free = false;
-    });
-    return free;
-  }
-
-  //! The sites beside particle id: a spacing away in the directions of its frame, where the
-  //! mesh allows a branch and no other particle is nearer than a spacing.
+  //! The sites beside particle id, each with the target's potential there.
   void open_sites(std::int32_t id) {
-    const Vec3 from = cluster_.particles[static_cast<std::size_t>(id)].position;
-    Rng rng(walk_.rng_seed, kFrameStreams + static_cast<std::uint64_t>(id));
-    sites_.clear();
+    sites_beside(id, cluster_.particles[static_cast<std::size_t>(id)].position, walk_, constraint_, index_, sites_);
     potentials_.clear();
-    for (const Vec3& direction : frame(rng)) {
-      Vec3 at = from + walk_.spacing * direction;
-      if (constraint_) {
-        const BranchCheck check = constraint_->check_branch(from, at);
-        if (!check.accepted) continue;
-        at = check.end;
-      }
-      if (!free_at(at, id)) continue;
-      sites_.push_back(at);
-      potentials_.push_back(target_potential(at));
-    }
+    for (const Vec3& at : sites_) potentials_.push_back(target_potential(at));
     field_.add_sites(sites_, id, potentials_, crew_);
-  }
-
-  std::vector<Vec3> frame(Rng& rng) const {
-    constexpr double two_pi = 6.283185307179586;
-    std::vector<Vec3> directions;
-    if (walk_.dimensions == 2) {
-      const double turn = two_pi * rng.uniform();
-      for (int i = 0; i < kSitesPerParticle; ++i) {
-        const double angle = turn + two_pi * i / kSitesPerParticle;
-        directions.emplace_back(std::cos(angle), std::sin(angle), 0.0);
-      }
-      return directions;
-    }
-    // A uniform rotation (Shoemake's quaternion from three uniform numbers); its axes both ways.
-    const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
-    const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
-    const Eigen::Matrix3d turn =
-        Eigen::Quaterniond(b * std::cos(two_pi * u3), a * std::sin(two_pi * u2), a * std::cos(two_pi * u2),
-                           b * std::sin(two_pi * u3))
-            .toRotationMatrix();
-    for (int axis = 0; axis < 3; ++axis) {
-      directions.push_back(turn.col(axis));
-      directions.push_back(-turn.col(axis));
-    }
-    return directions;
   }
 
   //! The target's potential at c per unit of its charge, spread over its points; 0 for a plane

@@ -13,6 +13,7 @@
 
 #include "dla/core/options.h"
 #include "dla/core/random.h"
+#include "dla/index/grid_index.h"
 #include "dla/models/breakdown.h"
 
 #include "models/crew.h"
@@ -94,6 +95,28 @@ class ChargeField {
   std::vector<std::uint32_t> block_open_;
   std::size_t open_count_ = 0;
 };
+
+// --- Shared by the point-charge fields (charges, conductor) -------------------------------------
+
+// Streams of their own, apart from the walkers field's: the draw of particle k, the frame of
+// particle id's sites, and the points that carry a target mesh's charge.
+inline constexpr std::uint64_t kChoiceStreams = std::uint64_t{1} << 63;
+inline constexpr std::uint64_t kFrameStreams = std::uint64_t{1} << 62;
+inline constexpr std::uint64_t kTargetStreams = kFrameStreams + (std::uint64_t{1} << 61);
+
+//! The points a point or mesh target's charge is spread over, evenly: a point's one, or 512
+//! drawn uniformly by area over a mesh; none for a plane or without a target.
+std::vector<Vec3> target_charge_points(const Target& target, std::uint64_t rng_seed);
+
+//! Whether a particle at c, next to `parent`, is a spacing from every other one.
+bool free_at(const GridIndex& index, const Vec3& c, std::int32_t parent, double spacing);
+
+//! The candidate sites beside particle `id` at `from` into `out`: a spacing away in the six
+//! directions of its own random frame (an octahedron's in 3D, a hexagon's in 2D, a frame a
+//! particle so that no direction is favoured over the structure), where the mesh allows a
+//! branch and no other particle is nearer than a spacing.
+void sites_beside(std::int32_t id, const Vec3& from, const DlaOptions& walk, const MeshConstraint* constraint,
+                  const GridIndex& index, std::vector<Vec3>& out);
 
 //! Grows the breakdown model with the charges field; breakdown() validates first.
 Cluster grow_by_charges(const DlaOptions& walk, const BreakdownOptions& options, const MeshConstraint* constraint,

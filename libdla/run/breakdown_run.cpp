@@ -55,29 +55,33 @@ class BreakdownRun : public DlaRun {
                      [&](const Vec3& v) { return constraint_->on_growth_side(v); }))
       throw InvalidInput("`target_mesh` " + target_mesh_name_ + " is not on the growing side of " + mesh_name_ +
                          ": it lies in the insulator, and no walker can leave it");
-    if (breakdown_.field == BreakdownField::charges) foresee_charges(options_.particles);
+    if (breakdown_.field != BreakdownField::walkers) foresee_fields(options_.particles);
     // A strike ends growth before the count: no count is promised.
     if (target.kind != TargetKind::none && breakdown_.stop_at_strike) solid_forecast.particles = 0;
   }
 
-  //! The charges field keeps six sites a particle at most beside the structure, and sums each
-  //! new particle's charge at every open site: memory in proportion to the count, time to its
-  //! square (docs/performance.md#the-breakdown-model).
-  void foresee_charges(std::size_t particles) {
-    constexpr double kBytesPerParticle = 400.0;
+  //! The point-charge fields keep six sites a particle at most and their charges: memory in
+  //! proportion to the count. The charges field sums each new particle's charge at every open
+  //! site, time to the count's square; the conductor field's potentials, about 200 a particle,
+  //! each cost a Barnes-Hut sum over a tree that deepens with the count
+  //! (docs/performance.md#the-breakdown-model).
+  void foresee_fields(std::size_t particles) {
+    const bool charges = breakdown_.field == BreakdownField::charges;
+    const double bytes_per_particle = charges ? 400.0 : 800.0;
+    const std::string field = "the " + std::string(to_string(breakdown_.field)) + " field";
     const double n = static_cast<double>(particles), memory = installed_memory();
-    if (memory > 0.0 && kBytesPerParticle * n > memory)
-      throw InvalidInput("`particles` " + format_count(particles) + " with the charges field needs about " +
-                         format_number(std::ceil(kBytesPerParticle * n / 1e8) / 10.0) + " GB of memory; this machine has " +
+    if (memory > 0.0 && bytes_per_particle * n > memory)
+      throw InvalidInput("`particles` " + format_count(particles) + " with " + field + " needs about " +
+                         format_number(std::ceil(bytes_per_particle * n / 1e8) / 10.0) + " GB of memory; this machine has " +
                          format_number(std::floor(memory / 1e8) / 10.0) + " GB: at most " +
-                         format_count(static_cast<std::size_t>(memory / kBytesPerParticle)) + " particles fit");
-    // About 2.5 open sites a particle, each summing every later charge, and six new sites each
-    // summing the charges before them: 4 n^2 potentials, at about 1e9 a second on one core.
-    const double seconds = 4.0 * n * n / 1e9;
+                         format_count(static_cast<std::size_t>(memory / bytes_per_particle)) + " particles fit");
+    // Charges: about 2.5 open sites a particle, each summing every later charge, and six new
+    // sites each summing the charges before them: 4 n^2 potentials, about 1e9 a second on one
+    // core. Conductor: measured, 3 s for 10^4 and 100 s for 10^5 on one core.
+    const double seconds = charges ? 4.0 * n * n / 1e9 : 1.8e-6 * std::pow(n, 1.55);
     if (seconds > 120.0)
-      forecast_line = "the charges field sums about " + format_number(std::round(4.0 * n * n / 1e10) / 100.0) +
-                      " trillion potentials for " + format_count(particles) + " particles, " +
-                      time_for_pairs(seconds * kPairsPerSecond) + " on one core";
+      forecast_line = field + " takes " + time_for_pairs(seconds * kPairsPerSecond) + " on one core for " +
+                      format_count(particles) + " particles";
   }
 
   Cluster grow(const ProgressFn& progress, const StopFlag* stop) override {
@@ -102,6 +106,10 @@ class BreakdownRun : public DlaRun {
     if (breakdown_.field == BreakdownField::charges)
       std::snprintf(field, sizeof field, "by the charges field, %s sites weighed",
                     with_commas(static_cast<double>(stats_.sites)).c_str());
+    else if (breakdown_.field == BreakdownField::conductor)
+      std::snprintf(field, sizeof field, "by the conductor field, %s sites weighed, %s solves",
+                    with_commas(static_cast<double>(stats_.sites)).c_str(),
+                    with_commas(static_cast<double>(stats_.solves)).c_str());
     else
       std::snprintf(field, sizeof field, "%d walkers each (%s walks)", walkers_for(breakdown_),
                     with_commas(static_cast<double>(stats_.walk.walkers)).c_str());
@@ -138,9 +146,9 @@ class BreakdownRun : public DlaRun {
                    {"returns", s.returns}, {"relaunches", s.relaunches}, {"absorbed", s.absorbed}, {"lost", s.lost},
                    {"rejected", s.rejected}, {"clipped", s.clipped}})
           .close();
-      w.open("discharge")
-          .count("sites_weighed", stats_.sites)
-          .integer("strike", stats_.strike)
+      w.open("discharge").count("sites_weighed", stats_.sites);
+      if (breakdown_.field == BreakdownField::conductor) w.count("solves", stats_.solves);
+      w.integer("strike", stats_.strike)
           .count("channel", stats_.channel)
           .close();
     };

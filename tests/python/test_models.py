@@ -26,10 +26,11 @@ MODELS = [
     ("drop", {"particles": 2000, "rng_seed": 3}),
     ("ballistic", {"particles": 2000, "rng_seed": 4}),
     ("eden", {"sites": 2000, "rng_seed": 6}),
-    # Discharges: to the ground past the strike, to a point, struck, in 2D, and by the charges field.
+    # Discharges: to the ground past the strike, to a point, struck, in 2D, and by the point-charge fields.
     ("breakdown", {"particles": 800, "eta": 2, "target_plane": ("y", -20), "stop_at_strike": False, "rng_seed": 7}),
     ("breakdown", {"particles": 3000, "eta": 3, "target_point": (0, -15, 0), "dimensions": 2}),
     ("breakdown", {"particles": 2000, "eta": 6, "field": "charges", "target_plane": ("y", -40), "rng_seed": 3}),
+    ("breakdown", {"particles": 2000, "eta": 3, "field": "conductor", "target_plane": ("y", -40), "rng_seed": 3}),
     # Loops: links beside the tree, closed venation and the lattice graph.
     ("grow", {"particles": 2000, "links": (2.5, 2)}),
     ("colonize", {"max_nodes": 2000, "venation": "closed", "influence": 8.0, "dimensions": 2}),

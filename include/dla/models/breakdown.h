@@ -14,8 +14,10 @@
 //! uniformly: DLA by the same contact law, and with one walker the same structure as `dla3d`.
 //! With a target, walkers leave from it and one that comes back to it starts again (the
 //! excursion measure of the target, whose first contacts are the field of the capacitor).
-//! `field = charges` measures it instead by a point charge a particle (FSLG): fast at any eta,
-//! but too weakly screened to have the model's dimensions (docs/breakdown.md).
+//! `field = conductor` solves for the point charges that hold the structure at one potential
+//! (the charge on a conductor is its harmonic measure): fast at any eta, with the model's
+//! dimensions. `field = charges` gives every particle the same charge (FSLG): faster, but too
+//! weakly screened to have the model's dimensions (docs/breakdown.md).
 
 #include "dla/core/cluster.h"
 #include "dla/core/errors.h"
@@ -29,11 +31,16 @@
 
 namespace dla {
 
-//! How the field on the structure is measured (`--field walkers|charges`); docs/breakdown.md.
+//! How the field on the structure is measured (`--field walkers|conductor|charges`);
+//! docs/breakdown.md.
 enum class BreakdownField {
   //! DLA's walkers' first contacts (the harmonic measure): exact, insulators shape the field,
   //! and at eta 1 it is DLA; the walkers a particle needs grow with eta
   walkers,
+  //! a point charge a particle, solved so that the structure is one conductor: a particle
+  //! grows with weight charge^eta, then one of its sites by its potential^eta; a cost that does
+  //! not grow with eta, a field that ignores insulators (they still stop growth)
+  conductor,
   //! every particle an equal point charge, the potential summed at candidate sites a spacing
   //! from the structure, updated as each particle attaches (Kim, Sud and Lin's FSLG): a cost
   //! that does not grow with eta, a field that ignores insulators and the charge's crowding
@@ -72,7 +79,7 @@ struct BreakdownOptions {
   BreakdownField field = BreakdownField::walkers;
   //! Walkers measured before each particle attaches, 1 to 4096; 0: one at eta 1, else
   //! default_breakdown_walkers(eta). More sharpen the field (docs/breakdown.md: the bias). The
-  //! walkers field's alone: 0 with charges.
+  //! walkers field's alone: 0 with the others.
   int walkers = 0;
   Target target;
   //! End growth when a particle comes within a spacing of the target (the strike). Else growth
@@ -104,9 +111,11 @@ struct BreakdownStats {
   std::uint64_t absorbed = 0;     //!< walkers that came back to the target and started again
   std::int32_t strike = -1;       //!< the first particle within a spacing of the target; -1: none
   std::uint64_t channel = 0;      //!< particles on the main channel, the seed to the strike; 0: none
-  //! growth sites weighed, summed over the attachments: touched parents (walkers), or free
-  //! candidate sites (charges)
+  //! growth sites weighed, summed over the attachments: touched parents (walkers), free
+  //! candidate sites (charges), or the chosen parents' free sites (conductor)
   std::uint64_t sites = 0;
+  //! conductor: the charges solved afresh by conjugate gradients
+  std::uint64_t solves = 0;
   //! Where each particle goes as it attaches, seeds first (walk.h's DlaStats::feed); null: nowhere.
   ParticleFeed* feed = nullptr;
 };
@@ -137,13 +146,14 @@ inline std::uint64_t channel_length(const Cluster& cluster) {
 inline std::string_view to_string(BreakdownField field) {
   switch (field) {
     case BreakdownField::walkers: return "walkers";
+    case BreakdownField::conductor: return "conductor";
     case BreakdownField::charges: return "charges";
   }
   return "?";
 }
 
 inline BreakdownField parse_breakdown_field(std::string_view word) {
-  constexpr BreakdownField values[] = {BreakdownField::walkers, BreakdownField::charges};
+  constexpr BreakdownField values[] = {BreakdownField::walkers, BreakdownField::conductor, BreakdownField::charges};
   return detail::parse_word(word, values, "field");
 }
 
