@@ -39,7 +39,7 @@ Subcommand add_breakdown_command(CLI::App& app, const Model& model) {
                                       "1 is DLA, 0 compact, 2 to 4 lightning")
       ->capture_default_str()->group(discharge);
   command->add_option("--field", w->field, "how the field is measured: walkers (DLA's first contacts: exact, "
-                                           "insulators shape it, slower as eta grows), conductor (point charges "
+                                           "insulators shape it, slower as eta grows), conductor (3D: point charges "
                                            "that hold the structure at one potential: fast at any eta, the model's "
                                            "dimensions, blind to insulators) or charges (equal point charges: "
                                            "fastest, too dense a structure); docs/breakdown.md")

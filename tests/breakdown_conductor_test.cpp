@@ -46,8 +46,8 @@ double green(int dimensions, double r, double near = 0.5) {
 }
 
 // Random points, some far out so that the tree's root grows, with charges of both signs: every
-// potential within Barnes-Hut's error of the sum over every charge, after inserts, single
-// changes and a load of all.
+// potential within Barnes-Hut's error (monopole and dipole at an opening angle of 0.5) of the
+// sum over every charge, after inserts, single changes and a load of all.
 TEST(ChargeTree, PotentialsAreTheSumOverEveryCharge) {
   for (const int dimensions : {2, 3}) {
     SCOPED_TRACE(std::to_string(dimensions) + "D");
@@ -76,7 +76,7 @@ TEST(ChargeTree, PotentialsAreTheSumOverEveryCharge) {
           exact += term;
           scale += std::abs(term);
         }
-        EXPECT_NEAR(tree.potential(x), exact, 5e-3 * scale) << k;
+        EXPECT_NEAR(tree.potential(x), exact, 2e-3 * scale) << k;
       }
     };
     check("inserted");
@@ -98,51 +98,57 @@ TEST(ChargeTree, PotentialsAreTheSumOverEveryCharge) {
 TEST(ConductorField, SolvedChargesAreTheDenseSolution) {
   for (const int dimensions : {2, 3})
     for (const TargetKind kind : {TargetKind::none, TargetKind::plane, TargetKind::point}) {
-      SCOPED_TRACE(std::string(to_string(kind)) + ", " + std::to_string(dimensions) + "D");
-      const Cluster grown = grow(walk_of(300, 7, dimensions));
-      const double spacing = 1.0;
-      Target target;
-      target.kind = kind;
-      target.axis = Axis::y;
-      target.at = -80.0;  // beyond the structure, whose bounding radius is about 30 in 2D
-      target.point = Vec3(0.0, -80.0, 0.0);
-      detail::ConductorField field(grown.center, spacing, dimensions, target, 1, 2);
-      for (const Particle& p : grown.particles) field.add(p.position);
-      field.solve(400);
-      const std::size_t n = grown.particles.size();
-      const auto t_of = [&](const Vec3& x) { return green(dimensions, (x - target.point).norm(), 0.25); };
-      const double t_self = green(dimensions, 0.0, 0.25);
-      Eigen::MatrixXd k(n, n);
-      for (std::size_t i = 0; i < n; ++i)
-        for (std::size_t j = 0; j < n; ++j) {
-          const Vec3& a = grown.particles[i].position;
-          const Vec3& b = grown.particles[j].position;
-          double value = green(dimensions, (a - b).norm());
-          Vec3 image = b;
-          image.y() = 2.0 * target.at - b.y();
-          if (kind == TargetKind::plane) value -= green(dimensions, (a - image).norm(), 1.0);
-          if (kind == TargetKind::point) value -= t_of(a) + t_of(b) - t_self;
-          k(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = value;
-        }
-      const Eigen::VectorXd exact = k.ldlt().solve(Eigen::VectorXd::Ones(static_cast<Eigen::Index>(n)));
-      const double largest = exact.cwiseAbs().maxCoeff();
-      double worst = 0.0;
-      for (std::size_t i = 0; i < n; ++i) {
-        worst = std::max(worst, std::abs(field.charge(i) - exact(static_cast<Eigen::Index>(i))));
-        EXPECT_NEAR(field.held_at(i), 1.0, 1e-3) << i;
-        EXPECT_NEAR(field.potential(grown.particles[i].position), 0.0, 1e-3) << i;
+    SCOPED_TRACE(std::string(to_string(kind)) + ", " + std::to_string(dimensions) + "D");
+    const Cluster grown = grow(walk_of(300, 7, dimensions));
+    const double spacing = 1.0;
+    Target target;
+    target.kind = kind;
+    target.axis = Axis::y;
+    target.at = -80.0;  // beyond the structure, whose bounding radius is about 30 in 2D
+    target.point = Vec3(0.0, -80.0, 0.0);
+    detail::ConductorField field(grown.center, spacing, dimensions, target, 1, 2);
+    for (const Particle& p : grown.particles) field.add(p.position);
+    field.solve(400);
+    const std::size_t n = grown.particles.size();
+    const auto t_of = [&](const Vec3& x) { return green(dimensions, (x - target.point).norm(), 0.25); };
+    const double t_self = green(dimensions, 0.0, 0.25);
+    Eigen::MatrixXd k(n, n);
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < n; ++j) {
+        const Vec3& a = grown.particles[i].position;
+        const Vec3& b = grown.particles[j].position;
+        double value = green(dimensions, (a - b).norm());
+        Vec3 image = b;
+        image.y() = 2.0 * target.at - b.y();
+        if (kind == TargetKind::plane) value -= green(dimensions, (a - image).norm(), 1.0);
+        if (kind == TargetKind::point) value -= t_of(a) + t_of(b) - t_self;
+        k(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = value;
       }
-      // Barnes-Hut's monopoles bound the agreement, not the solve.
-      EXPECT_LT(worst, 0.03 * largest);
-      // The other electrode is at 1: the ball's centre, the plane, or (3D) far away.
-      if (kind == TargetKind::point) EXPECT_NEAR(field.potential(target.point), 1.0, 1e-3);
-      if (kind == TargetKind::plane) EXPECT_NEAR(field.potential(Vec3(13.0, target.at, 0.0)), 1.0, 1e-9);
-      if (kind == TargetKind::none && dimensions == 3) EXPECT_NEAR(field.potential(Vec3(1e7, 0.0, 0.0)), 1.0, 1e-4);
-      // Between, it rises from the structure outwards (here away from the target).
-      const Vec3 out = grown.center + Vec3(0.0, 1.0, 0.0) * (bounding_radius(grown) + 3.0);
-      EXPECT_GT(field.potential(out), 0.0);
-      EXPECT_LT(field.potential(out), 1.0);
+    const Eigen::VectorXd exact = k.ldlt().solve(Eigen::VectorXd::Ones(static_cast<Eigen::Index>(n)));
+    const double largest = exact.cwiseAbs().maxCoeff();
+    double worst = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      worst = std::max(worst, std::abs(field.charge(i) - exact(static_cast<Eigen::Index>(i))));
+      EXPECT_NEAR(field.held_at(i), 1.0, 1e-3) << i;
+      EXPECT_NEAR(field.potential(grown.particles[i].position), 0.0, 1e-3) << i;
     }
+    // Barnes-Hut's truncation bounds the agreement, not the solve.
+    EXPECT_LT(worst, 0.03 * largest);
+    // The other electrode is at 1: the ball's centre, the plane, or (3D) far away.
+    if (kind == TargetKind::point) {
+      EXPECT_NEAR(field.potential(target.point), 1.0, 1e-3);
+    }
+    if (kind == TargetKind::plane) {
+      EXPECT_NEAR(field.potential(Vec3(13.0, target.at, 0.0)), 1.0, 1e-9);
+    }
+    if (kind == TargetKind::none && dimensions == 3) {
+      EXPECT_NEAR(field.potential(Vec3(1e7, 0.0, 0.0)), 1.0, 1e-4);
+    }
+    // Between, it rises from the structure outwards (here away from the target).
+    const Vec3 out = grown.center + Vec3(0.0, 1.0, 0.0) * (bounding_radius(grown) + 3.0);
+    EXPECT_GT(field.potential(out), 0.0);
+    EXPECT_LT(field.potential(out), 1.0);
+  }
 }
 
 // Local relaxation alone keeps a new particle's charge near the solved one: the sweeps the
@@ -168,37 +174,35 @@ TEST(ConductorField, RelaxationMovesTowardsTheSolution) {
 }
 
 TEST(BreakdownConductor, GrowsATreeOfSpacedParticlesForEveryEta) {
-  for (const double eta : {0.0, 1.0, 3.0, 10.0})
-    for (const int dimensions : {2, 3}) {
-      SCOPED_TRACE("eta " + std::to_string(eta) + ", " + std::to_string(dimensions) + "D");
-      BreakdownStats stats;
-      const Cluster c = breakdown(walk_of(1500, 5, dimensions), conductor(eta), nullptr, {}, nullptr, &stats);
-      EXPECT_EQ(testing::tree_fault(c), "");
-      EXPECT_EQ(attached(c), 1500u);
-      EXPECT_TRUE(c.complete);
-      EXPECT_EQ(stats.walk.walkers, 0u);
-      EXPECT_GE(stats.sites, 1500u);
-      EXPECT_GT(stats.solves, 20u);  // every tenth of growth from 8 particles
-    }
+  for (const double eta : {0.0, 1.0, 3.0, 10.0}) {
+    SCOPED_TRACE("eta " + std::to_string(eta));
+    BreakdownStats stats;
+    const Cluster c = breakdown(walk_of(1500, 5), conductor(eta), nullptr, {}, nullptr, &stats);
+    EXPECT_EQ(testing::tree_fault(c), "");
+    EXPECT_EQ(attached(c), 1500u);
+    EXPECT_TRUE(c.complete);
+    EXPECT_EQ(stats.walk.walkers, 0u);
+    EXPECT_GE(stats.sites, 1500u);
+    EXPECT_GT(stats.solves, 20u);  // every tenth of growth from 8 particles
+  }
 }
 
 TEST(BreakdownConductor, TheSameStructureOnAnyThreadCount) {
-  for (const int dimensions : {2, 3})
-    for (const TargetKind kind : {TargetKind::plane, TargetKind::point}) {
-      BreakdownOptions o = conductor(3.0);
-      o.target.kind = kind;
-      o.target.at = -300.0;
-      o.target.point = Vec3(0.0, -300.0, 0.0);
-      DlaOptions walk = walk_of(3000, 9, dimensions);
-      const Cluster one = breakdown(walk, o, nullptr);
-      walk.threads = 3;
-      const Cluster three = breakdown(walk, o, nullptr);
-      ASSERT_EQ(one.particles.size(), three.particles.size());
-      for (std::size_t i = 0; i < one.particles.size(); ++i) {
-        ASSERT_EQ(one.particles[i].position, three.particles[i].position) << dimensions << "D, particle " << i;
-        ASSERT_EQ(one.particles[i].parent, three.particles[i].parent);
-      }
+  for (const TargetKind kind : {TargetKind::none, TargetKind::plane, TargetKind::point}) {
+    BreakdownOptions o = conductor(3.0);
+    o.target.kind = kind;
+    o.target.at = -300.0;
+    o.target.point = Vec3(0.0, -300.0, 0.0);
+    DlaOptions walk = walk_of(3000, 9);
+    const Cluster one = breakdown(walk, o, nullptr);
+    walk.threads = 3;
+    const Cluster three = breakdown(walk, o, nullptr);
+    ASSERT_EQ(one.particles.size(), three.particles.size());
+    for (std::size_t i = 0; i < one.particles.size(); ++i) {
+      ASSERT_EQ(one.particles[i].position, three.particles[i].position) << to_string(kind) << ", particle " << i;
+      ASSERT_EQ(one.particles[i].parent, three.particles[i].parent);
     }
+  }
 }
 
 TEST(BreakdownConductor, HigherEtaGrowsSparserChannels) {
@@ -214,22 +218,20 @@ TEST(BreakdownConductor, AStrikeEndsGrowthAtTheTarget) {
   ConstraintOptions outside;
   outside.side = Side::outside;
   const MeshConstraint rod(make_box(Vec3(-1.5, -40.0, -1.5), Vec3(1.5, -18.0, 1.5)), outside, 1.0);
-  for (const int dimensions : {2, 3})
-    for (const TargetKind kind : {TargetKind::point, TargetKind::plane, TargetKind::mesh}) {
-      if (kind == TargetKind::mesh && dimensions == 2) continue;
-      BreakdownOptions o = conductor(2.0);
-      o.target.kind = kind;
-      o.target.point = Vec3(0.0, -25.0, 0.0);
-      o.target.at = -25.0;
-      o.target.mesh = &rod;
-      SCOPED_TRACE(std::string(to_string(kind)) + ", " + std::to_string(dimensions) + "D");
-      const Cluster c = breakdown(walk_of(20000, 4, dimensions), o, nullptr);
-      EXPECT_EQ(testing::tree_fault(c), "");
-      ASSERT_GE(c.strike, 0);
-      EXPECT_EQ(static_cast<std::size_t>(c.strike), c.particles.size() - 1);
-      // Pulled to the target: the strike comes long before the count.
-      EXPECT_LT(attached(c), 5000u);
-    }
+  for (const TargetKind kind : {TargetKind::point, TargetKind::plane, TargetKind::mesh}) {
+    BreakdownOptions o = conductor(2.0);
+    o.target.kind = kind;
+    o.target.point = Vec3(0.0, -25.0, 0.0);
+    o.target.at = -25.0;
+    o.target.mesh = &rod;
+    SCOPED_TRACE(to_string(kind));
+    const Cluster c = breakdown(walk_of(20000, 4), o, nullptr);
+    EXPECT_EQ(testing::tree_fault(c), "");
+    ASSERT_GE(c.strike, 0);
+    EXPECT_EQ(static_cast<std::size_t>(c.strike), c.particles.size() - 1);
+    // Pulled to the target: the strike comes long before the count.
+    EXPECT_LT(attached(c), 5000u);
+  }
 }
 
 TEST(BreakdownConductor, GoesOnPastTheStrikeWhenAsked) {
@@ -237,13 +239,11 @@ TEST(BreakdownConductor, GoesOnPastTheStrikeWhenAsked) {
   o.target.kind = TargetKind::point;
   o.target.point = Vec3(12.0, 0.0, 0.0);
   o.stop_at_strike = false;
-  for (const int dimensions : {2, 3}) {
-    const Cluster c = breakdown(walk_of(600, 2, dimensions), o, nullptr);
-    EXPECT_EQ(testing::tree_fault(c), "");
-    EXPECT_EQ(attached(c), 600u);
-    EXPECT_GE(c.strike, 0);
-    EXPECT_LT(static_cast<std::size_t>(c.strike), c.particles.size() - 1);
-  }
+  const Cluster c = breakdown(walk_of(600, 2), o, nullptr);
+  EXPECT_EQ(testing::tree_fault(c), "");
+  EXPECT_EQ(attached(c), 600u);
+  EXPECT_GE(c.strike, 0);
+  EXPECT_LT(static_cast<std::size_t>(c.strike), c.particles.size() - 1);
 }
 
 TEST(BreakdownConductor, AnInsulatorHoldsTheDischargeOnItsSide) {
@@ -283,6 +283,7 @@ TEST(BreakdownConductor, RefusesWhatOnlyWalkersHave) {
   DlaOptions walk = walk_of(10);
   walk.stickiness = 0.5;
   EXPECT_EQ(refusal(o, walk), "`stickiness` is a walker's; the conductor field sends none");
+  EXPECT_EQ(refusal(o, walk_of(10, 1, 2)), "`field` conductor grows 3D discharges; in 2D give walkers or charges");
   EXPECT_EQ(parse_breakdown_field("conductor"), BreakdownField::conductor);
 }
 
@@ -299,27 +300,23 @@ TEST(BreakdownConductor, StopsWhenAskedAndKeepsWhatGrew) {
 }
 
 // Satpathy's 3D values (Phys. Rev. B 33, 5093, 1986), 2.1 at eta 2 and 1.9 at eta 3, each
-// within the 0.12, over eight discharges of 5,000 particles; and in 2D, D falls from
-// DLA's 1.71 as eta rises. In the full tier only (ctest -L full sets DLA_FULL_TESTS).
+// within the 0.12, over sixteen discharges of 5,000 particles. In the full tier only
+// (ctest -L full sets DLA_FULL_TESTS).
 TEST(Slow, ConductorBreakdownHasSatpathysDimensions) {
   if (!std::getenv("DLA_FULL_TESTS")) GTEST_SKIP() << "in the full tier: ctest -L full";
-  const auto dimension = [](int dimensions, double eta) {
+  const auto dimension = [](double eta) {
+    constexpr int kClusters = 16;
     double mean = 0.0;
-    constexpr int kClusters = 8;
     for (int i = 0; i < kClusters; ++i)
-      mean += fractal_dimension_by_gyration(breakdown(walk_of(5000, 4000 + static_cast<std::uint64_t>(i), dimensions),
-                                                      conductor(eta), nullptr))
+      mean += fractal_dimension_by_gyration(
+                  breakdown(walk_of(5000, 4000 + static_cast<std::uint64_t>(i)), conductor(eta), nullptr))
                   .dimension /
               kClusters;
-    std::printf("conductor, %dD, eta %.1f: D by gyration %.3f\n", dimensions, eta, mean);
+    std::printf("conductor, 3D, eta %.1f: D by gyration %.3f\n", eta, mean);
     return mean;
   };
-  EXPECT_NEAR(dimension(3, 2.0), 2.1, 0.12);
-  EXPECT_NEAR(dimension(3, 3.0), 1.9, 0.12);
-  const double two = dimension(2, 2.0), three = dimension(2, 3.0);
-  EXPECT_LT(two, 1.71 - 0.15);
-  EXPECT_LT(three, two);
-  EXPECT_GT(three, 1.0);
+  EXPECT_NEAR(dimension(2.0), 2.1, 0.12);
+  EXPECT_NEAR(dimension(3.0), 1.9, 0.12);
 }
 
 }  // namespace

@@ -36,6 +36,10 @@ void validate(const BreakdownOptions& o, const DlaOptions& walk) {
     if (walk.stickiness != 1.0) throw InvalidInput("`stickiness` is a walker's" + none);
     if (walk.spawn != SpawnMode::sphere) throw InvalidInput("`spawn` is where walkers start" + none);
   }
+  // In 2D, G = ln(R/r) leaves the charges of a structure's inside nearly free, and growth by
+  // them fills in (docs/dev/breakdown-field.md).
+  if (o.field == BreakdownField::conductor && walk.dimensions == 2)
+    throw InvalidInput("`field` conductor grows 3D discharges; in 2D give walkers or charges");
   const Target& t = o.target;
   if (t.kind == TargetKind::none) return;
   if (t.kind == TargetKind::point) detail::require_representable("`target_point`", t.point, walk.spacing);
