@@ -430,6 +430,39 @@ void sites_beside(std::int32_t id, const Vec3& from, const DlaOptions& walk, con
   }
 }
 
+void grow_until_done(Cluster& cluster, const DlaOptions& walk, const BreakdownOptions& options,
+                     const Electrode* electrode, const ProgressFn& progress, const StopFlag* stop,
+                     BreakdownStats& stats, const std::function<void()>& seed,
+                     const std::function<void(std::size_t)>& attach, const std::function<void()>& point_struck) {
+  ModelShell shell(progress, stop);
+  const auto finish_stats = [&] {
+    stats.strike = cluster.strike;
+    stats.channel = channel_length(cluster);
+  };
+  try {
+    seed();
+    for (std::size_t k = 0; k < walk.particles; ++k) {
+      attach(k);
+      const Vec3& p = cluster.particles.back().position;
+      if (electrode && cluster.strike < 0 && electrode->distance(p) <= walk.spacing) {
+        cluster.strike = static_cast<std::int32_t>(cluster.particles.size() - 1);
+        if (options.stop_at_strike) break;
+        // A ball touched is at the structure's potential: its charge is gone.
+        if (options.target.kind == TargetKind::point) point_struck();
+      }
+      if (k + 1 < walk.particles && !shell.go_on(cluster)) {
+        cluster.complete = false;
+        break;
+      }
+    }
+  } catch (...) {
+    finish_stats();
+    ModelShell::keep_what_grew(cluster);
+  }
+  finish_stats();
+  shell.finish(cluster);
+}
+
 namespace {
 
 class ChargeDischarge {
@@ -453,31 +486,13 @@ class ChargeDischarge {
   }
 
   Cluster run(const ProgressFn& progress) {
-    ModelShell shell(progress, stop_);
-    try {
+    const auto seed = [&] {
       // Every seed's charge first, so that each seed's sites sum them all.
       for (std::size_t i = 0; i < cluster_.particles.size(); ++i) charge(static_cast<std::int32_t>(i));
       for (std::size_t i = 0; i < cluster_.particles.size(); ++i) open_sites(static_cast<std::int32_t>(i));
-      for (std::size_t k = 0; k < walk_.particles; ++k) {
-        attach(k);
-        const Vec3& p = cluster_.particles.back().position;
-        if (electrode_ && cluster_.strike < 0 && electrode_->distance(p) <= walk_.spacing) {
-          cluster_.strike = static_cast<std::int32_t>(cluster_.particles.size() - 1);
-          if (options_.stop_at_strike) break;
-          // A ball touched is at the structure's potential: its charge is gone.
-          if (options_.target.kind == TargetKind::point) field_.drop_target();
-        }
-        if (k + 1 < walk_.particles && !shell.go_on(cluster_)) {
-          cluster_.complete = false;
-          break;
-        }
-      }
-    } catch (...) {
-      finish_stats();
-      ModelShell::keep_what_grew(cluster_);
-    }
-    finish_stats();
-    shell.finish(cluster_);
+    };
+    grow_until_done(cluster_, walk_, options_, electrode_ ? &*electrode_ : nullptr, progress, stop_, stats_, seed,
+                    [&](std::size_t k) { attach(k); }, [&] { field_.drop_target(); });
     return std::move(cluster_);
   }
 
@@ -534,11 +549,6 @@ class ChargeDischarge {
       total += walk_.dimensions == 2 ? -std::log(r) : 1.0 / r;
     }
     return total / static_cast<double>(target_charges_.size());
-  }
-
-  void finish_stats() {
-    stats_.strike = cluster_.strike;
-    stats_.channel = channel_length(cluster_);
   }
 
   const DlaOptions& walk_;

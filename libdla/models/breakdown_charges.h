@@ -15,6 +15,7 @@
 #include "dla/core/random.h"
 #include "dla/index/grid_index.h"
 #include "dla/models/breakdown.h"
+#include "dla/models/electrode.h"
 
 #include "models/crew.h"
 
@@ -117,6 +118,16 @@ bool free_at(const GridIndex& index, const Vec3& c, std::int32_t parent, double 
 //! branch and no other particle is nearer than a spacing.
 void sites_beside(std::int32_t id, const Vec3& from, const DlaOptions& walk, const MeshConstraint* constraint,
                   const GridIndex& index, std::vector<Vec3>& out);
+
+//! The growth loop of both point-charge fields: seed() puts the seeds in, then attach(k) adds
+//! particle k, up to the walk's count. The first particle within a spacing of `electrode`
+//! (null: none) is the strike, which ends growth, or with `stop_at_strike` off and a point
+//! target, calls point_struck(). Ctrl-C and a false from `progress` keep what grew, marked
+//! incomplete; a failure part way throws PartialGrowth. `stats` gets the strike and channel.
+void grow_until_done(Cluster& cluster, const DlaOptions& walk, const BreakdownOptions& options,
+                     const Electrode* electrode, const ProgressFn& progress, const StopFlag* stop,
+                     BreakdownStats& stats, const std::function<void()>& seed,
+                     const std::function<void(std::size_t)>& attach, const std::function<void()>& point_struck);
 
 //! Grows the breakdown model with the charges field; breakdown() validates first.
 Cluster grow_by_charges(const DlaOptions& walk, const BreakdownOptions& options, const MeshConstraint* constraint,

@@ -436,35 +436,18 @@ class ConductorDischarge {
   }
 
   Cluster run(const ProgressFn& progress) {
-    ModelShell shell(progress, stop_);
-    try {
+    const auto seed = [&] {
       for (std::size_t i = 0; i < cluster_.particles.size(); ++i) charge(static_cast<std::int32_t>(i));
       solve(kFirstSolveSteps);
       for (std::size_t i = 0; i < cluster_.particles.size(); ++i) open_sites(static_cast<std::int32_t>(i));
       next_solve_ = std::max(kFirstSolve, grown_by(cluster_.particles.size()));
-      for (std::size_t k = 0; k < walk_.particles; ++k) {
-        attach(k);
-        const Vec3& p = cluster_.particles.back().position;
-        if (electrode_ && cluster_.strike < 0 && electrode_->distance(p) <= walk_.spacing) {
-          cluster_.strike = static_cast<std::int32_t>(cluster_.particles.size() - 1);
-          if (options_.stop_at_strike) break;
-          // A ball touched is at the structure's potential: its charge is gone.
-          if (options_.target.kind == TargetKind::point) {
-            field_.drop_target();
-            next_solve_ = 0;
-          }
-        }
-        if (k + 1 < walk_.particles && !shell.go_on(cluster_)) {
-          cluster_.complete = false;
-          break;
-        }
-      }
-    } catch (...) {
-      finish_stats();
-      ModelShell::keep_what_grew(cluster_);
-    }
-    finish_stats();
-    shell.finish(cluster_);
+    };
+    const auto point_struck = [&] {
+      field_.drop_target();
+      next_solve_ = 0;
+    };
+    grow_until_done(cluster_, walk_, options_, electrode_ ? &*electrode_ : nullptr, progress, stop_, stats_, seed,
+                    [&](std::size_t k) { attach(k); }, point_struck);
     return std::move(cluster_);
   }
 
@@ -597,11 +580,6 @@ class ConductorDischarge {
     }
     site_open_[i] = open;
     weights_.set(i, weight_of(i));
-  }
-
-  void finish_stats() {
-    stats_.strike = cluster_.strike;
-    stats_.channel = channel_length(cluster_);
   }
 
   static constexpr int kSites = 6;  // sites_beside() opens at most six
