@@ -21,19 +21,25 @@ namespace dla::detail {
 
 namespace {
 
-constexpr int kBucket = 8;          // points a leaf holds before it splits
+constexpr int kBucket = 8;           // points a leaf holds before it splits
 constexpr int kMaxDepth = 48;        // below this, a leaf holds any number (coincident seeds)
 constexpr double kFarRadius = 1e6;  // 2D: the far circle at u = 0, in spacings
+
+//! G at r spacings: ln(R/r) in 2D, 1/r in 3D.
+template <bool kPlanar>
+double green(double r, double far_log) {
+  if constexpr (kPlanar) return far_log - std::log(r);
+  else return 1.0 / r;
+}
 
 }  // namespace
 
 ChargeTree::ChargeTree(int dimensions, double theta)
     : dimensions_(dimensions), theta2_(theta * theta), far_log_(std::log(kFarRadius)) {}
 
-
 double ChargeTree::kernel(double r, double near) const {
   r = std::max(r, near);
-  return dimensions_ == 2 ? far_log_ - std::log(r) : 1.0 / r;
+  return dimensions_ == 2 ? green<true>(r, far_log_) : green<false>(r, far_log_);
 }
 
 void ChargeTree::Node::add_point(const Vec3& p, double q) {
@@ -169,11 +175,7 @@ void ChargeTree::load(const std::vector<double>& q) {
 
 template <bool kPlanar>
 double ChargeTree::sum_at(const Vec3& x, double near) const {
-  const auto g = [&](double r2) {
-    const double r = std::sqrt(std::max(r2, near * near));
-    if constexpr (kPlanar) return far_log_ - std::log(r);
-    else return 1.0 / r;
-  };
+  const auto g = [&](double r2) { return green<kPlanar>(std::sqrt(std::max(r2, near * near)), far_log_); };
   // Depth-first; at most seven siblings wait at each level.
   std::array<std::int32_t, 8 * (kMaxDepth + 2)> stack;
   std::size_t top = 0;
