@@ -43,7 +43,8 @@ class ChargeTree {
 
   void insert(const Vec3& p, double q);
   void set_charge(std::size_t i, double q);
-  //! Every charge at once, the node sums taken afresh.
+  //! Every charge at once, the node sums taken afresh. Until the next insert or set_charge,
+  //! potentials are summed over a packed copy of the tree, to the same bits, faster.
   void load(const std::vector<double>& q);
 
   std::size_t size() const { return points_.size(); }
@@ -77,13 +78,31 @@ class ChargeTree {
     std::int32_t next;  // the next point in its leaf; -1: none
   };
 
+  //! A node as the sums read it: its leaf's points contiguous, in their list's order.
+  struct PackedNode {
+    Vec3 focus;
+    Vec3 dipole;          // moment - total focus
+    double total;
+    double width2;        // its width squared
+    std::int32_t child[8];
+    std::int32_t begin;   // a leaf's points in packed_points_; -1: not a leaf
+    std::int32_t end;
+  };
+  struct PackedPoint {
+    Vec3 at;
+    double q;
+  };
+
   std::int32_t new_node(const Vec3& centre, double half, std::int32_t depth);
+  void pack();
   int octant(const Node& node, const Vec3& p) const;
   //! Adds charge dq at point i along the path from the root to its leaf.
   void add_along(std::size_t i, double dq);
   void split(std::int32_t node);
   template <bool kPlanar>
   double sum_at(const Vec3& x, double near) const;
+  template <bool kPlanar>
+  double packed_sum_at(const Vec3& x, double near) const;
 
   int dimensions_;
   double theta2_;
@@ -91,6 +110,9 @@ class ChargeTree {
   std::vector<Node> nodes_;
   std::int32_t root_ = -1;
   std::vector<Point> points_;
+  std::vector<PackedNode> packed_nodes_;  // valid while packed_
+  std::vector<PackedPoint> packed_points_;
+  bool packed_ = false;
 };
 
 //! The structure's charges against the other electrode: K q = 1 over the particles, kept as

@@ -67,7 +67,7 @@ class BreakdownRun : public DlaRun {
   //! (docs/performance.md#the-breakdown-model).
   void foresee_fields(std::size_t particles) {
     const bool charges = breakdown_.field == BreakdownField::charges;
-    const double bytes_per_particle = charges ? 400.0 : 800.0;
+    const double bytes_per_particle = charges ? 400.0 : 1000.0;
     const std::string field = "the " + std::string(to_string(breakdown_.field)) + " field";
     const double n = static_cast<double>(particles), memory = installed_memory();
     if (memory > 0.0 && bytes_per_particle * n > memory)
@@ -77,7 +77,7 @@ class BreakdownRun : public DlaRun {
                          format_count(static_cast<std::size_t>(memory / bytes_per_particle)) + " particles fit");
     // Charges: about 2.5 open sites a particle, each summing every later charge, and six new
     // sites each summing the charges before them: 4 n^2 potentials, about 1e9 a second on one
-    // core. Conductor: measured, 3 s for 10^4 and 100 s for 10^5 on one core.
+    // core. Conductor: measured, 3 to 4 s for 10^4 and 90 s for 10^5 on one core.
     const double seconds = charges ? 4.0 * n * n / 1e9 : 1.8e-6 * std::pow(n, 1.55);
     if (seconds > 120.0)
       forecast_line = field + " takes " + time_for_pairs(seconds * kPairsPerSecond) + " on one core for " +
