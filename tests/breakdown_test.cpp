@@ -637,14 +637,16 @@ TEST(Slow, BreakdownIn3DHasSatpathysDimensions) {
   EXPECT_NEAR(discharge_dimension(3, 3.0, kSparseParticles, kSparseClusters).mean, 1.9, 0.12);
 }
 
-// In 2D, D falls from DLA's 1.71 as eta rises, towards 1 at eta 4 (Hastings 2001).
-TEST(Slow, BreakdownIn2DFallsWithEta) {
+// In 2D, D falls from DLA's 1.71 as eta rises, towards 1 at eta 4: 1.43 at eta 2 and 1.26 at
+// eta 3 by Hastings' iterated conformal maps (docs/breakdown.md#fractal-dimension-against-η
+// gives the sources and the tolerance: his clusters are larger, and D falls with size).
+TEST(Slow, BreakdownIn2DHasHastingsDimensions) {
   if (!full_tier()) GTEST_SKIP() << "in the full tier: ctest -L full";
   const double two = discharge_dimension(2, 2.0, kSparseParticles, kSparseClusters).mean;
   const double three = discharge_dimension(2, 3.0, kSparseParticles, kSparseClusters).mean;
-  EXPECT_LT(two, 1.71 - 0.15);
+  EXPECT_NEAR(two, 1.43, 0.1);
+  EXPECT_NEAR(three, 1.26, 0.1);
   EXPECT_LT(three, two);
-  EXPECT_GT(three, 1.0);
 }
 
 }  // namespace
