@@ -186,10 +186,9 @@ void ChargeTree::pack() {
     const Node& node = nodes_[at];
     PackedNode& packed = packed_nodes_[at];
     packed.focus = node.focus;
-    packed.dipole = node.moment - node.total * node.focus;
+    packed.dipole = dipole_of(node);
     packed.total = node.total;
-    const double width = 2.0 * node.half;
-    packed.width2 = width * width;
+    packed.width2 = width2(node);
     std::copy(std::begin(node.child), std::end(node.child), std::begin(packed.child));
     packed.begin = packed.end = -1;
     if (!node.leaf) continue;
@@ -201,7 +200,9 @@ void ChargeTree::pack() {
   packed_ = true;
 }
 
-template <bool kPlanar>
+// Over the tree itself, or over its packed copy (kPacked): the same operations in the same
+// order, so the same bits.
+template <bool kPlanar, bool kPacked>
 double ChargeTree::sum_at(const Vec3& x, double near) const {
   const auto g = [&](double r2) { return green<kPlanar>(std::sqrt(std::max(r2, near * near)), far_log_); };
   // Depth-first; at most seven siblings wait at each level.
@@ -210,8 +211,20 @@ double ChargeTree::sum_at(const Vec3& x, double near) const {
   stack[top++] = root_;
   double total = 0.0;
   while (top > 0) {
-    const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
-    if (node.leaf) {
+    const std::size_t at = static_cast<std::size_t>(stack[--top]);
+    const auto& node = [&]() -> const auto& {
+      if constexpr (kPacked) return packed_nodes_[at];
+      else return nodes_[at];
+    }();
+    if constexpr (kPacked) {
+      if (node.begin >= 0) {
+        for (std::int32_t j = node.begin; j < node.end; ++j) {
+          const PackedPoint& point = packed_points_[static_cast<std::size_t>(j)];
+          total += point.q * g((x - point.at).squaredNorm());
+        }
+        continue;
+      }
+    } else if (node.leaf) {
       for (std::int32_t j = node.first; j >= 0;) {
         const Point& point = points_[static_cast<std::size_t>(j)];
         total += point.q * g((x - point.at).squaredNorm());
@@ -221,42 +234,10 @@ double ChargeTree::sum_at(const Vec3& x, double near) const {
     }
     const Vec3 off = x - node.focus;
     const double d2 = off.squaredNorm();
-    const double width = 2.0 * node.half;
-    if (width * width < theta2_ * d2) {
+    if (width2(node) < theta2_ * d2) {
       // The monopole and the dipole p = sum q (x_j - focus): G's gradient towards x is
       // off / d^3 in 3D and off / d^2 in 2D.
-      const double dipole = (node.moment - node.total * node.focus).dot(off);
-      if constexpr (kPlanar) total += node.total * g(d2) + dipole / d2;
-      else total += node.total * g(d2) + dipole / (d2 * std::sqrt(d2));
-      continue;
-    }
-    for (int o = 7; o >= 0; --o)
-      if (node.child[o] >= 0) stack[top++] = node.child[o];
-  }
-  return total;
-}
-
-// sum_at's sum, in the same order and the same operations, over the packed copy.
-template <bool kPlanar>
-double ChargeTree::packed_sum_at(const Vec3& x, double near) const {
-  const auto g = [&](double r2) { return green<kPlanar>(std::sqrt(std::max(r2, near * near)), far_log_); };
-  std::array<std::int32_t, 8 * (kMaxDepth + 2)> stack;
-  std::size_t top = 0;
-  stack[top++] = root_;
-  double total = 0.0;
-  while (top > 0) {
-    const PackedNode& node = packed_nodes_[static_cast<std::size_t>(stack[--top])];
-    if (node.begin >= 0) {
-      for (std::int32_t j = node.begin; j < node.end; ++j) {
-        const PackedPoint& point = packed_points_[static_cast<std::size_t>(j)];
-        total += point.q * g((x - point.at).squaredNorm());
-      }
-      continue;
-    }
-    const Vec3 off = x - node.focus;
-    const double d2 = off.squaredNorm();
-    if (node.width2 < theta2_ * d2) {
-      const double dipole = node.dipole.dot(off);
+      const double dipole = dipole_of(node).dot(off);
       if constexpr (kPlanar) total += node.total * g(d2) + dipole / d2;
       else total += node.total * g(d2) + dipole / (d2 * std::sqrt(d2));
       continue;
@@ -269,8 +250,8 @@ double ChargeTree::packed_sum_at(const Vec3& x, double near) const {
 
 double ChargeTree::potential(const Vec3& x, double near) const {
   if (root_ < 0) return 0.0;
-  if (packed_) return dimensions_ == 2 ? packed_sum_at<true>(x, near) : packed_sum_at<false>(x, near);
-  return dimensions_ == 2 ? sum_at<true>(x, near) : sum_at<false>(x, near);
+  if (packed_) return dimensions_ == 2 ? sum_at<true, true>(x, near) : sum_at<false, true>(x, near);
+  return dimensions_ == 2 ? sum_at<true, false>(x, near) : sum_at<false, false>(x, near);
 }
 
 namespace {

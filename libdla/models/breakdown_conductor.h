@@ -99,10 +99,12 @@ class ChargeTree {
   //! Adds charge dq at point i along the path from the root to its leaf.
   void add_along(std::size_t i, double dq);
   void split(std::int32_t node);
-  template <bool kPlanar>
+  static double width2(const Node& node) { return (2.0 * node.half) * (2.0 * node.half); }
+  static double width2(const PackedNode& node) { return node.width2; }
+  static Vec3 dipole_of(const Node& node) { return node.moment - node.total * node.focus; }
+  static const Vec3& dipole_of(const PackedNode& node) { return node.dipole; }
+  template <bool kPlanar, bool kPacked>
   double sum_at(const Vec3& x, double near) const;
-  template <bool kPlanar>
-  double packed_sum_at(const Vec3& x, double near) const;
 
   int dimensions_;
   double theta2_;
