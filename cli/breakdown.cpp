@@ -8,7 +8,6 @@ namespace dla::cli {
 namespace {
 
 struct BreakdownWords {
-  std::string field = std::string(to_string(BreakdownField::walkers));
   std::string target_point, target_plane;
   WalkCommand walk;
 };
@@ -20,7 +19,7 @@ Target parse_target_plane(const std::string& text) {
     throw InvalidInput("--target-plane '" + text + "' is not AXIS=VALUE (as y=-60)");
   Target target;
   target.kind = TargetKind::plane;
-  target.axis = parse_axis(text.substr(0, mark));
+  target.axis = parse_word<Axis>(text.substr(0, mark));
   target.at = parse_numbers("--target-plane's value", text.substr(mark + 1), 1)[0];
   return target;
 }
@@ -34,20 +33,9 @@ Subcommand add_breakdown_command(CLI::App& app, const Model& model) {
   CLI::App* command = app.add_subcommand(std::string(model.name), std::string(model.summary));
   command->get_formatter()->column_width(34);
   const char* discharge = "Discharge";
-  BreakdownOptions& o = b->breakdown;
-  command->add_option("--eta", o.eta, "the field's exponent, [0, 10]: growth goes where the field^eta is strong; "
-                                      "1 is DLA, 0 compact, 2 to 4 lightning")
-      ->capture_default_str()->group(discharge);
-  command->add_option("--field", w->field, "how the field is measured: walkers (DLA's first contacts: exact, "
-                                           "insulators shape it, slower as eta grows), conductor (3D: point charges "
-                                           "that hold the structure at one potential: fast at any eta, the model's "
-                                           "dimensions, blind to insulators) or charges (equal point charges: "
-                                           "fastest, too dense a structure); docs/breakdown.md")
-      ->capture_default_str()->group(discharge);
-  command->add_option("--walkers", o.walkers, "walkers that measure the field before each particle, 1-4096; "
-                                              "0: 1 at eta 1, 8 below, doubling with each step of eta "
-                                              "above, to 64 (more: a sharper field, slower)")
-      ->capture_default_str()->group(discharge);
+  std::vector<OptionDescription> described;
+  auto discharge_options = std::make_shared<DescribedOptions<BreakdownOptions>>(*command, breakdown_option_table(),
+                                                                               BreakdownOptions{}, described);
   CLI::Option* point = command->add_option("--target-point", w->target_point, "the other electrode: a small ball at "
                                                                               "x,y,z; walkers leave it")
                            ->type_name("X,Y,Z")->group(discharge);
@@ -58,18 +46,16 @@ Subcommand add_breakdown_command(CLI::App& app, const Model& model) {
   command->add_option("--target-mesh", b->target_mesh, "the other electrode: a mesh's surface (STL, OBJ, PLY, OFF; "
                                                        "repaired as --stl is), a lightning rod; 3D only")
       ->type_name("FILE")->group(discharge)->excludes(point)->excludes(plane);
-  command->add_flag("--stop-at-strike,!--no-stop-at-strike", o.stop_at_strike,
-                    "end growth when a particle comes within a spacing of the target (the strike)")
-      ->capture_default_str()->group(discharge);
-  w->walk = add_walk_options(*command, *b, *quiet);
+  w->walk = add_walk_options(*command, *b, *quiet, described);
   command->add_option_function<std::string>(
              "--fill", [](const std::string&) { refuse_for("breakdown", "fill"); },
              "DLA's: grow until a mesh is full (not for breakdown)")
       ->type_name("F")->group("Mesh constraint");
-  return {command, [w, b, quiet](CommandLine& line, const std::vector<std::string>&) {
+  return {command,
+          [w, b, quiet, discharge_options](CommandLine& line, const std::vector<std::string>&) {
             w->walk.finish();
             BreakdownOptions& o = b->breakdown;
-            o.field = parse_breakdown_field(w->field);
+            discharge_options->finish(o);
             if (!w->target_point.empty()) {
               o.target.kind = TargetKind::point;
               o.target.point = parse_vec3("--target-point", w->target_point);
@@ -78,7 +64,8 @@ Subcommand add_breakdown_command(CLI::App& app, const Model& model) {
             validate(*b);
             line.quiet = *quiet;
             line.run = *b;
-          }};
+          },
+          described};
 }
 
 }  // namespace dla::cli

@@ -26,11 +26,11 @@ void finish(ColonizeRunOptions& c, const ColonizeWords& w) {
   c.colonization.max_iterations = static_cast<std::size_t>(w.max_iterations);
   c.attractors.count = static_cast<std::size_t>(w.attractor_count);
   c.root_count = static_cast<std::size_t>(w.root_count);
-  c.attractors.region = parse_attractor_region(w.attractor_region);
-  c.colonization.venation = parse_venation(w.venation);
+  c.attractors.region = parse_word<AttractorRegion>(w.attractor_region);
+  c.colonization.venation = parse_word<Venation>(w.venation);
   c.sample_attractors = w.attractors->count() > 0 && !c.attractors_from.empty();
-  c.roots_in = parse_root_region(w.roots_in);
-  c.collision = parse_collision_mode(w.collision);
+  c.roots_in = parse_word<RootRegion>(w.roots_in);
+  c.collision = parse_word<CollisionMode>(w.collision);
   if (!w.attractor_center.empty()) c.attractors.center = parse_vec3("--attractor-center", w.attractor_center);
   if (!w.attractor_box.empty()) {
     const Box box = parse_box("--attractor-box", w.attractor_box);

@@ -43,6 +43,9 @@ struct CommandLine {
     print,    //!< --help, --version or `options`: `text` goes to stdout, exit 0
   };
   Kind kind = Kind::run;
+  //! The arguments as run, which the JSON and a checkpoint record: those given, with `--preset
+  //! NAME` replaced by the preset's options.
+  std::vector<std::string> words;
   RunOptions run;
   bool quiet = false;                //!< -q: no progress bar and no summary
   std::string checkpoint_path;       //!< DLA: --checkpoint FILE; empty: none

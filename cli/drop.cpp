@@ -18,11 +18,11 @@ void finish(DropRunOptions& d, const DropWords& w) {
   d.drop.particles = parse_count("--particles", w.seeded.particles);
   if (w.seeded.spacing->count()) d.spacing = d.drop.spacing;
   if (w.seeded.seed_at_option->count()) d.seed_at = parse_points("--seed-at", w.seeded.seed_at);
-  d.drop.zone = parse_drop_zone(w.zone);
+  d.drop.zone = parse_word<DropZone>(w.zone);
   d.drop.bias = parse_drop_bias(w.bias);
   if (!w.zone_box.empty()) d.drop.zone_box = parse_box("--zone-box", w.zone_box);
-  d.constraint.side = parse_side(w.side);
-  d.constraint.mode = parse_constraint_mode(w.constraint);
+  d.constraint.side = parse_word<Side>(w.side);
+  d.constraint.mode = parse_word<ConstraintMode>(w.constraint);
   w.seeds->finish(d.seeds, !d.stl.empty());
   d.links = links_of(w.seeded.links);
   w.files->finish(d.files);

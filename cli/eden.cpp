@@ -19,12 +19,12 @@ void finish(EdenRunOptions& e, const EdenWords& w) {
   e.eden.sites = static_cast<std::size_t>(w.sites);
   if (w.dimensions != 2 && w.dimensions != 3)
     throw InvalidInput("--dimensions " + std::to_string(w.dimensions) + " is not 2 or 3");
-  e.eden.lattice = w.lattice.empty() ? (w.dimensions == 3 ? Lattice::cubic6 : Lattice::square4) : parse_lattice(w.lattice);
+  e.eden.lattice = w.lattice.empty() ? (w.dimensions == 3 ? Lattice::cubic6 : Lattice::square4) : parse_word<Lattice>(w.lattice);
   if (!w.lattice.empty() && w.dimensions_option->count() && dimensions_of(e.eden.lattice) != w.dimensions)
     throw InvalidInput("--lattice " + w.lattice + " is not a lattice in " + std::to_string(w.dimensions) + "D");
-  e.eden.mode = parse_eden_mode(w.mode);
+  e.eden.mode = parse_word<EdenMode>(w.mode);
   if (w.mask.size() == 1 && w.mask.find_first_of("ABCD") == 0) {
-    e.eden.mask = parse_eden_mask(w.mask);
+    e.eden.mask = parse_word<EdenMask>(w.mask);
   } else {
     e.mask_file = w.mask;  // read, and checked, when the run is prepared
   }

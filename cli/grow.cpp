@@ -12,8 +12,7 @@ struct GrowWords {
   long long particles = 10000;
   std::vector<std::string> seed_at;
   std::string spawn = std::string(to_string(SpawnMode::sphere));
-  std::string spawn_axis = std::string(to_string(Axis::z));
-  std::string box, drift, rotate, index = std::string(to_string(IndexKind::grid));
+  std::string box, drift, rotate;
   std::string side = std::string(to_string(Side::inside));
   std::string constraint_mode = std::string(to_string(ConstraintMode::reject));
   std::string text, font = kDefaultFont;
@@ -21,6 +20,8 @@ struct GrowWords {
   double spacing = 1.0;
   CLI::Option *particles_option, *spacing_option, *seed_at_option, *text_option, *font_option, *shell_option,
       *spawn_option, *threads_option;
+  std::vector<OptionDescription> described;
+  std::unique_ptr<DescribedOptions<DlaOptions>> walk;  // DLA's single values, from dla_option_table()
   std::unique_ptr<SeedWords> seeds;
   std::unique_ptr<OutputWords> files;
 };
@@ -37,8 +38,6 @@ void check_resume_company(const std::vector<std::string>& args) {
   }
 }
 
-void add_fill_options(CLI::App& app, DlaOptions& options, const char* meshes);
-
 //! DLA's options on `app`; with `dla` false, those of a model that walks as DLA does but has no
 //! fill, drift, rotation, index choice or checkpoints (the breakdown model).
 void add_options(CLI::App& app, DlaRunOptions& g, CommandLine& line, GrowWords& w, bool dla = true) {
@@ -50,24 +49,17 @@ void add_options(CLI::App& app, DlaRunOptions& g, CommandLine& line, GrowWords& 
       "--spacing", w.spacing,
       "distance between a particle and its parent; also the contact distance, in [1e-25, 1e25]; "
       "with a mesh, default: its longest side / 100")->capture_default_str()->group(growth);
-  app.add_option("--stickiness", options.stickiness, "probability of sticking at a contact, in [1e-4, 1]")
-      ->capture_default_str()->group(growth);
-  app.add_option("--dimensions", options.dimensions, "3, or 2 for growth in the plane z = 0")
-      ->capture_default_str()->group(growth);
   w.seed_at_option =
       app.add_option("--seed-at", w.seed_at, "a seed at x,y,z (repeat for several); default: one at the origin")
           ->type_name("X,Y,Z")->allow_extra_args(false)->group(growth);
   app.add_option("--rng-seed", options.rng_seed, "seed of the random generator: the same seed gives the same files")
       ->capture_default_str()->group(growth);
-  app.add_option("--min-step", options.min_step, "step length next to the structure, in spacings, [0.01, 1]")
-      ->capture_default_str()->group(growth);
-  if (dla)
-    app.add_option("--index", w.index, "nearest-particle look-up: grid, kdtree or brute")
-        ->capture_default_str()->group(growth);
   add_links_option(app, growth, w.links);
-  w.threads_option = app.add_option("--threads", options.threads,
-                                    "walkers run at once, 1-256 (grid index); the files do not depend on it")
-                         ->capture_default_str()->group(growth);
+  // The breakdown model has no index choice and no fill.
+  w.walk = std::make_unique<DescribedOptions<DlaOptions>>(
+      app, dla_option_table(), options, w.described,
+      dla ? std::vector<std::string_view>{} : std::vector<std::string_view>{"index", "fill_distance"});
+  w.threads_option = app.get_option("--threads");
 
   const char* meshes = "Mesh constraint";
   CLI::Option* stl_option = app.add_option("--stl,--mesh", g.stl, "grow constrained by this mesh: STL, OFF, OBJ or PLY")
@@ -95,7 +87,10 @@ void add_options(CLI::App& app, DlaRunOptions& g, CommandLine& line, GrowWords& 
       "growing side");
   app.add_flag("--scene-mesh,!--no-scene-mesh", g.scene_mesh, "show the mesh, as glass, in the POV-Ray scene")
       ->capture_default_str()->group(meshes);
-  if (dla) add_fill_options(app, options, meshes);
+  if (dla)
+    app.add_option("--fill", options.fill, "grow until this fraction of the mesh's volume lies within "
+                                           "--fill-distance of the structure, (0, 1]; -n then caps it (default 1e7)")
+        ->type_name("F")->group(meshes);
 
   const char* spawning = "Spawn";
   w.spawn_option =
@@ -103,10 +98,6 @@ void add_options(CLI::App& app, DlaRunOptions& g, CommandLine& line, GrowWords& 
                                          "with --side inside, default surface" +
                                              std::string(dla ? "" : "; with a target, walkers leave it instead"))
           ->capture_default_str()->group(spawning);
-  app.add_option("--spawn-axis", w.spawn_axis, "disk: the axis the disk sits on, x, y or z")
-      ->capture_default_str()->group(spawning);
-  app.add_option("--disk-radius", options.disk_radius, "disk: radius as a fraction of the launch radius, (0, 1000]")
-      ->capture_default_str()->group(spawning);
   app.add_option("--box", w.box, "box: a fixed box; default: the cube around the launch sphere")
       ->type_name("X0,Y0,Z0,X1,Y1,Z1")->group(spawning);
   if (dla) {
@@ -128,28 +119,19 @@ void add_options(CLI::App& app, DlaRunOptions& g, CommandLine& line, GrowWords& 
       ->type_name("FILE")->group(runs);
 }
 
-void add_fill_options(CLI::App& app, DlaOptions& options, const char* meshes) {
-  app.add_option("--fill", options.fill, "grow until this fraction of the mesh's volume lies within "
-                                         "--fill-distance of the structure, (0, 1]; -n then caps it (default 1e7)")
-      ->type_name("F")->group(meshes);
-  app.add_option("--fill-distance", options.fill_distance, "--fill: how near counts as covered, in spacings, [0.5, 1000]")
-      ->capture_default_str()->group(meshes);
-}
-
 //! The words as DLA's run options. The checks that need to know what was given, which the run
 //! options cannot tell, are made here; the library checks the rest.
 void finish(CommandLine& line, DlaRunOptions& g, const GrowWords& w) {
   DlaOptions& options = g.growth;
   if (!(line.checkpoint_every >= 0.0))
     throw InvalidInput("--checkpoint-every " + detail::format_number(line.checkpoint_every) + " is not a number of seconds");
+  w.walk->finish(options);
   const std::size_t particles = parse_count("--particles", w.particles);
   if (w.particles_option->count()) g.particles = particles;
   if (w.spacing_option->count()) g.spacing = w.spacing;
   if (w.seed_at_option->count()) g.seed_at = parse_points("--seed-at", w.seed_at);
-  const SpawnMode spawn = parse_spawn_mode(w.spawn);
+  const SpawnMode spawn = parse_word<SpawnMode>(w.spawn);
   if (w.spawn_option->count()) g.spawn = spawn;
-  options.spawn_axis = parse_axis(w.spawn_axis);
-  options.index = parse_index_kind(w.index);
   g.links = links_of(w.links);
   w.files->finish(g.files);
   if (w.text_option->count()) {
@@ -166,11 +148,11 @@ void finish(CommandLine& line, DlaRunOptions& g, const GrowWords& w) {
   if (!w.rotate.empty()) {
     const std::size_t comma = w.rotate.find(',');
     if (comma == std::string::npos) throw InvalidInput("--rotate '" + w.rotate + "' is not AXIS,DEGREES (as y,30)");
-    options.rotate_axis = parse_axis(w.rotate.substr(0, comma));
+    options.rotate_axis = parse_word<Axis>(w.rotate.substr(0, comma));
     options.rotate_degrees = parse_numbers("--rotate's degrees", w.rotate.substr(comma + 1), 1)[0];
   }
-  g.constraint.side = parse_side(w.side);
-  g.constraint.mode = parse_constraint_mode(w.constraint_mode);
+  g.constraint.side = parse_word<Side>(w.side);
+  g.constraint.mode = parse_word<ConstraintMode>(w.constraint_mode);
   w.seeds->finish(g.seeds, g.has_mesh());
   if (w.shell_option->count()) {
     if (!g.has_mesh()) throw InvalidInput("--shell keeps growth near a mesh's surface: give one with --stl");
@@ -181,10 +163,11 @@ void finish(CommandLine& line, DlaRunOptions& g, const GrowWords& w) {
 
 }  // namespace
 
-WalkCommand add_walk_options(CLI::App& app, DlaRunOptions& run, bool& quiet) {
+WalkCommand add_walk_options(CLI::App& app, DlaRunOptions& run, bool& quiet, std::vector<OptionDescription>& described) {
   auto words = std::make_shared<GrowWords>();
   auto line = std::make_shared<CommandLine>();
   add_options(app, run, *line, *words, false);
+  described.insert(described.end(), words->described.begin(), words->described.end());
   return {[words, line, &run, &quiet] {
     quiet = line->quiet;
     finish(*line, run, *words);
@@ -204,13 +187,15 @@ Subcommand add_grow_options(CLI::App& app, const Model&) {
               check_resume_company(args);
               out.kind = CommandLine::Kind::resume;
               out.resume_path = line->resume_path;
+              words->walk->finish(run->growth);  // the thread count, the one growth option given
               if (words->threads_option->count()) out.threads = run->growth.threads;
-              validate(run->growth);  // the thread count, the one growth option given
+              validate(run->growth);
               return;
             }
             finish(out, *run, *words);
             out.run = *run;
-          }};
+          },
+          words->described};
 }
 
 }  // namespace dla::cli

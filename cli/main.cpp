@@ -51,7 +51,7 @@ int run(const std::vector<std::string>& args) {
       return dla::cli::frames(line.frames, line.quiet, stop_signals);
     case Kind::run:
       catch_stop_signals();
-      return dla::cli::run(line, args, {}, stop_signals);
+      return dla::cli::run(line, line.words, {}, stop_signals);
     case Kind::resume: break;
   }
   // The checkpoint's own command, with this thread count and -q: the count changes how fast it

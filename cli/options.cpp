@@ -150,17 +150,17 @@ OutputWords::OutputWords(CLI::App& app, OutputOptions& f, bool& quiet, std::stri
 }
 
 void OutputWords::finish(OutputOptions& f) const {
-  if (up_option_->count()) f.up = parse_axis(up_);
-  f.pov.style = parse_pov_style(pov_style_);
-  f.ply_encoding = parse_ply_encoding(ply_format_);
-  if (radius_->count()) f.radius = parse_radius_model(radius_model_);
+  if (up_option_->count()) f.up = parse_word<Axis>(up_);
+  f.pov.style = parse_word<PovStyle>(pov_style_);
+  f.ply_encoding = parse_word<PlyEncoding>(ply_format_);
+  if (radius_->count()) f.radius = parse_word<RadiusModel>(radius_model_);
   if (base_radius_option_->count()) f.base_radius = base_radius_;
   if (tip_radius_option_->count()) f.tip_radius = tip_radius_;
-  f.look.color_by = parse_color_by(color_by_);
-  f.instances.set = parse_instance_set(instance_set_);
+  f.look.color_by = parse_word<ColorBy>(color_by_);
+  f.instances.set = parse_word<InstanceSet>(instance_set_);
   if (exclude_paint_option_->count()) f.instances.exclude_paint = parse_paint(exclude_paint_, "tips_exclude_paint");
   f.formats = parse_formats(formats_);
-  f.solid.shape = parse_solid_shape(solid_shape_);
+  f.solid.shape = parse_word<SolidShape>(solid_shape_);
 }
 
 SeedWords::SeedWords(CLI::App& app, MeshSeeds& seeds, const char* group, CLI::Option* placed_by,

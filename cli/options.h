@@ -4,6 +4,7 @@
 // the hook each subcommand's file gives the parser.
 
 #include "command_line.h"
+#include "described.h"
 
 #include "dla/run/run.h"
 
@@ -30,6 +31,9 @@ std::size_t parse_count(const std::string& flag, long long value);
 struct Subcommand {
   CLI::App* app;
   std::function<void(CommandLine& line, const std::vector<std::string>& args)> finish;
+  //! The library's descriptions of the options added from them (described.h), which
+  //! `dla3d options` gives with their kind, choices, range and unit.
+  std::vector<OptionDescription> described = {};
 };
 
 //! `dla3d options`: every growth model's options (`models`, in the library's order) as `--help`
@@ -100,7 +104,8 @@ Subcommand add_grow_options(CLI::App& app, const Model& model);
 struct WalkCommand {
   std::function<void()> finish;
 };
-WalkCommand add_walk_options(CLI::App& app, DlaRunOptions& run, bool& quiet);
+//! `described` receives the descriptions of the options added from the library's table.
+WalkCommand add_walk_options(CLI::App& app, DlaRunOptions& run, bool& quiet, std::vector<OptionDescription>& described);
 Subcommand add_breakdown_command(CLI::App& app, const Model& model);
 Subcommand add_colonize_command(CLI::App& app, const Model& model);
 Subcommand add_eden_command(CLI::App& app, const Model& model);

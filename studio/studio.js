@@ -271,45 +271,116 @@ function buildPanel() {
   $('mask-painter').hidden = !has('--mask');
   const groups = new Map();
   for (const option of m.options) {
-    if (serverOptions.has(option.name) || option.type.includes('FILE')) continue;
+    // --preset is the Preset menu above the groups.
+    if (serverOptions.has(option.name) || option.type.includes('FILE') || option.name === '--preset') continue;
     if (!groups.has(option.group)) groups.set(option.group, []);
     groups.get(option.group).push(option);
   }
   const panel = $('options');
   panel.replaceChildren();
+  if (m.presets && m.presets.length) panel.appendChild(presetRow(m.presets));
   for (const [group, options] of groups) {
     const details = document.createElement('details');
     details.open = group === 'Growth' || group === 'Growth and look';
     const summary = document.createElement('summary');
     summary.textContent = group;
     details.appendChild(summary);
-    for (const option of options) {
-      const row = document.createElement('div');
-      row.className = 'option';
-      const label = document.createElement('label');
-      let input;
-      if (option.flag) {
-        input = document.createElement('input');
-        input.type = 'checkbox';
-        label.append(input, ' ' + option.name);
-      } else {
-        input = document.createElement('input');
-        input.type = 'text';
-        input.placeholder = option.default || option.type;
-        label.append(option.name + ' ' + option.type);
-        row.append(label, input);
-      }
-      input.dataset.option = option.name;
-      input.dataset.repeats = option.repeats;
-      input.title = option.help;
-      const help = document.createElement('small');
-      help.textContent = option.help + (option.default ? ` (default ${option.default})` : '');
-      if (option.flag) row.append(label);
-      row.append(help);
-      details.appendChild(row);
-    }
+    for (const option of options) details.appendChild(optionRow(option));
     panel.appendChild(details);
   }
+}
+
+//! The model's presets, from `dla3d options`: picking one sets the panel's controls to its
+//! options (and clears the others), so that the user sees, and can change, what it sets.
+function presetRow(presets) {
+  const row = document.createElement('div');
+  row.className = 'option';
+  const label = document.createElement('label');
+  const flagName = document.createElement('code');
+  flagName.textContent = '--preset';
+  label.append('preset ', flagName);
+  const menu = document.createElement('select');
+  menu.id = 'preset';
+  menu.append(new Option('(none)', ''), ...presets.map((p) => new Option(p.name, p.name)));
+  const help = document.createElement('small');
+  menu.addEventListener('change', () => {
+    const preset = presets.find((p) => p.name === menu.value);
+    help.textContent = preset ? preset.summary : '';
+    applyPreset(preset ? preset.options : []);
+  });
+  row.append(label, menu, help);
+  return row;
+}
+
+function applyPreset(options) {
+  const panel = $('options');
+  for (const input of panel.querySelectorAll('[data-option]')) {
+    if (input.type === 'checkbox') input.checked = Boolean(input.dataset.negation);
+    else input.value = '';
+    input.dispatchEvent(new Event('change'));
+  }
+  for (const [name, value] of options) {
+    const negated = panel.querySelector(`input[data-negation="${name}"]`);
+    const input = negated || panel.querySelector(`[data-option="${name}"]`);
+    if (!input) continue;  // a file, which the studio chooses
+    if (input.type === 'checkbox') input.checked = !negated;
+    else input.value = value;
+    input.dispatchEvent(new Event('change'));
+  }
+}
+
+//! An option's control, as its description says: a choice a drop-down, a flag a check box, a
+//! number with a range a slider beside its field; labelled in words, with the flag small beside.
+function optionRow(option) {
+  const row = document.createElement('div');
+  row.className = 'option';
+  const label = document.createElement('label');
+  const flagName = document.createElement('code');
+  flagName.textContent = option.name;
+  const words = option.name.replace(/^-+/, '').replace(/-/g, ' ') + (option.unit ? ` (${option.unit})` : '');
+  let input;
+  if (option.flag) {
+    input = document.createElement('input');
+    input.type = 'checkbox';
+    // A flag that is on by default can be turned off only by its negation (--no-stop-at-strike).
+    input.checked = option.default === 'true' && option.negation.length > 0;
+    input.dataset.negation = input.checked ? option.negation[0] : '';
+    label.append(input, ' ' + words + ' ', flagName);
+    row.append(label);
+  } else if (option.choices) {
+    input = document.createElement('select');
+    const unset = new Option(`(default: ${option.default})`, '');
+    input.append(unset, ...option.choices.map((choice) => new Option(choice, choice)));
+    label.append(words + ' ', flagName);
+    row.append(label, input);
+  } else {
+    input = document.createElement('input');
+    input.type = 'text';
+    input.placeholder = option.default || option.type;
+    label.append(words + ' ', flagName);
+    row.append(label, input);
+    if (option.min !== undefined && option.max !== undefined) {
+      const slider = document.createElement('input');
+      slider.type = 'range';
+      slider.min = option.min;
+      slider.max = option.max;
+      slider.step = option.kind === 'integer' ? 1 : (option.max - option.min) / 100;
+      slider.value = option.default !== '' ? option.default : option.min;
+      slider.dataset.sliderOf = option.name;
+      slider.addEventListener('input', () => { input.value = slider.value; });
+      input.addEventListener('change', () => {
+        slider.value = input.value.trim() !== '' ? input.value : option.default !== '' ? option.default : option.min;
+      });
+      row.append(slider);
+    }
+  }
+  input.dataset.option = option.name;
+  input.dataset.repeats = option.repeats;
+  input.title = option.help;
+  const help = document.createElement('small');
+  help.textContent = option.help + (option.default ? ` (default ${option.default})` : '');
+  row.append(help);
+  return row;
 }
 
 // -- Eden's mask, painted on a grid: the sites it counts around the dropped one -------------
@@ -333,10 +404,12 @@ function maskRows() {
 //! The options the panel gives, as [name, value] pairs; a repeated option's values split at ';'.
 function chosenOptions() {
   const chosen = [];
-  for (const input of $('options').querySelectorAll('input[data-option]')) {
+  for (const input of $('options').querySelectorAll('[data-option]')) {
     const name = input.dataset.option;
     if (input.type === 'checkbox') {
-      if (input.checked) chosen.push([name, '']);
+      if (input.dataset.negation) {
+        if (!input.checked) chosen.push([input.dataset.negation, '']);
+      } else if (input.checked) chosen.push([name, '']);
     } else if (input.value.trim() !== '') {
       const values = input.dataset.repeats === 'true' ? input.value.split(';') : [input.value];
       for (const value of values) chosen.push([name, value.trim()]);

@@ -295,7 +295,7 @@ TEST(BreakdownConductor, RefusesWhatOnlyWalkersHave) {
   walk.stickiness = 0.5;
   EXPECT_EQ(refusal(o, walk), "`stickiness` is a walker's; the conductor field sends none");
   EXPECT_EQ(refusal(o, walk_of(10, 1, 2)), "`field` conductor grows 3D discharges; in 2D give walkers or charges");
-  EXPECT_EQ(parse_breakdown_field("conductor"), BreakdownField::conductor);
+  EXPECT_EQ(parse_word<BreakdownField>("conductor"), BreakdownField::conductor);
 }
 
 TEST(BreakdownConductor, StopsWhenAskedAndKeepsWhatGrew) {

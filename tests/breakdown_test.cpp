@@ -467,8 +467,8 @@ TEST(BreakdownCharges, RefusesWhatOnlyWalkersHave) {
   walk = walk_of(10);
   walk.spawn = SpawnMode::box;
   EXPECT_EQ(refusal(o, walk), "`spawn` is where walkers start; the charges field sends none");
-  EXPECT_THROW(parse_breakdown_field("both"), InvalidInput);
-  EXPECT_EQ(parse_breakdown_field("charges"), BreakdownField::charges);
+  EXPECT_THROW(parse_word<BreakdownField>("both"), InvalidInput);
+  EXPECT_EQ(parse_word<BreakdownField>("charges"), BreakdownField::charges);
 }
 
 // The particles on the way from j to the strike: up to their lowest common ancestor, then down.

@@ -32,6 +32,7 @@
 #include "dla/models/dla.h"
 #include "dla/mesh/mesh.h"
 #include "dla/mesh/shapes.h"
+#include "dla/run/presets.h"
 #include "dla/run/run.h"
 
 #include "tree_check.h"
@@ -66,8 +67,56 @@ using testing::read_file;
 
 //! Every option of --help with values to draw from: valid ones first, then edges and faults.
 //! A flag with no values is a switch.
+//! The draws an option's description gives: each choice and one word that is none; inside the
+//! range, at each end and just past it, and its special value.
+std::vector<std::string> described_draws(const OptionDescription& about) {
+  std::vector<std::string> draws;
+  for (std::string_view choice : about.choices) draws.emplace_back(choice);
+  if (about.kind == OptionKind::word) draws.push_back("none-of-these");
+  if (about.range) {
+    const Range& r = *about.range;
+    const bool whole = about.kind == OptionKind::integer;
+    // A step past an end that "%g" still tells from the end itself.
+    const auto past = [&](double end, double sign) {
+      return whole ? end + sign : end + sign * std::max(std::abs(end) * 1e-3, 1e-3);
+    };
+    for (double value : {r.min, r.max, whole ? std::round((r.min + r.max) / 2) : (r.min + r.max) / 2,
+                         past(r.min, -1), past(r.max, 1)})
+      draws.push_back(detail::format_number(value));
+    if (about.special) draws.push_back(detail::format_number(about.special->value));
+  }
+  return draws;
+}
+
+//! `table` with the draws of each described option added to its own.
+std::map<std::string, std::vector<std::string>> with_described(std::map<std::string, std::vector<std::string>> table,
+                                                               const std::vector<OptionDescription>& described) {
+  for (const OptionDescription& about : described) {
+    std::vector<std::string>& values = table[cli_flag(about.name)];
+    for (std::string& draw : described_draws(about)) values.push_back(std::move(draw));
+    if (about.kind == OptionKind::flag && !about.negation.empty()) table[cli_flag(about.negation)];
+  }
+  return table;
+}
+
+//! `table` with `--preset` drawn from each preset of `model`, `list` and a name it has not.
+std::map<std::string, std::vector<std::string>> with_presets(std::map<std::string, std::vector<std::string>> table,
+                                                             std::string_view model) {
+  std::vector<std::string>& values = table["--preset"];
+  for (const Preset* preset : presets_of(model)) values.emplace_back(preset->name);
+  values.insert(values.end(), {"list", "nope", "''"});
+  return table;
+}
+
+template <class Options>
+std::vector<OptionDescription> descriptions(const OptionTable<Options>& table) {
+  std::vector<OptionDescription> described;
+  for (const DescribedOption<Options>& option : table) described.push_back(option.about);
+  return described;
+}
+
 const std::map<std::string, std::vector<std::string>>& option_table() {
-  static const std::map<std::string, std::vector<std::string>> table = {
+  static const std::map<std::string, std::vector<std::string>> table = with_presets(with_described({
       {"--particles", {"0", "1", "40", "150", "-1", "abc", "1e3", "99999999999999999999", "''"}},
       {"--spacing", {"1", "0.5", "1e-6", "1e6", "1e-25", "1e25", "1e-100", "1e100", "0", "-1", "inf", "nan", "1e-300", "1e300",
                      "4.9e-324", "x"}},
@@ -139,7 +188,7 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--resume", {"saved.ck", "missing.ck", "out.csv", "noise.stl", "folder.stl", "pipe.stl", "zero.stl", "empty.stl", "cut.ck"}},
       {"--help", {}},
       {"--version", {}},
-  };
+  }, descriptions(dla_option_table())), "grow");
   return table;
 }
 
@@ -158,7 +207,7 @@ std::map<std::string, std::vector<std::string>> with_mesh_seeds(std::map<std::st
 }
 
 const std::map<std::string, std::vector<std::string>>& colonize_table() {
-  static const std::map<std::string, std::vector<std::string>> table = with_mesh_seeds({
+  static const std::map<std::string, std::vector<std::string>> table = with_presets(with_mesh_seeds({
       {"--max-nodes", {"30", "200", "1", "0", "-5", "3e9", "x"}},
       {"--max-iterations", {"50", "1000", "1", "0", "-1"}},
       {"--spacing", {"1", "0.5", "1e-6", "1e6", "1e-25", "1e25", "0", "-1", "nan", "1e-300", "1e100"}},
@@ -184,7 +233,7 @@ const std::map<std::string, std::vector<std::string>>& colonize_table() {
       {"--stl", {"ball.stl", "box.off", "paint.ply", "missing.stl", "noise.stl"}},
       {"--collide", {"ball.stl", "box.off", "missing.stl", "noise.stl", "out.csv", "folder.stl", "pipe.stl", "zero.stl", "empty.stl", "cut.stl"}},
       {"--collision", {"push", "stick", "bounce"}},
-  });
+  }), "colonize");
   return table;
 }
 
@@ -222,7 +271,7 @@ std::map<std::string, std::vector<std::string>> seeded_table(std::map<std::strin
 //! `dla3d drop`'s own options, drawn as the table's; its Output and Look options are the
 //! table's.
 const std::map<std::string, std::vector<std::string>>& drop_table() {
-  static const std::map<std::string, std::vector<std::string>> table = with_mesh_seeds(seeded_table({
+  static const std::map<std::string, std::vector<std::string>> table = with_presets(with_mesh_seeds(seeded_table({
       {"--stickiness", {"0.5", "1", "1e-4", "0", "2", "nan"}},
       {"--zone", {"box", "ball", "mesh", "cone"}},
       {"--zone-radius", {"30", "3", "1e6", "0.5", "-1", "1e300", "nan"}},
@@ -234,7 +283,7 @@ const std::map<std::string, std::vector<std::string>>& drop_table() {
       {"--constraint", {"clip", "reject", "bounce"}},
       {"--scene-mesh", {}},
       {"--no-scene-mesh", {}},
-  }));
+  })), "drop");
   return table;
 }
 
@@ -267,7 +316,7 @@ const std::map<std::string, std::vector<std::string>>& breakdown_table() {
                                "--constraint", "--seeds", "--seed-surface", "--seed-paint", "--seed-mesh", "--scene-mesh",
                                "--no-scene-mesh", "--fill", "--spawn", "--spawn-axis", "--disk-radius", "--box"})
       t.emplace(shared, option_table().at(shared));
-    return t;
+    return with_presets(with_described(t, descriptions(breakdown_option_table())), "breakdown");
   }();
   return table;
 }
@@ -365,6 +414,20 @@ std::string last_value(const std::string& command, const std::string& flag, cons
   if (at == std::string::npos) return otherwise;
   const std::size_t from = at + flag.size() + 1;
   return command.substr(from, command.find(' ', from) - from);
+}
+
+//! The value of `flag` as the run took it: the command's last, else its --preset's (a preset of
+//! `model`), else `otherwise`.
+std::string value_as_run(const std::string& command, std::string_view model, const std::string& flag,
+                         const std::string& otherwise) {
+  const std::string none = "\x01";
+  if (const std::string given = last_value(command, flag, none); given != none) return given;
+  const std::string preset = last_value(command, "--preset", "");
+  for (const Preset* p : presets_of(model))
+    if (p->name == preset)
+      for (const PresetOption& option : p->options)
+        if (cli_flag(option.name) == flag) return std::string(option.value);
+  return otherwise;
 }
 
 //! The header of a PLY file, and the size of its body.
@@ -1063,7 +1126,9 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
     };
     switch (result.exit_code) {
       case 0: {
-        if (command.find("--help") != std::string::npos || command.find("--version") != std::string::npos) break;
+        if (command.find("--help") != std::string::npos || command.find("--version") != std::string::npos ||
+            command.find("--preset list") != std::string::npos)
+          break;
         std::string prefix = command.find("--resume saved.ck") != std::string::npos ? "resumed" : framing ? "grown" : "dla";
         if (output_given) {
           const std::size_t at = command.rfind("--output ");
@@ -1078,7 +1143,7 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
           stop_again();
           break;
         }
-        ASSERT_EQ(check_files(dir, prefix, last_value(command, "--formats", "pov,csv,ply,json"),
+        ASSERT_EQ(check_files(dir, prefix, value_as_run(command, model->name, "--formats", "pov,csv,ply,json"),
                               std::atoi(last_value(command, "--lod", "0").c_str())), "");
         if (last_value(command, "--stream", "") == "live.bin") {
           ASSERT_EQ(stream_fault(dir / "live.bin"), "");

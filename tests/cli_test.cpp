@@ -2,6 +2,7 @@
 // is one line on stderr, a non-zero exit and no files.
 
 #include "dla/io/csv_reader.h"
+#include "dla/run/presets.h"
 #include "dla/run/run.h"
 #include "dla/mesh/mesh.h"
 #include "dla/mesh/shapes.h"
@@ -337,9 +338,9 @@ TEST(Cli, ExtremeNumbersAreOneLineErrors) {
       {"--spacing inf", "spacing inf is not in"},
       {"--spacing nan", "spacing nan is not in"},
       {"--spacing -0", "spacing -0 is not in"},
-      {"--stickiness 1e-300", "stickiness 1e-300 is not in [0.0001, 1]"},
-      {"--min-step 1e-300", "min step 1e-300 is not in [0.01, 1]"},
-      {"--disk-radius 1e300 --spawn disk", "disk radius 1e+300 is not in (0, 1000]"},
+      {"--stickiness 1e-300", "--stickiness 1e-300 is not in [0.0001, 1]"},
+      {"--min-step 1e-300", "--min-step 1e-300 is not in [0.01, 1]"},
+      {"--disk-radius 1e300 --spawn disk", "--disk-radius 1e+300 is not in (0, 1000]"},
       {"--seed-at 1e300,0,0", "seed 1 lies more than 1e+09 spacings from the origin"},
       {"--seed-at nan,0,0", "seed 1 is not finite"},
       {"--spawn box --box 0,0,0,1e300,1,1", "spawn box's max corner lies more than 1e+09 spacings"},
@@ -1251,4 +1252,64 @@ TEST(Cli, OptionsDescribesEveryModelsHelp) {
                             "\"name\": \"--eta\"", "\"name\": \"--stream\"", "\"name\": \"--seed-paint\""})
     EXPECT_NE(json.find(entry), std::string::npos) << entry;
   EXPECT_EQ(json.find("\"name\": \"--help\""), std::string::npos);
+  // What the library's description adds: a word's choices, a number's range, a flag as a flag.
+  for (const char* entry :
+       {"\"kind\": \"word\", \"choices\": [\"walkers\", \"conductor\", \"charges\"]",
+        "\"kind\": \"real\", \"min\": 0, \"max\": 10, \"min_open\": false, \"max_open\": false}",
+        "\"kind\": \"integer\", \"min\": 1, \"max\": 4096, \"min_open\": false, \"max_open\": false, "
+        "\"special\": {\"value\": 0, \"means\": \"chosen by eta\"}}",
+        "\"kind\": \"word\", \"choices\": [\"grid\", \"kdtree\", \"brute\"]",
+        "\"kind\": \"real\", \"min\": 0, \"max\": 1000, \"min_open\": true, \"max_open\": false}",
+        "\"name\": \"--stop-at-strike\", \"short\": [], \"negation\": [\"--no-stop-at-strike\"], \"flag\": true"})
+    EXPECT_NE(json.find(entry), std::string::npos) << entry;
+}
+
+TEST(Cli, EveryPresetGrowsAndOptionsBesideItOverrideIt) {
+  ScratchDir dir;
+  dla::write_stl(dla::make_sphere(dla::Vec3::Zero(), 10.0, 12, 24), dir / "ball.stl");
+  for (const dla::Preset& preset : dla::presets()) {
+    SCOPED_TRACE(std::string(preset.model) + " --preset " + std::string(preset.name));
+    const std::string summary(preset.summary);
+    // What the preset needs beside it, as its summary says; few particles, for speed.
+    const std::string mesh = summary.find("--stl") != std::string::npos       ? " --stl ball.stl"
+                             : summary.find("--collide") != std::string::npos ? " --collide ball.stl"
+                                                                              : "";
+    const std::string count = preset.model == "colonize" ? " --max-nodes 60" : " -n 60";
+    const std::string command = (preset.model == "grow" ? "" : std::string(preset.model) + " ") + "--preset " +
+                                std::string(preset.name) + mesh + count + " --formats json -o p";
+    const CliRun run = dla3d(dir, command);
+    ASSERT_EQ(run.exit_code, 0) << command << "\n" << run.err;
+    // The preset's options are recorded as the user's are: each in the JSON's command.
+    const std::string json = read_file(dir / "p.json");
+    for (const dla::PresetOption& option : preset.options) {
+      if (option.name == "particles" || option.name == "formats") continue;  // given beside it, overriding it
+      const std::string words = " " + dla::cli_flag(option.name) + (option.value.empty() ? "" : " " + std::string(option.value));
+      EXPECT_NE(json.find(words), std::string::npos) << words;
+    }
+    EXPECT_EQ(json.find("--preset"), std::string::npos) << "recorded as the options it stands for";
+    std::filesystem::remove(dir / "p.json");
+  }
+  // Beside it, --eta overrides the preset's, and --target-point excludes its --target-plane.
+  const CliRun over = dla3d(dir, "breakdown --preset lightning --eta 2 --target-point 0,-30,0 -n 30 --formats json -o o");
+  ASSERT_EQ(over.exit_code, 0) << over.err;
+  const std::string json = read_file(dir / "o.json");
+  EXPECT_NE(json.find("\"eta\": 2,"), std::string::npos) << json;
+  EXPECT_EQ(json.find("--target-plane"), std::string::npos);
+  EXPECT_NE(json.find(" --seed-at 0,40,0 "), std::string::npos);
+  EXPECT_EQ(json.find("--eta 3"), std::string::npos);
+  // Bad uses: one line each, naming --preset.
+  for (const auto& [args, message] : std::initializer_list<std::pair<const char*, const char*>>{
+           {"breakdown --preset nope", "dla3d: error: --preset 'nope' is not one of lightning, lichtenberg, spark\n"},
+           {"--preset coral --preset frost", "dla3d: error: --preset is given twice: give one, and options beside it\n"},
+           {"drop --preset", "dla3d: error: --preset needs a NAME; --preset list prints them\n"},
+           {"eden --preset coral", nullptr}}) {
+    const CliRun bad = dla3d(dir, args);
+    EXPECT_EQ(bad.exit_code, 2) << args;
+    if (message) EXPECT_EQ(bad.err, message) << args;
+    else EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  }
+  ASSERT_EQ(std::system(("cd '" + dir.path().string() + "' && '" DLA3D_PATH "' breakdown --preset list > list.txt").c_str()), 0);
+  const std::string list = read_file(dir / "list.txt");
+  for (const char* entry : {"lightning: a bolt", "--eta 3 --seed-at 0,40,0 --target-plane y=-40", "spark: "})
+    EXPECT_NE(list.find(entry), std::string::npos) << list;
 }

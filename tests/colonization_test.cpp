@@ -219,8 +219,8 @@ TEST(Colonization, StickHoldsEveryNewNodeOnTheSurface) {
   ColonizationOptions flat = o;
   flat.dimensions = 2;
   EXPECT_THROW(colonize(flat, {Vec3(5, 0, 0)}, {Vec3::Zero()}), InvalidInput);
-  EXPECT_EQ(parse_collision_mode("stick"), CollisionMode::stick);
-  EXPECT_THROW(parse_collision_mode("bounce"), InvalidInput);
+  EXPECT_EQ(parse_word<CollisionMode>("stick"), CollisionMode::stick);
+  EXPECT_THROW(parse_word<CollisionMode>("bounce"), InvalidInput);
 }
 
 TEST(Colonization, AVesselHoldsTheGrowthAndItsBranches) {
@@ -277,7 +277,7 @@ TEST(Colonization, AttractorsInAMeshAndOnItsSurface) {
   EXPECT_EQ(scatter_attractors(a, 3, 3, &ball), scatter_attractors(a, 3, 3, &ball));
   EXPECT_THROW(scatter_attractors(a, 3, 3), InvalidInput) << "no mesh";
   EXPECT_THROW(scatter_attractors(a, 3, 2, &ball), InvalidInput) << "2D";
-  EXPECT_EQ(parse_attractor_region("surface"), AttractorRegion::surface);
+  EXPECT_EQ(parse_word<AttractorRegion>("surface"), AttractorRegion::surface);
 }
 
 TEST(Colonization, ASampleOfAttractorsIsASubsetOfTheRightSize) {
@@ -327,6 +327,6 @@ TEST(Colonization, BadOptionsGetOneLine) {
   a.region = AttractorRegion::box;
   a.box_max = a.box_min;
   EXPECT_THROW(scatter_attractors(a, 1, 3), InvalidInput);
-  EXPECT_EQ(parse_attractor_region("box"), AttractorRegion::box);
-  EXPECT_THROW(parse_attractor_region("cube"), InvalidInput);
+  EXPECT_EQ(parse_word<AttractorRegion>("box"), AttractorRegion::box);
+  EXPECT_THROW(parse_word<AttractorRegion>("cube"), InvalidInput);
 }

@@ -226,7 +226,7 @@ TEST(Eden, BadOptionsGetOneLine) {
   o.mask_offsets = {};
   o.seed_radius = 101;
   EXPECT_THROW(eden(o), InvalidInput);
-  EXPECT_THROW(parse_lattice("square5"), InvalidInput);
-  EXPECT_THROW(parse_eden_mask("E"), InvalidInput);
-  EXPECT_EQ(parse_lattice("cubic18"), Lattice::cubic18);
+  EXPECT_THROW(parse_word<Lattice>("square5"), InvalidInput);
+  EXPECT_THROW(parse_word<EdenMask>("E"), InvalidInput);
+  EXPECT_EQ(parse_word<Lattice>("cubic18"), Lattice::cubic18);
 }

@@ -527,8 +527,8 @@ TEST(Options, BadValuesAreRefusedWithAClearMessage) {
     }
     return std::string("accepted");
   };
-  EXPECT_EQ(message([](DlaOptions& o) { o.stickiness = 1.7; }), "stickiness 1.7 is not in [0.0001, 1]");
-  EXPECT_EQ(message([](DlaOptions& o) { o.stickiness = 0; }), "stickiness 0 is not in [0.0001, 1]");
+  EXPECT_EQ(message([](DlaOptions& o) { o.stickiness = 1.7; }), "`stickiness` 1.7 is not in [0.0001, 1]");
+  EXPECT_EQ(message([](DlaOptions& o) { o.stickiness = 0; }), "`stickiness` 0 is not in [0.0001, 1]");
   EXPECT_EQ(message([](DlaOptions& o) { o.spacing = -1; }), "spacing -1 is not in [1e-25, 1e+25]");
   EXPECT_EQ(message([](DlaOptions& o) { o.spacing = NAN; }), "spacing nan is not in [1e-25, 1e+25]");
   EXPECT_EQ(message([](DlaOptions& o) { o.dimensions = 4; }), "dimensions 4 is not 2 or 3");
@@ -538,12 +538,12 @@ TEST(Options, BadValuesAreRefusedWithAClearMessage) {
   EXPECT_EQ(message([](DlaOptions& o) { o.dimensions = 2, o.seeds = {Vec3(0, 0, 1)}; }),
             "seed 1 has z = 1 but growth in 2 dimensions is in the plane z = 0");
   EXPECT_EQ(message([](DlaOptions& o) { o.drift = Vec3(0, 0, 1); }), "drift length 1 is not below 1");
-  EXPECT_EQ(message([](DlaOptions& o) { o.min_step = 2; }), "min step 2 is not in [0.01, 1]");
+  EXPECT_EQ(message([](DlaOptions& o) { o.min_step = 2; }), "`min_step` 2 is not in [0.01, 1]");
   EXPECT_EQ(message([](DlaOptions& o) { o.spawn_box = Box{Vec3(1, 0, 0), Vec3(0, 1, 1)}; }),
             "spawn box is empty: its min corner is not below its max corner");
   EXPECT_EQ(message([](DlaOptions& o) { o.dimensions = 2, o.spawn = SpawnMode::disk; }),
             "the disk spawn axis must be x or y in 2 dimensions");
-  EXPECT_EQ(message([](DlaOptions& o) { o.threads = 0; }), "threads 0 is not in 1-256");
+  EXPECT_EQ(message([](DlaOptions& o) { o.threads = 0; }), "`threads` 0 is not in [1, 256]");
   EXPECT_EQ(message([](DlaOptions& o) { o.dimensions = 2, o.rotate_degrees = 10, o.rotate_axis = Axis::y; }),
             "growth in 2 dimensions turns about z, not y");
   EXPECT_EQ(message([](DlaOptions& o) { o.rotate_degrees = NAN; }),
@@ -551,9 +551,9 @@ TEST(Options, BadValuesAreRefusedWithAClearMessage) {
   // Where the walk's arithmetic breaks down or a walker would practically never stick.
   EXPECT_EQ(message([](DlaOptions& o) { o.spacing = 1e300; }), "spacing 1e+300 is not in [1e-25, 1e+25]");
   EXPECT_EQ(message([](DlaOptions& o) { o.spacing = 1e-300; }), "spacing 1e-300 is not in [1e-25, 1e+25]");
-  EXPECT_EQ(message([](DlaOptions& o) { o.stickiness = 1e-9; }), "stickiness 1e-09 is not in [0.0001, 1]");
-  EXPECT_EQ(message([](DlaOptions& o) { o.min_step = 1e-300; }), "min step 1e-300 is not in [0.01, 1]");
-  EXPECT_EQ(message([](DlaOptions& o) { o.disk_radius = INFINITY; }), "disk radius inf is not in (0, 1000]");
+  EXPECT_EQ(message([](DlaOptions& o) { o.stickiness = 1e-9; }), "`stickiness` 1e-09 is not in [0.0001, 1]");
+  EXPECT_EQ(message([](DlaOptions& o) { o.min_step = 1e-300; }), "`min_step` 1e-300 is not in [0.01, 1]");
+  EXPECT_EQ(message([](DlaOptions& o) { o.disk_radius = INFINITY; }), "`disk_radius` inf is not in (0, 1000]");
   EXPECT_EQ(message([](DlaOptions& o) { o.seeds = {Vec3(1e12, 0, 0)}; }),
             "seed 1 lies more than 1e+09 spacings from the origin, beyond what double precision resolves");
   EXPECT_EQ(message([](DlaOptions& o) { o.seeds = {Vec3(0, NAN, 0)}; }), "seed 1 is not finite");
@@ -563,9 +563,9 @@ TEST(Options, BadValuesAreRefusedWithAClearMessage) {
   EXPECT_EQ(message([](DlaOptions& o) { o.threads = 2, o.index = IndexKind::kdtree; }),
             "threads above 1 need the grid index, not kdtree");
   EXPECT_EQ(message([](DlaOptions&) {}), "accepted");
-  EXPECT_THROW(parse_spawn_mode("cube"), InvalidInput);
-  EXPECT_EQ(parse_spawn_mode("disk"), SpawnMode::disk);
-  EXPECT_EQ(parse_index_kind(to_string(IndexKind::kdtree)), IndexKind::kdtree);
+  EXPECT_THROW(parse_word<SpawnMode>("cube"), InvalidInput);
+  EXPECT_EQ(parse_word<SpawnMode>("disk"), SpawnMode::disk);
+  EXPECT_EQ(parse_word<IndexKind>(to_string(IndexKind::kdtree)), IndexKind::kdtree);
 }
 
 }  // namespace

@@ -250,8 +250,8 @@ TEST(Links, ClosedVenationGrowsOtherwiseThanOpenWithinItsReach) {
   EXPECT_EQ(by_default.links.size(), closed.links.size());
   o.venation = Venation::open;
   EXPECT_TRUE(std::isinf(influence_of(o))) << "open venation keeps an unbounded influence";
-  EXPECT_EQ(parse_venation("closed"), Venation::closed);
-  EXPECT_THROW(parse_venation("shut"), InvalidInput);
+  EXPECT_EQ(parse_word<Venation>("closed"), Venation::closed);
+  EXPECT_THROW(parse_word<Venation>("shut"), InvalidInput);
 }
 
 TEST(Links, TravelThroughTheCsvAndThePly) {

@@ -340,8 +340,8 @@ TEST(RadiusModels, StayInRangeAndOrderAsTheySay) {
   RadiusOptions bad;
   bad.pipe_exponent = 0.5;
   EXPECT_THROW(branch_radii(bad, c, a), InvalidInput);
-  EXPECT_EQ(parse_radius_model("seed-distance"), RadiusModel::seed_distance);
-  EXPECT_THROW(parse_radius_model("wavy"), InvalidInput);
+  EXPECT_EQ(parse_word<RadiusModel>("seed-distance"), RadiusModel::seed_distance);
+  EXPECT_THROW(parse_word<RadiusModel>("wavy"), InvalidInput);
 }
 
 //! Every tube is a closed surface (its seam welded) facing outward, with a texture frame.

@@ -447,7 +447,6 @@ TEST(Render, PovRayShowsDropAndBallisticAggregates) {
   expect_framed_render(ballistic(lines), dir);
 }
 
-
 // Links are branches in the scene: they add to the picture, the growth frames draw them as the
 // whole scene does once their later particle is shown, and the blob look renders them.
 TEST(Render, LinksShowInTheSceneAndInItsGrowth) {
@@ -459,7 +458,7 @@ TEST(Render, LinksShowInTheSceneAndInItsGrowth) {
   const auto lit_at = [&](const Cluster& cluster, const char* show, const char* style) {
     ScratchDir dir;
     PovOptions options;
-    options.style = parse_pov_style(style);
+    options.style = parse_word<PovStyle>(style);
     write_pov(cluster, dir / "scene", options);
     std::string pov = read_file(dir / "scene.pov");
     set("DLA_Show", show)(pov);

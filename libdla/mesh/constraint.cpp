@@ -13,34 +13,6 @@
 
 namespace dla {
 
-std::string_view to_string(Side side) {
-  switch (side) {
-    case Side::inside: return "inside";
-    case Side::outside: return "outside";
-    case Side::both: return "both";
-    case Side::surface: return "surface";
-  }
-  return "?";
-}
-
-std::string_view to_string(ConstraintMode mode) {
-  switch (mode) {
-    case ConstraintMode::reject: return "reject";
-    case ConstraintMode::clip: return "clip";
-  }
-  return "?";
-}
-
-Side parse_side(std::string_view word) {
-  constexpr Side values[] = {Side::inside, Side::outside, Side::both, Side::surface};
-  return detail::parse_word(word, values, "side");
-}
-
-ConstraintMode parse_constraint_mode(std::string_view word) {
-  constexpr ConstraintMode values[] = {ConstraintMode::reject, ConstraintMode::clip};
-  return detail::parse_word(word, values, "constraint");
-}
-
 double distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
   return (p - closest_point_on_triangle(p, a, b, c)).norm();
 }

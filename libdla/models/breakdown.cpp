@@ -25,10 +25,7 @@ void validate(const BreakdownOptions& o, const DlaOptions& walk) {
   if (walk.rotate_degrees != 0.0) throw InvalidInput("`rotate` is DLA's, not the breakdown model's");
   if (walk.fill != 0.0) throw InvalidInput("`fill` grows DLA until a mesh is full; a discharge grows to its count or its strike");
   validate(walk);
-  if (!(o.eta >= 0.0 && o.eta <= kMaxEta))
-    throw InvalidInput("`eta` " + detail::format_number(o.eta) + " is not in [0, 10]");
-  if (o.walkers < 0 || o.walkers > kMaxBreakdownWalkers)
-    throw InvalidInput("`walkers` " + std::to_string(o.walkers) + " is not in [1, 4096] (0: chosen by eta)");
+  require_in_ranges(breakdown_option_table(), o);
   if (o.field != BreakdownField::walkers) {
     // What only walkers have: the point-charge fields send none.
     const std::string none = "; the " + std::string(to_string(o.field)) + " field sends none";

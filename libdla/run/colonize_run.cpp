@@ -14,15 +14,6 @@
 
 namespace dla {
 
-std::string_view to_string(RootRegion region) {
-  return region == RootRegion::sphere ? "sphere" : region == RootRegion::mesh ? "mesh" : "surface";
-}
-
-RootRegion parse_root_region(std::string_view word) {
-  constexpr RootRegion values[] = {RootRegion::sphere, RootRegion::mesh, RootRegion::surface};
-  return detail::parse_word(word, values, "root region");
-}
-
 namespace {
 
 std::string point_text(const Vec3& p) {

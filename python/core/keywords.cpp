@@ -63,6 +63,17 @@ bool flag(const char* name, py::handle value) {
   return value.cast<bool>();
 }
 
+OptionValue described_value(const OptionDescription& about, py::handle value) {
+  const std::string name(about.name);
+  switch (about.kind) {
+    case OptionKind::flag: return flag(name.c_str(), value);
+    case OptionKind::integer: return static_cast<std::int64_t>(whole(name.c_str(), value));
+    case OptionKind::real: return number(name.c_str(), value);
+    case OptionKind::word: return text(name.c_str(), value);
+  }
+  return {};
+}
+
 //! `count` numbers: a tuple, a list or an array of them.
 std::vector<double> numbers(const char* name, py::handle value, std::size_t count) {
   const std::string wanted = std::to_string(count) + " numbers";
@@ -159,7 +170,7 @@ std::string mesh(const char* name, py::handle value, Given& given) {
 const Table<SolidOptions>& solid_keywords() {
   using O = SolidOptions;
   static const Table<O> t = {
-      {"solid_shape", [](O& o, py::handle v, Given&) { o.shape = word("solid_shape", v, parse_solid_shape); }},
+      {"solid_shape", [](O& o, py::handle v, Given&) { o.shape = word<SolidShape>("solid_shape", v); }},
       {"solid_voxel", [](O& o, py::handle v, Given&) { o.voxel = number("solid_voxel", v); }},
       {"solid_smooth", [](O& o, py::handle v, Given&) { o.smooth = number("solid_smooth", v); }},
       {"solid_adaptivity", [](O& o, py::handle v, Given&) { o.adaptivity = number("solid_adaptivity", v); }},

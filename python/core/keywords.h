@@ -2,6 +2,7 @@
 // Keyword arguments as the run's options (dla/run/models.h): a value of the right kind, or one
 // line naming it. One table a model (tables.cpp), spelled as the options' C++ names.
 
+#include "dla/core/option_description.h"
 #include "dla/run/run.h"
 
 #include <pybind11/pybind11.h>
@@ -37,10 +38,10 @@ Box box(const char* name, py::handle value);
 //! `links`: D spacings, (D, K), or a word as dla3d writes it: "D,K" or "lattice".
 LinkOptions links(const char* name, py::handle value);
 
-//! A word of an enum, parsed as the library parses it.
-template <class Parse>
-auto word(const char* name, py::handle value, Parse&& parse) {
-  return parse(text(name, value));
+//! A word of a mode, parsed as the library parses it.
+template <class Mode>
+Mode word(const char* name, py::handle value) {
+  return parse_word<Mode>(text(name, value));
 }
 
 //! What a run's keywords set besides its options: the meshes handed over as arrays, under the
@@ -60,6 +61,20 @@ template <class Options>
 using Setter = std::function<void(Options& options, py::handle value, Given& given)>;
 template <class Options>
 using Table = std::map<std::string, Setter<Options>>;
+
+//! A keyword's value as the option `about` describes it (option_description.h): True or False,
+//! a whole number, a number or a word; or InvalidInput naming it.
+OptionValue described_value(const OptionDescription& about, py::handle value);
+
+//! The keywords of a table of described options, setting the `Described` that `part` gives of
+//! the run's options.
+template <class Options, class Described, class Part>
+void add_described(Table<Options>& t, const OptionTable<Described>& table, Part part) {
+  for (const DescribedOption<Described>& option : table)
+    t[std::string(option.about.name)] = [&option, part](Options& o, py::handle v, Given&) {
+      option.set(part(o), described_value(option.about, v));
+    };
+}
 
 //! The solid's keywords (solid.h): in every model's table, and Result.solid()'s.
 const Table<SolidOptions>& solid_keywords();

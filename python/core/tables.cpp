@@ -11,15 +11,15 @@ namespace {
 template <class Options>
 void add_look(Table<Options>& t) {
   const auto files = [](Options& o) -> OutputOptions& { return o.files; };
-  t["ply_format"] = [=](Options& o, py::handle v, Given&) { files(o).ply_encoding = word("ply_format", v, parse_ply_encoding); };
+  t["ply_format"] = [=](Options& o, py::handle v, Given&) { files(o).ply_encoding = word<PlyEncoding>("ply_format", v); };
   t["png_scale"] = [=](Options& o, py::handle v, Given&) { files(o).png.pixels_per_spacing = number("png_scale", v); };
   t["png_bands"] = [=](Options& o, py::handle v, Given&) { files(o).png.bands = whole_int("png_bands", v); };
-  t["radius"] = [=](Options& o, py::handle v, Given&) { files(o).radius = word("radius", v, parse_radius_model); };
+  t["radius"] = [=](Options& o, py::handle v, Given&) { files(o).radius = word<RadiusModel>("radius", v); };
   t["base_radius"] = [=](Options& o, py::handle v, Given&) { files(o).base_radius = number("base_radius", v); };
   t["tip_radius"] = [=](Options& o, py::handle v, Given&) { files(o).tip_radius = number("tip_radius", v); };
   t["pipe_exponent"] = [=](Options& o, py::handle v, Given&) { files(o).look.radius.pipe_exponent = number("pipe_exponent", v); };
-  t["color_by"] = [=](Options& o, py::handle v, Given&) { files(o).look.color_by = word("color_by", v, parse_color_by); };
-  t["look"] = [=](Options& o, py::handle v, Given&) { files(o).pov.style = word("look", v, parse_pov_style); };
+  t["color_by"] = [=](Options& o, py::handle v, Given&) { files(o).look.color_by = word<ColorBy>("color_by", v); };
+  t["look"] = [=](Options& o, py::handle v, Given&) { files(o).pov.style = word<PovStyle>("look", v); };
   t["tube_sides"] = [=](Options& o, py::handle v, Given&) { files(o).look.tubes.sides = whole_int("tube_sides", v); };
   t["tube_tolerance"] = [=](Options& o, py::handle v, Given&) { files(o).look.tubes.tolerance = number("tube_tolerance", v); };
   t["uv_scale"] = [=](Options& o, py::handle v, Given&) { files(o).look.tubes.uv_scale = number("uv_scale", v); };
@@ -28,13 +28,13 @@ void add_look(Table<Options>& t) {
   t["tube_min_branch"] = [=](Options& o, py::handle v, Given&) {
     files(o).look.tubes.min_branch = whole_int("tube_min_branch", v);
   };
-  t["instances"] = [=](Options& o, py::handle v, Given&) { files(o).instances.set = word("instances", v, parse_instance_set); };
+  t["instances"] = [=](Options& o, py::handle v, Given&) { files(o).instances.set = word<InstanceSet>("instances", v); };
   t["tips_within"] = [=](Options& o, py::handle v, Given&) { files(o).instances.within = number("tips_within", v); };
   t["tips_exclude_paint"] = [=](Options& o, py::handle v, Given&) {
     files(o).instances.exclude_paint = parse_paint(text("tips_exclude_paint", v), "tips_exclude_paint");
   };
   t["tips_every"] = [=](Options& o, py::handle v, Given&) { files(o).instances.every = whole_int("tips_every", v); };
-  t["up"] = [=](Options& o, py::handle v, Given&) { files(o).up = word("up", v, parse_axis); };
+  t["up"] = [=](Options& o, py::handle v, Given&) { files(o).up = word<Axis>("up", v); };
   for (const auto& [name, set] : solid_keywords())
     t[name] = [set = set](Options& o, py::handle v, Given& g) { set(o.files.solid, v, g); };
 }
@@ -83,14 +83,10 @@ Table<DlaRunOptions> dla_table() {
   add_look(t);
   t["particles"] = [](O& o, py::handle v, Given&) { o.particles = count("particles", v); };
   t["spacing"] = [](O& o, py::handle v, Given&) { o.spacing = number("spacing", v); };
-  t["stickiness"] = [](O& o, py::handle v, Given&) { o.growth.stickiness = number("stickiness", v); };
-  t["dimensions"] = [](O& o, py::handle v, Given&) { o.growth.dimensions = whole_int("dimensions", v); };
   t["seed_at"] = [](O& o, py::handle v, Given&) { o.seed_at = points("seed_at", v); };
   t["rng_seed"] = [](O& o, py::handle v, Given&) { o.growth.rng_seed = count("rng_seed", v); };
-  t["min_step"] = [](O& o, py::handle v, Given&) { o.growth.min_step = number("min_step", v); };
   t["links"] = [](O& o, py::handle v, Given&) { o.links = links("links", v); };
-  t["index"] = [](O& o, py::handle v, Given&) { o.growth.index = word("index", v, parse_index_kind); };
-  t["threads"] = [](O& o, py::handle v, Given&) { o.growth.threads = whole_int("threads", v); };
+  add_described(t, dla_option_table(), [](O& o) -> DlaOptions& { return o.growth; });
   t["stl"] = [](O& o, py::handle v, Given& g) { o.stl = mesh("stl", v, g); };
   t["text"] = [](O& o, py::handle v, Given&) {
     const std::string font = o.text ? o.text->font : kDefaultFont;
@@ -100,22 +96,19 @@ Table<DlaRunOptions> dla_table() {
     if (!o.text) o.text = TextOptions{};
     o.text->font = text("font", v);
   };
-  t["side"] = [](O& o, py::handle v, Given&) { o.constraint.side = word("side", v, parse_side); };
+  t["side"] = [](O& o, py::handle v, Given&) { o.constraint.side = word<Side>("side", v); };
   t["shell"] = [](O& o, py::handle v, Given&) { o.constraint.shell = number("shell", v); };
-  t["constraint"] = [](O& o, py::handle v, Given&) { o.constraint.mode = word("constraint", v, parse_constraint_mode); };
+  t["constraint"] = [](O& o, py::handle v, Given&) { o.constraint.mode = word<ConstraintMode>("constraint", v); };
   add_mesh_seeds(t);
   t["scene_mesh"] = [](O& o, py::handle v, Given&) { o.scene_mesh = flag("scene_mesh", v); };
   t["fill"] = [](O& o, py::handle v, Given&) { o.growth.fill = number("fill", v); };
-  t["fill_distance"] = [](O& o, py::handle v, Given&) { o.growth.fill_distance = number("fill_distance", v); };
-  t["spawn"] = [](O& o, py::handle v, Given&) { o.spawn = word("spawn", v, parse_spawn_mode); };
-  t["spawn_axis"] = [](O& o, py::handle v, Given&) { o.growth.spawn_axis = word("spawn_axis", v, parse_axis); };
-  t["disk_radius"] = [](O& o, py::handle v, Given&) { o.growth.disk_radius = number("disk_radius", v); };
+  t["spawn"] = [](O& o, py::handle v, Given&) { o.spawn = word<SpawnMode>("spawn", v); };
   t["box"] = [](O& o, py::handle v, Given&) { o.growth.spawn_box = box("box", v); };
   t["drift"] = [](O& o, py::handle v, Given&) { o.growth.drift = vec3("drift", v); };
   t["rotate"] = [](O& o, py::handle v, Given&) {
     if (py::isinstance<py::str>(v) || !py::hasattr(v, "__len__") || py::len(v) != 2)
       throw InvalidInput("`rotate` " + shown(v) + " is not (axis, degrees), as ('y', 30)");
-    o.growth.rotate_axis = word("rotate", v[py::int_(0)], parse_axis);
+    o.growth.rotate_axis = word<Axis>("rotate", v[py::int_(0)]);
     o.growth.rotate_degrees = number("rotate", v[py::int_(1)]);
   };
   t["n"] = t["particles"];
@@ -132,7 +125,7 @@ Table<ColonizeRunOptions> colonize_table() {
   t["spacing"] = [](O& o, py::handle v, Given&) { o.colonization.spacing = number("spacing", v); };
   t["kill_distance"] = [](O& o, py::handle v, Given&) { o.colonization.kill_distance = number("kill_distance", v); };
   t["influence"] = [](O& o, py::handle v, Given&) { o.colonization.influence = number("influence", v); };
-  t["venation"] = [](O& o, py::handle v, Given&) { o.colonization.venation = word("venation", v, parse_venation); };
+  t["venation"] = [](O& o, py::handle v, Given&) { o.colonization.venation = word<Venation>("venation", v); };
   t["noise"] = [](O& o, py::handle v, Given&) {
     const std::vector<double> n = numbers("noise", v, 2);
     o.colonization.noise_amplitude = n[0];
@@ -145,7 +138,7 @@ Table<ColonizeRunOptions> colonize_table() {
     o.attractors.count = count("attractors", v);
     g.attractors = true;
   };
-  t["attractors_in"] = [](O& o, py::handle v, Given&) { o.attractors.region = word("attractors_in", v, parse_attractor_region); };
+  t["attractors_in"] = [](O& o, py::handle v, Given&) { o.attractors.region = word<AttractorRegion>("attractors_in", v); };
   t["attractors_from"] = [](O& o, py::handle v, Given&) { o.attractors_from = text("attractors_from", v); };
   t["attractor_center"] = [](O& o, py::handle v, Given&) { o.attractors.center = vec3("attractor_center", v); };
   t["attractor_radius"] = [](O& o, py::handle v, Given&) { o.attractors.radius = number("attractor_radius", v); };
@@ -162,11 +155,11 @@ Table<ColonizeRunOptions> colonize_table() {
   t["roots"] = [](O& o, py::handle v, Given&) {
     if ((o.root_count = count("roots", v)) == 0) throw InvalidInput("`roots` 0: there must be a root");
   };
-  t["roots_in"] = [](O& o, py::handle v, Given&) { o.roots_in = word("roots_in", v, parse_root_region); };
+  t["roots_in"] = [](O& o, py::handle v, Given&) { o.roots_in = word<RootRegion>("roots_in", v); };
   t["roots_scale"] = [](O& o, py::handle v, Given&) { o.roots_scale = number("roots_scale", v); };
   t["stl"] = [](O& o, py::handle v, Given& g) { o.stl = mesh("stl", v, g); };
   t["collide"] = [](O& o, py::handle v, Given& g) { o.collide = mesh("collide", v, g); };
-  t["collision"] = [](O& o, py::handle v, Given&) { o.collision = word("collision", v, parse_collision_mode); };
+  t["collision"] = [](O& o, py::handle v, Given&) { o.collision = word<CollisionMode>("collision", v); };
   add_mesh_seeds(t);
   add_refused(t, "colonize");
   t["n"] = t["max_nodes"];
@@ -183,13 +176,13 @@ Table<EdenRunOptions> eden_table() {
   };
   t["dimensions"] = [](O&, py::handle v, Given& g) { g.eden_dimensions = whole_int("dimensions", v); };
   t["lattice"] = [](O& o, py::handle v, Given& g) {
-    o.eden.lattice = word("lattice", v, parse_lattice);
+    o.eden.lattice = word<Lattice>("lattice", v);
     g.lattice = true;
   };
-  t["mode"] = [](O& o, py::handle v, Given&) { o.eden.mode = word("mode", v, parse_eden_mode); };
+  t["mode"] = [](O& o, py::handle v, Given&) { o.eden.mode = word<EdenMode>("mode", v); };
   t["mask"] = [](O& o, py::handle v, Given&) {
     const std::string mask = text("mask", v);
-    if (mask.size() == 1 && mask.find_first_of("ABCD") == 0) o.eden.mask = parse_eden_mask(mask);
+    if (mask.size() == 1 && mask.find_first_of("ABCD") == 0) o.eden.mask = parse_word<EdenMask>(mask);
     else o.mask_file = mask;
   };
   t["mask_threshold"] = [](O& o, py::handle v, Given&) { o.eden.mask_threshold = whole_int("mask_threshold", v); };
@@ -208,14 +201,14 @@ Table<DropRunOptions> drop_table() {
   t["spacing"] = [](O& o, py::handle v, Given&) { o.spacing = number("spacing", v); };
   t["seed_at"] = [](O& o, py::handle v, Given&) { o.seed_at = points("seed_at", v); };
   t["stickiness"] = [](O& o, py::handle v, Given&) { o.drop.stickiness = number("stickiness", v); };
-  t["zone"] = [](O& o, py::handle v, Given&) { o.drop.zone = word("zone", v, parse_drop_zone); };
+  t["zone"] = [](O& o, py::handle v, Given&) { o.drop.zone = word<DropZone>("zone", v); };
   t["zone_radius"] = [](O& o, py::handle v, Given&) { o.drop.zone_radius = number("zone_radius", v); };
   t["zone_margin"] = [](O& o, py::handle v, Given&) { o.drop.zone_margin = number("zone_margin", v); };
   t["zone_box"] = [](O& o, py::handle v, Given&) { o.drop.zone_box = box("zone_box", v); };
   t["drop"] = [](O& o, py::handle v, Given&) { o.drop.bias = parse_drop_bias(text("drop", v)); };
   t["stl"] = [](O& o, py::handle v, Given& g) { o.stl = mesh("stl", v, g); };
-  t["side"] = [](O& o, py::handle v, Given&) { o.constraint.side = word("side", v, parse_side); };
-  t["constraint"] = [](O& o, py::handle v, Given&) { o.constraint.mode = word("constraint", v, parse_constraint_mode); };
+  t["side"] = [](O& o, py::handle v, Given&) { o.constraint.side = word<Side>("side", v); };
+  t["constraint"] = [](O& o, py::handle v, Given&) { o.constraint.mode = word<ConstraintMode>("constraint", v); };
   t["scene_mesh"] = [](O& o, py::handle v, Given&) { o.scene_mesh = flag("scene_mesh", v); };
   add_mesh_seeds(t);
   t["mesh"] = t["stl"];
@@ -243,9 +236,7 @@ Table<BreakdownRunOptions> breakdown_table() {
     if (name != "drift" && name != "rotate" && name != "index" && name != "fill" && name != "fill_distance")
       t[name] = [set = set](O& o, py::handle v, Given& g) { set(o, v, g); };
   t["fill"] = [](O&, py::handle, Given&) { refuse_for("breakdown", "fill"); };
-  t["eta"] = [](O& o, py::handle v, Given&) { o.breakdown.eta = number("eta", v); };
-  t["field"] = [](O& o, py::handle v, Given&) { o.breakdown.field = word("field", v, parse_breakdown_field); };
-  t["walkers"] = [](O& o, py::handle v, Given&) { o.breakdown.walkers = whole_int("walkers", v); };
+  add_described(t, breakdown_option_table(), [](O& o) -> BreakdownOptions& { return o.breakdown; });
   t["target_point"] = [](O& o, py::handle v, Given&) {
     o.breakdown.target.kind = TargetKind::point;
     o.breakdown.target.point = vec3("target_point", v);
@@ -254,11 +245,10 @@ Table<BreakdownRunOptions> breakdown_table() {
     if (py::isinstance<py::str>(v) || !py::hasattr(v, "__len__") || py::len(v) != 2)
       throw InvalidInput("`target_plane` " + shown(v) + " is not (axis, value), as ('y', -60)");
     o.breakdown.target.kind = TargetKind::plane;
-    o.breakdown.target.axis = word("target_plane", v[py::int_(0)], parse_axis);
+    o.breakdown.target.axis = word<Axis>("target_plane", v[py::int_(0)]);
     o.breakdown.target.at = number("target_plane", v[py::int_(1)]);
   };
   t["target_mesh"] = [](O& o, py::handle v, Given& g) { o.target_mesh = mesh("target_mesh", v, g); };
-  t["stop_at_strike"] = [](O& o, py::handle v, Given&) { o.breakdown.stop_at_strike = flag("stop_at_strike", v); };
   return t;
 }
 

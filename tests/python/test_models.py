@@ -184,7 +184,7 @@ def test_the_particle_arrays_share_the_structures_memory():
     ({"particles": -1}, "particles=-1 is negative", "--particles -1 is negative"),
     ({"spawn": "cube"}, "spawn mode 'cube' is not one of sphere, disk, box, inside, radial, surface", None),
     ({"seed_at": (1, 2)}, "seed_at=(1, 2) is not 3 numbers", "--seed-at '1,2' is not 3 comma-separated numbers"),
-    ({"stickiness": 0}, "stickiness 0 is not in [0.0001, 1]", None),
+    ({"stickiness": 0}, "stickiness=0 is not in [0.0001, 1]", "--stickiness 0 is not in [0.0001, 1]"),
     ({"radius": "boundary"}, "radius boundary measures to a constraint mesh: give one with stl",
      "--radius boundary measures to a constraint mesh: give one with --stl"),
     ({"seed_paint": "red"}, "seed_paint seeds the painted part of a mesh: give one with stl",

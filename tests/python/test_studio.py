@@ -577,6 +577,34 @@ def test_the_page_in_chromium_paints_grows_stops_goes_on_and_downloads(studio, t
 
 @pytest.mark.skipif(browser_client() is None, reason="Chromium: needs chromium, node and Playwright "
                                                       "(the README's ci:clients step)")
+def test_the_panel_shows_a_choice_as_a_drop_down_and_a_range_as_a_slider_with_a_preset(studio, tmp_path):
+    done = subprocess.run(["node", os.path.join(CLIENTS, "studio_described.mjs"), studio.address, str(tmp_path)],
+                          capture_output=True, text=True, timeout=600, cwd=CLIENTS)
+    assert done.returncode == 0, done.stderr
+    seen = json.loads(done.stdout.split("DLA3D ", 1)[1])
+    assert seen["messages"] == [], seen["messages"]
+    controls = seen["controls"]
+    # As `dla3d options` describes them: the field's choices in the library's order, eta's range.
+    assert controls["field"] == {"tag": "SELECT", "choices": ["", "walkers", "conductor", "charges"]}, controls
+    assert controls["eta"]["tag"] == "INPUT" and controls["eta"]["type"] == "text", controls
+    assert controls["eta"]["label"].startswith("eta") and "--eta" in controls["eta"]["label"], controls
+    assert controls["slider"] == {"type": "range", "min": "0", "max": "10", "value": "1"}, controls
+    assert controls["strike"] == {"type": "checkbox", "checked": True}, controls
+    # The preset's options, as the library's table has them, in the controls.
+    assert seen["preset"] == {"eta": "3", "slider": "3", "seedAt": "0,40,0", "targetPlane": "y=-40",
+                              "summary": "a bolt from a point 40 above to the ground 40 below (breakdown.md)"}, seen
+    assert seen["etaWritten"] == "2.5"
+    end = seen["end"]
+    assert end["state"] == "done" and end["error"] == "", end
+    for words in ["--eta 2.5", "--field conductor", "--seed-at 0,40,0", "--target-plane y=-40", "--radius pipe"]:
+        assert words in end["command"], end["command"]
+    # The strike ends it before its count, at the ground.
+    assert 1 < end["count"] <= 301, end
+    assert "--no-stop-at-strike" not in end["command"], end["command"]
+
+
+@pytest.mark.skipif(browser_client() is None, reason="Chromium: needs chromium, node and Playwright "
+                                                      "(the README's ci:clients step)")
 def test_the_page_draws_a_million_points(studio, tmp_path):
     # In the full tier (ctest -L full: python_studio_million), as its run takes a while.
     import numpy as np

@@ -3,6 +3,8 @@
 //! What a growth run is asked to do, with defaults, and the one place it is checked.
 
 #include "dla/core/errors.h"
+#include "dla/core/option_description.h"
+#include "dla/core/words.h"
 
 #include <Eigen/Core>
 
@@ -27,9 +29,16 @@ enum class SpawnMode {
   radial,  //!< along rays from a constraint mesh's centroid to its surface (constraint.h)
   surface, //!< just off a constraint mesh's surface, on the growing side (constraint.h)
 };
+inline constexpr WordTable<SpawnMode, 6> kSpawnModeWords{
+    "spawn mode",
+    {{{SpawnMode::sphere, "sphere"}, {SpawnMode::disk, "disk"}, {SpawnMode::box, "box"}, {SpawnMode::inside, "inside"},
+      {SpawnMode::radial, "radial"}, {SpawnMode::surface, "surface"}}}};
+constexpr const auto& words_of(SpawnMode) { return kSpawnModeWords; }
 
 //! A coordinate axis, for the disk spawn.
 enum class Axis { x, y, z };
+inline constexpr WordTable<Axis, 3> kAxisWords{"axis", {{{Axis::x, "x"}, {Axis::y, "y"}, {Axis::z, "z"}}}};
+constexpr const auto& words_of(Axis) { return kAxisWords; }
 
 //! The nearest-particle look-up behind the walk (`--index grid|kdtree|brute`); see docs/spatial-index.md.
 enum class IndexKind {
@@ -37,6 +46,10 @@ enum class IndexKind {
   kdtree,  //!< nanoflann's dynamic k-d tree
   brute,   //!< a linear scan: a reference for tests, slow
 };
+inline constexpr WordTable<IndexKind, 3> kIndexKindWords{
+    "index",
+    {{{IndexKind::grid, "grid"}, {IndexKind::kdtree, "kdtree"}, {IndexKind::brute, "brute"}}}};
+constexpr const auto& words_of(IndexKind) { return kIndexKindWords; }
 
 //! An axis-aligned box given by two opposite corners.
 struct Box {
@@ -44,13 +57,14 @@ struct Box {
   Vec3 max = Vec3::Zero();
 };
 
-//! Options of one growth run. Lengths are in scene units; the spacing sets the scale.
+//! Options of one growth run. Lengths are in scene units; the spacing sets the scale. The
+//! ranges and help of the single values: dla_option_table().
 struct DlaOptions {
   std::size_t particles = 10000;     //!< particles to attach, seeds not counted
   double spacing = 1.0;              //!< distance between a particle and its parent, and the
                                      //!< contact distance: no two particles come closer;
                                      //!< in [1e-25, 1e25]
-  double stickiness = 1.0;           //!< probability of sticking at a contact, in [1e-4, 1]
+  double stickiness = 1.0;           //!< probability of sticking at a contact
   std::uint64_t rng_seed = 1;        //!< seeds every random choice of the run
   int dimensions = 3;                //!< 3, or 2 for growth in the plane z = 0
   std::vector<Vec3> seeds = {Vec3::Zero()};  //!< where the structure starts, one tree per
@@ -58,8 +72,7 @@ struct DlaOptions {
                                              //!< origin
   SpawnMode spawn = SpawnMode::sphere;       //!< where walkers start
   Axis spawn_axis = Axis::z;         //!< disk spawn: the disk sits on the + side of this axis
-  double disk_radius = 0.25;         //!< disk spawn: radius as a fraction of the launch
-                                     //!< radius, in (0, 1000]
+  double disk_radius = 0.25;         //!< disk spawn: radius as a fraction of the launch radius
   std::optional<Box> spawn_box;      //!< box spawn: a fixed box; unset, the cube around the
                                      //!< launch sphere, growing with the structure
   Vec3 drift = Vec3::Zero();         //!< bias added to every step, per unit step length,
@@ -73,11 +86,10 @@ struct DlaOptions {
   //! within `fill_distance` spacings of the structure (`--fill F`), in (0, 1]; 0: grow to
   //! `particles`, which stays the cap.
   double fill = 0.0;
-  double fill_distance = 3.0;        //!< spacings, [0.5, 1000]
-  double min_step = 0.5;             //!< step length near the structure, in spacings,
-                                     //!< [0.01, 1]
+  double fill_distance = 3.0;        //!< spacings
+  double min_step = 0.5;             //!< step length near the structure, in spacings
   IndexKind index = IndexKind::grid; //!< nearest-particle look-up
-  int threads = 1;                   //!< walkers run at once, 1-256, with the grid index; the
+  int threads = 1;                   //!< walkers run at once, with the grid index; the
                                      //!< result is the same for every count, byte for byte
 };
 
@@ -93,72 +105,39 @@ inline constexpr double kMaxDiskRadius = 1000.0;
 //! then still resolves a ten-millionth of a spacing.
 inline constexpr double kMaxCoordinate = 1e9;
 
-std::string_view to_string(SpawnMode mode);
-std::string_view to_string(Axis axis);
-std::string_view to_string(IndexKind kind);
-
 //! Whether walkers of this mode start from a constraint mesh, so that growth needs one.
 constexpr bool spawns_from_mesh(SpawnMode mode) {
   return mode == SpawnMode::inside || mode == SpawnMode::radial || mode == SpawnMode::surface;
 }
 
-//! Parses the CLI's words; throws InvalidInput naming the accepted ones.
-SpawnMode parse_spawn_mode(std::string_view word);
-Axis parse_axis(std::string_view word);
-IndexKind parse_index_kind(std::string_view word);
+//! DLA's walk options that are single values, described once (option_description.h): the CLI,
+//! Python, validate() and `dla3d options` read it.
+inline const OptionTable<DlaOptions>& dla_option_table() {
+  using O = DlaOptions;
+  static const OptionTable<O> table{
+      real("stickiness", &O::stickiness, closed(kMinStickiness, 1.0), "", "Growth",
+           "probability of sticking at a contact"),
+      integer("dimensions", &O::dimensions, closed(2, 3), "", "Growth", "3, or 2 for growth in the plane z = 0"),
+      real("min_step", &O::min_step, closed(kMinMinStep, 1.0), "spacings", "Growth",
+           "step length next to the structure"),
+      word("index", &O::index, "Growth", "nearest-particle look-up (docs/spatial-index.md)"),
+      integer("threads", &O::threads, closed(1, 256), "", "Growth",
+              "walkers run at once (grid index); the files do not depend on it"),
+      word("spawn_axis", &O::spawn_axis, "Spawn", "disk: the axis the disk sits on"),
+      real("disk_radius", &O::disk_radius, open_closed(0.0, kMaxDiskRadius), "", "Spawn",
+           "disk: radius as a fraction of the launch radius"),
+      real("fill_distance", &O::fill_distance, closed(0.5, 1000.0), "spacings", "Mesh constraint",
+           "--fill: how near counts as covered"),
+  };
+  return table;
+}
 
 //! Throws InvalidInput with a one-line message at the first option that cannot work.
 void validate(const DlaOptions& options);
 
 // ---------------------------------------------------------------------------------------------
 
-inline std::string_view to_string(SpawnMode mode) {
-  switch (mode) {
-    case SpawnMode::sphere: return "sphere";
-    case SpawnMode::disk: return "disk";
-    case SpawnMode::box: return "box";
-    case SpawnMode::inside: return "inside";
-    case SpawnMode::radial: return "radial";
-    case SpawnMode::surface: return "surface";
-  }
-  return "?";
-}
-
-inline std::string_view to_string(Axis axis) {
-  switch (axis) {
-    case Axis::x: return "x";
-    case Axis::y: return "y";
-    case Axis::z: return "z";
-  }
-  return "?";
-}
-
-inline std::string_view to_string(IndexKind kind) {
-  switch (kind) {
-    case IndexKind::grid: return "grid";
-    case IndexKind::kdtree: return "kdtree";
-    case IndexKind::brute: return "brute";
-  }
-  return "?";
-}
-
 namespace detail {
-template <class Enum, std::size_t N>
-Enum parse_word(std::string_view word, const Enum (&values)[N], std::string_view what) {
-  std::string accepted;
-  for (Enum value : values) {
-    if (word == to_string(value)) return value;
-    accepted += (accepted.empty() ? "" : ", ") + std::string(to_string(value));
-  }
-  throw InvalidInput(std::string(what) + " '" + std::string(word) + "' is not one of " + accepted);
-}
-
-inline std::string format_number(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", value);
-  return buffer;
-}
-
 //! A count with its thousands grouped: "64,687".
 inline std::string format_count(std::uint64_t value) {
   std::string digits = std::to_string(value);
@@ -218,31 +197,12 @@ inline void validate_seeded(std::size_t particles, const std::vector<Vec3>& seed
 }
 }  // namespace detail
 
-inline SpawnMode parse_spawn_mode(std::string_view word) {
-  constexpr SpawnMode values[] = {SpawnMode::sphere, SpawnMode::disk, SpawnMode::box, SpawnMode::inside,
-                                  SpawnMode::radial, SpawnMode::surface};
-  return detail::parse_word(word, values, "spawn mode");
-}
-
-inline Axis parse_axis(std::string_view word) {
-  constexpr Axis values[] = {Axis::x, Axis::y, Axis::z};
-  return detail::parse_word(word, values, "axis");
-}
-
-inline IndexKind parse_index_kind(std::string_view word) {
-  constexpr IndexKind values[] = {IndexKind::grid, IndexKind::kdtree, IndexKind::brute};
-  return detail::parse_word(word, values, "index");
-}
-
 inline void validate(const DlaOptions& o) {
   using detail::format_number;
   detail::validate_seeded(o.particles, o.seeds, o.spacing, o.dimensions);
-  detail::require_in("stickiness", o.stickiness, kMinStickiness, 1.0);
+  require_in_ranges(dla_option_table(), o);
   if (o.dimensions == 2 && o.spawn == SpawnMode::disk && o.spawn_axis == Axis::z)
     throw InvalidInput("the disk spawn axis must be x or y in 2 dimensions");
-  if (!(o.disk_radius > 0.0 && o.disk_radius <= kMaxDiskRadius))
-    throw InvalidInput("disk radius " + format_number(o.disk_radius) + " is not in (0, " +
-                       format_number(kMaxDiskRadius) + "]");
   if (o.spawn_box) {
     const Box& b = *o.spawn_box;
     detail::require_representable("spawn box's min corner", b.min, o.spacing);
@@ -260,9 +220,6 @@ inline void validate(const DlaOptions& o) {
   if (o.dimensions == 2 && o.rotate_degrees != 0.0 && o.rotate_axis != Axis::z)
     throw InvalidInput("growth in 2 dimensions turns about z, not " + std::string(to_string(o.rotate_axis)));
   if (o.fill != 0.0) detail::require_in("fill", o.fill, 1e-6, 1.0);
-  detail::require_in("fill distance", o.fill_distance, 0.5, 1000.0);
-  detail::require_in("min step", o.min_step, kMinMinStep, 1.0);
-  if (o.threads < 1 || o.threads > 256) throw InvalidInput("threads " + std::to_string(o.threads) + " is not in 1-256");
   if (o.threads > 1 && o.index != IndexKind::grid)
     throw InvalidInput("threads above 1 need the grid index, not " + std::string(to_string(o.index)));
 }

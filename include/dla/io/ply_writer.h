@@ -9,6 +9,7 @@
 #include "dla/core/options.h"
 #include "dla/look/instances.h"
 #include "dla/look/look.h"
+#include "dla/core/words.h"
 
 #include <string>
 #include <string_view>
@@ -20,13 +21,10 @@ enum class PlyEncoding {
   binary,  //!< binary_little_endian: 46 bytes a particle, what Blender and Houdini write
   ascii,   //!< text: readable, about 80 bytes a particle, and three times slower to write
 };
-
-inline std::string_view to_string(PlyEncoding encoding) { return encoding == PlyEncoding::binary ? "binary" : "ascii"; }
-
-inline PlyEncoding parse_ply_encoding(std::string_view word) {
-  constexpr PlyEncoding values[] = {PlyEncoding::binary, PlyEncoding::ascii};
-  return detail::parse_word(word, values, "ply-format");
-}
+inline constexpr WordTable<PlyEncoding, 2> kPlyEncodingWords{
+    "ply-format",
+    {{{PlyEncoding::binary, "binary"}, {PlyEncoding::ascii, "ascii"}}}};
+constexpr const auto& words_of(PlyEncoding) { return kPlyEncodingWords; }
 
 //! Throws IOError if the file cannot be written; a file that fails part way is removed, and a
 //! file of that name already there is left as it was.

@@ -9,6 +9,7 @@
 #include "dla/look/instances.h"
 #include "dla/look/look.h"
 #include "dla/mesh/mesh.h"
+#include "dla/core/words.h"
 
 #include <string>
 #include <string_view>
@@ -22,20 +23,10 @@ enum class PovStyle {
   glow,      //!< the branches, emissive on black, as bright as the colour value (a discharge's
              //!< current unless `color_by` says otherwise)
 };
-
-inline std::string_view to_string(PovStyle style) {
-  switch (style) {
-    case PovStyle::branches: return "branches";
-    case PovStyle::blob: return "blob";
-    case PovStyle::glow: return "glow";
-  }
-  return "?";
-}
-
-inline PovStyle parse_pov_style(std::string_view word) {
-  constexpr PovStyle values[] = {PovStyle::branches, PovStyle::blob, PovStyle::glow};
-  return detail::parse_word(word, values, "look");
-}
+inline constexpr WordTable<PovStyle, 3> kPovStyleWords{
+    "look",
+    {{{PovStyle::branches, "branches"}, {PovStyle::blob, "blob"}, {PovStyle::glow, "glow"}}}};
+constexpr const auto& words_of(PovStyle) { return kPovStyleWords; }
 
 struct PovOptions {
   PovStyle style = PovStyle::branches;

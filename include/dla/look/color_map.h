@@ -4,6 +4,7 @@
 //! particle, and one colour map for every file that carries colour (glTF, OBJ, POV-Ray).
 
 #include "dla/look/attributes.h"
+#include "dla/core/words.h"
 
 #include <algorithm>
 #include <array>
@@ -21,24 +22,11 @@ enum class ColorBy {
   current,   //!< the charge that flows through it (Attributes::current): a discharge's main
              //!< channel brightest, fading along the side branches
 };
-
-inline std::string_view to_string(ColorBy by) {
-  switch (by) {
-    case ColorBy::none: return "none";
-    case ColorBy::age: return "age";
-    case ColorBy::depth: return "depth";
-    case ColorBy::seed: return "seed";
-    case ColorBy::distance: return "distance";
-    case ColorBy::current: return "current";
-  }
-  return "?";
-}
-
-inline ColorBy parse_color_by(std::string_view word) {
-  constexpr ColorBy values[] = {ColorBy::none, ColorBy::age, ColorBy::depth, ColorBy::seed, ColorBy::distance,
-                                ColorBy::current};
-  return detail::parse_word(word, values, "colour attribute");
-}
+inline constexpr WordTable<ColorBy, 6> kColorByWords{
+    "colour attribute",
+    {{{ColorBy::none, "none"}, {ColorBy::age, "age"}, {ColorBy::depth, "depth"}, {ColorBy::seed, "seed"},
+      {ColorBy::distance, "distance"}, {ColorBy::current, "current"}}}};
+constexpr const auto& words_of(ColorBy) { return kColorByWords; }
 
 //! Maps a particle to [0, 1] by one attribute, scaled by the structure's largest value.
 class ColorScale {

@@ -8,6 +8,7 @@
 #include "dla/look/attributes.h"
 #include "dla/index/nearest_points.h"
 #include "dla/mesh/paint.h"
+#include "dla/core/words.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,13 +24,10 @@ enum class InstanceSet {
   tips,  //!< the particles with no child
   all,   //!< every particle
 };
-
-inline std::string_view to_string(InstanceSet set) { return set == InstanceSet::tips ? "tips" : "all"; }
-
-inline InstanceSet parse_instance_set(std::string_view word) {
-  constexpr InstanceSet values[] = {InstanceSet::tips, InstanceSet::all};
-  return detail::parse_word(word, values, "instance set");
-}
+inline constexpr WordTable<InstanceSet, 2> kInstanceSetWords{
+    "instance set",
+    {{{InstanceSet::tips, "tips"}, {InstanceSet::all, "all"}}}};
+constexpr const auto& words_of(InstanceSet) { return kInstanceSetWords; }
 
 struct InstanceOptions {
   InstanceSet set = InstanceSet::tips;

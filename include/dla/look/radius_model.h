@@ -5,6 +5,7 @@
 //! uniform`). See docs/look.md.
 
 #include "dla/look/attributes.h"
+#include "dla/core/words.h"
 
 #include <algorithm>
 #include <cmath>
@@ -21,6 +22,11 @@ enum class RadiusModel {
   seed_distance,  //!< thick at the seeds, finer the farther from them
   uniform,        //!< the base radius everywhere
 };
+inline constexpr WordTable<RadiusModel, 5> kRadiusModelWords{
+    "radius model",
+    {{{RadiusModel::taper, "taper"}, {RadiusModel::pipe, "pipe"}, {RadiusModel::boundary, "boundary"},
+      {RadiusModel::seed_distance, "seed-distance"}, {RadiusModel::uniform, "uniform"}}}};
+constexpr const auto& words_of(RadiusModel) { return kRadiusModelWords; }
 
 //! The range of branch radii, in spacings: beyond it a branch vanishes or swallows the scene.
 inline constexpr double kMinBranchRadius = 1e-3, kMaxBranchRadius = 1e3;
@@ -32,23 +38,6 @@ struct RadiusOptions {
   double pipe_exponent = 2.0;  //!< pipe: e, in [1, 10]; 2 keeps the cross-section's area, about
                                //!< 3 is Murray's law
 };
-
-inline std::string_view to_string(RadiusModel model) {
-  switch (model) {
-    case RadiusModel::taper: return "taper";
-    case RadiusModel::pipe: return "pipe";
-    case RadiusModel::boundary: return "boundary";
-    case RadiusModel::seed_distance: return "seed-distance";
-    case RadiusModel::uniform: return "uniform";
-  }
-  return "?";
-}
-
-inline RadiusModel parse_radius_model(std::string_view word) {
-  constexpr RadiusModel values[] = {RadiusModel::taper, RadiusModel::pipe, RadiusModel::boundary,
-                                    RadiusModel::seed_distance, RadiusModel::uniform};
-  return detail::parse_word(word, values, "radius model");
-}
 
 inline void validate(const RadiusOptions& options) {
   detail::require_in("base radius", options.base_radius, kMinBranchRadius, kMaxBranchRadius);

@@ -9,6 +9,7 @@
 #include "dla/core/cluster.h"
 #include "dla/core/options.h"
 #include "dla/core/stop.h"
+#include "dla/core/words.h"
 
 #include <Eigen/Core>
 
@@ -28,20 +29,10 @@ enum class SolidShape {
   spheres,   //!< a sphere of the particle's radius: the metaball look, with `solid_smooth`
   cubes,     //!< a cube one spacing across: lattice sites (Eden) as voxels
 };
-
-inline std::string_view to_string(SolidShape shape) {
-  switch (shape) {
-    case SolidShape::branches: return "branches";
-    case SolidShape::spheres: return "spheres";
-    case SolidShape::cubes: return "cubes";
-  }
-  return "?";
-}
-
-inline SolidShape parse_solid_shape(std::string_view word) {
-  constexpr SolidShape values[] = {SolidShape::branches, SolidShape::spheres, SolidShape::cubes};
-  return detail::parse_word(word, values, "solid shape");
-}
+inline constexpr WordTable<SolidShape, 3> kSolidShapeWords{
+    "solid shape",
+    {{{SolidShape::branches, "branches"}, {SolidShape::spheres, "spheres"}, {SolidShape::cubes, "cubes"}}}};
+constexpr const auto& words_of(SolidShape) { return kSolidShapeWords; }
 
 //! The largest print size, in millimetres: 10 m, beyond any printer.
 inline constexpr double kMaxPrintSize = 1e4;

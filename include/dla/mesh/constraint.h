@@ -14,6 +14,7 @@
 #include "dla/mesh/surface_distance.h"
 #include "dla/core/random.h"
 #include "dla/mesh/surface_intersector.h"
+#include "dla/core/words.h"
 
 #include <atomic>
 #include <memory>
@@ -29,17 +30,20 @@ enum class Side {
   both,     //!< the surface is only a wall, open or closed, and is used as it is (an open can)
   surface,  //!< over the surface, on both sides, in a layer `shell` thick (frost on a leaf)
 };
+inline constexpr WordTable<Side, 4> kSideWords{
+    "side",
+    {{{Side::inside, "inside"}, {Side::outside, "outside"}, {Side::both, "both"}, {Side::surface, "surface"}}}};
+constexpr const auto& words_of(Side) { return kSideWords; }
 
 //! What a branch that crosses the surface does (`--constraint reject|clip`).
 enum class ConstraintMode {
   reject,  //!< the attachment is refused and the walker walks on
   clip,    //!< the branch ends just short of the surface: the new particle touches it
 };
-
-std::string_view to_string(Side side);
-std::string_view to_string(ConstraintMode mode);
-Side parse_side(std::string_view word);
-ConstraintMode parse_constraint_mode(std::string_view word);
+inline constexpr WordTable<ConstraintMode, 2> kConstraintModeWords{
+    "constraint",
+    {{{ConstraintMode::reject, "reject"}, {ConstraintMode::clip, "clip"}}}};
+constexpr const auto& words_of(ConstraintMode) { return kConstraintModeWords; }
 
 struct ConstraintOptions {
   Side side = Side::inside;                      //!< where the structure grows

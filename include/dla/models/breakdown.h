@@ -21,6 +21,7 @@
 
 #include "dla/core/cluster.h"
 #include "dla/core/errors.h"
+#include "dla/core/option_description.h"
 #include "dla/core/options.h"
 #include "dla/mesh/constraint.h"
 #include "dla/models/walk.h"
@@ -47,10 +48,11 @@ enum class BreakdownField {
   //! on the tips
   charges,
 };
-
-std::string_view to_string(BreakdownField field);
-//! Parses the CLI's words; throws InvalidInput naming the accepted ones.
-BreakdownField parse_breakdown_field(std::string_view word);
+inline constexpr WordTable<BreakdownField, 3> kBreakdownFieldWords{
+    "field",
+    {{{BreakdownField::walkers, "walkers"}, {BreakdownField::conductor, "conductor"},
+      {BreakdownField::charges, "charges"}}}};
+constexpr const auto& words_of(BreakdownField) { return kBreakdownFieldWords; }
 
 //! The electrode at the other potential (`target_point`, `target_plane`, `target_mesh`).
 enum class TargetKind {
@@ -59,8 +61,10 @@ enum class TargetKind {
   plane,  //!< the plane `target.axis` = `target.at` (a line in 2D): the ground
   mesh,   //!< the surface of `target.mesh` (a lightning rod, a second object), in 3D
 };
-
-std::string_view to_string(TargetKind kind);
+inline constexpr WordTable<TargetKind, 4> kTargetKindWords{
+    "target",
+    {{{TargetKind::none, "none"}, {TargetKind::point, "point"}, {TargetKind::plane, "plane"}, {TargetKind::mesh, "mesh"}}}};
+constexpr const auto& words_of(TargetKind) { return kTargetKindWords; }
 
 struct Target {
   TargetKind kind = TargetKind::none;
@@ -74,10 +78,11 @@ struct Target {
 };
 
 //! Options of the breakdown model beside the walk's (DlaOptions). Lengths are in scene units.
+//! Ranges and help: breakdown_option_table().
 struct BreakdownOptions {
-  double eta = 1.0;  //!< the field's exponent, [0, 10]; 1: DLA
+  double eta = 1.0;  //!< the field's exponent; 1: DLA
   BreakdownField field = BreakdownField::walkers;
-  //! Walkers measured before each particle attaches, 1 to 4096; 0: one at eta 1, else
+  //! Walkers measured before each particle attaches; 0: one at eta 1, else
   //! default_breakdown_walkers(eta). More sharpen the field (docs/breakdown.md: the bias). The
   //! walkers field's alone: 0 with the others.
   int walkers = 0;
@@ -90,6 +95,28 @@ struct BreakdownOptions {
 
 inline constexpr int kMaxBreakdownWalkers = 4096;
 inline constexpr double kMaxEta = 10.0;
+
+//! The breakdown model's own options, described once (option_description.h): the CLI's
+//! Discharge group, Python's keywords, validate()'s ranges and `dla3d options` read it.
+inline const OptionTable<BreakdownOptions>& breakdown_option_table() {
+  using O = BreakdownOptions;
+  static const OptionTable<O> table{
+      real("eta", &O::eta, closed(0.0, kMaxEta), "", "Discharge",
+           "the field's exponent: growth goes where the field^eta is strong; 1 is DLA, 0 compact, 2 to 4 lightning"),
+      word("field", &O::field, "Discharge",
+           "how the field is measured: walkers (DLA's first contacts: exact, insulators shape it, slower as eta "
+           "grows), conductor (3D: point charges that hold the structure at one potential: fast at any eta, the "
+           "model's dimensions, blind to insulators) or charges (equal point charges: fastest, too dense a "
+           "structure); docs/breakdown.md"),
+      integer("walkers", &O::walkers, closed(1, kMaxBreakdownWalkers), "", "Discharge",
+              "walkers that measure the field before each particle (more: a sharper field, slower); by eta, 1 at "
+              "eta 1, 8 below, doubling with each step of eta above, to 64",
+              SpecialValue{0, "chosen by eta"}),
+      flag("stop_at_strike", &O::stop_at_strike, "Discharge",
+           "end growth when a particle comes within a spacing of the target (the strike)", "no_stop_at_strike"),
+  };
+  return table;
+}
 
 //! The first batch of walkers a particle's field is measured with by default: 8 up to eta 1,
 //! doubling with each whole step of eta past it, to 64. Growth stops at the first batch in
@@ -140,31 +167,5 @@ inline std::uint64_t channel_length(const Cluster& cluster) {
   return length;
 }
 }  // namespace detail
-
-// ---------------------------------------------------------------------------------------------
-
-inline std::string_view to_string(BreakdownField field) {
-  switch (field) {
-    case BreakdownField::walkers: return "walkers";
-    case BreakdownField::conductor: return "conductor";
-    case BreakdownField::charges: return "charges";
-  }
-  return "?";
-}
-
-inline BreakdownField parse_breakdown_field(std::string_view word) {
-  constexpr BreakdownField values[] = {BreakdownField::walkers, BreakdownField::conductor, BreakdownField::charges};
-  return detail::parse_word(word, values, "field");
-}
-
-inline std::string_view to_string(TargetKind kind) {
-  switch (kind) {
-    case TargetKind::none: return "none";
-    case TargetKind::point: return "point";
-    case TargetKind::plane: return "plane";
-    case TargetKind::mesh: return "mesh";
-  }
-  return "?";
-}
 
 }  // namespace dla

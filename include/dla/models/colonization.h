@@ -29,6 +29,7 @@
 #include "dla/models/closed_venation.h"
 #include "dla/models/model_shell.h"
 #include "dla/mesh/surface_distance.h"
+#include "dla/core/words.h"
 
 #include <algorithm>
 #include <array>
@@ -49,22 +50,11 @@ enum class AttractorRegion {
   mesh,     //!< uniform in a mesh's enclosed volume (3D)
   surface,  //!< uniform by area on a mesh's surface, half a spacing inside it (3D)
 };
-
-inline std::string_view to_string(AttractorRegion region) {
-  switch (region) {
-    case AttractorRegion::sphere: return "sphere";
-    case AttractorRegion::box: return "box";
-    case AttractorRegion::mesh: return "mesh";
-    case AttractorRegion::surface: return "surface";
-  }
-  return "?";
-}
-
-inline AttractorRegion parse_attractor_region(std::string_view word) {
-  constexpr AttractorRegion values[] = {AttractorRegion::sphere, AttractorRegion::box, AttractorRegion::mesh,
-                                        AttractorRegion::surface};
-  return detail::parse_word(word, values, "attractor region");
-}
+inline constexpr WordTable<AttractorRegion, 4> kAttractorRegionWords{
+    "attractor region",
+    {{{AttractorRegion::sphere, "sphere"}, {AttractorRegion::box, "box"}, {AttractorRegion::mesh, "mesh"},
+      {AttractorRegion::surface, "surface"}}}};
+constexpr const auto& words_of(AttractorRegion) { return kAttractorRegionWords; }
 
 //! The most attractors a tree grows among.
 constexpr std::size_t kMaxAttractors = 100'000'000;
@@ -157,13 +147,10 @@ enum class CollisionMode {
   push,   //!< a node that would lie inside the object goes to its surface: growth flows around it
   stick,  //!< every new node goes to the surface: growth crawls over it (veins on an arm)
 };
-
-inline std::string_view to_string(CollisionMode mode) { return mode == CollisionMode::push ? "push" : "stick"; }
-
-inline CollisionMode parse_collision_mode(std::string_view word) {
-  constexpr CollisionMode values[] = {CollisionMode::push, CollisionMode::stick};
-  return detail::parse_word(word, values, "collision");
-}
+inline constexpr WordTable<CollisionMode, 2> kCollisionModeWords{
+    "collision",
+    {{{CollisionMode::push, "push"}, {CollisionMode::stick, "stick"}}}};
+constexpr const auto& words_of(CollisionMode) { return kCollisionModeWords; }
 
 //! A collision object: a mesh given as a signed distance, negative inside. The distance is the
 //! exact one to the closest point of a triangle (surface_distance.h); the sign is the winding
@@ -216,13 +203,10 @@ enum class Venation {
   closed,  //!< every node of its relative neighbourhood; it dies when all have come within the
            //!< kill distance, and veins that reach it from different sides join there: loops
 };
-
-inline std::string_view to_string(Venation venation) { return venation == Venation::open ? "open" : "closed"; }
-
-inline Venation parse_venation(std::string_view word) {
-  constexpr Venation values[] = {Venation::open, Venation::closed};
-  return detail::parse_word(word, values, "venation");
-}
+inline constexpr WordTable<Venation, 2> kVenationWords{
+    "venation",
+    {{{Venation::open, "open"}, {Venation::closed, "closed"}}}};
+constexpr const auto& words_of(Venation) { return kVenationWords; }
 
 //! How the tree grows among its attractors. Distances are in spacings: the step, the node
 //! spacing, is the tree's spacing.

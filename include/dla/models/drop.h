@@ -16,6 +16,7 @@
 #include "dla/index/grid_index.h"
 #include "dla/mesh/constraint.h"
 #include "dla/models/one_by_one.h"
+#include "dla/core/words.h"
 
 #include <array>
 #include <cmath>
@@ -33,20 +34,10 @@ enum class DropZone {
   box,   //!< a box: fixed, or the square or cube around the ball
   mesh,  //!< the volume of the constraint mesh (`--stl`, `--side inside`)
 };
-
-inline std::string_view to_string(DropZone zone) {
-  switch (zone) {
-    case DropZone::ball: return "ball";
-    case DropZone::box: return "box";
-    case DropZone::mesh: return "mesh";
-  }
-  return "?";
-}
-
-inline DropZone parse_drop_zone(std::string_view word) {
-  constexpr DropZone values[] = {DropZone::ball, DropZone::box, DropZone::mesh};
-  return detail::parse_word(word, values, "drop zone");
-}
+inline constexpr WordTable<DropZone, 3> kDropZoneWords{
+    "drop zone",
+    {{{DropZone::ball, "ball"}, {DropZone::box, "box"}, {DropZone::mesh, "mesh"}}}};
+constexpr const auto& words_of(DropZone) { return kDropZoneWords; }
 
 //! How drop points follow one another (`--drop`; the paper's section 4.3).
 enum class DropPattern {

@@ -21,6 +21,7 @@
 #include "dla/core/random.h"
 #include "dla/models/links.h"
 #include "dla/models/model_shell.h"
+#include "dla/core/words.h"
 
 #include <algorithm>
 #include <array>
@@ -42,24 +43,11 @@ enum class Lattice {
   cubic18,   //!< cubic, the 18 sharing a face or an edge
   cubic26,   //!< cubic, the 26 sharing a face, an edge or a corner
 };
-
-inline std::string_view to_string(Lattice lattice) {
-  switch (lattice) {
-    case Lattice::square4: return "square4";
-    case Lattice::square8: return "square8";
-    case Lattice::hex: return "hex";
-    case Lattice::cubic6: return "cubic6";
-    case Lattice::cubic18: return "cubic18";
-    case Lattice::cubic26: return "cubic26";
-  }
-  return "?";
-}
-
-inline Lattice parse_lattice(std::string_view word) {
-  constexpr Lattice values[] = {Lattice::square4, Lattice::square8, Lattice::hex,
-                                Lattice::cubic6,  Lattice::cubic18, Lattice::cubic26};
-  return detail::parse_word(word, values, "lattice");
-}
+inline constexpr WordTable<Lattice, 6> kLatticeWords{
+    "lattice",
+    {{{Lattice::square4, "square4"}, {Lattice::square8, "square8"}, {Lattice::hex, "hex"}, {Lattice::cubic6, "cubic6"},
+      {Lattice::cubic18, "cubic18"}, {Lattice::cubic26, "cubic26"}}}};
+constexpr const auto& words_of(Lattice) { return kLatticeWords; }
 
 //! 2 for the plane lattices, 3 for the cubic ones.
 inline int dimensions_of(Lattice lattice) {
@@ -95,13 +83,10 @@ enum class EdenMode {
   perimeter,  //!< uniformly among the empty neighbours of the cluster
   drop,       //!< dropped at random; sticks where the mask counts enough occupied sites
 };
-
-inline std::string_view to_string(EdenMode mode) { return mode == EdenMode::perimeter ? "perimeter" : "drop"; }
-
-inline EdenMode parse_eden_mode(std::string_view word) {
-  constexpr EdenMode values[] = {EdenMode::perimeter, EdenMode::drop};
-  return detail::parse_word(word, values, "Eden mode");
-}
+inline constexpr WordTable<EdenMode, 2> kEdenModeWords{
+    "Eden mode",
+    {{{EdenMode::perimeter, "perimeter"}, {EdenMode::drop, "drop"}}}};
+constexpr const auto& words_of(EdenMode) { return kEdenModeWords; }
 
 //! The masks of the paper's figure 4 (`--mask A|B|C|D`), as this engine reads them (the
 //! figure itself is not in the text): A the 4 sites sharing an edge, B the 8 of the 3x3 block,
@@ -109,21 +94,10 @@ inline EdenMode parse_eden_mode(std::string_view word) {
 //! the same in 3D: 6, 26, 24 and 124 sites. On the hexagonal lattice A and B are the 6
 //! neighbours, C and D the 18 sites within two steps.
 enum class EdenMask { A, B, C, D };
-
-inline std::string_view to_string(EdenMask mask) {
-  switch (mask) {
-    case EdenMask::A: return "A";
-    case EdenMask::B: return "B";
-    case EdenMask::C: return "C";
-    case EdenMask::D: return "D";
-  }
-  return "?";
-}
-
-inline EdenMask parse_eden_mask(std::string_view word) {
-  constexpr EdenMask values[] = {EdenMask::A, EdenMask::B, EdenMask::C, EdenMask::D};
-  return detail::parse_word(word, values, "mask");
-}
+inline constexpr WordTable<EdenMask, 4> kEdenMaskWords{
+    "mask",
+    {{{EdenMask::A, "A"}, {EdenMask::B, "B"}, {EdenMask::C, "C"}, {EdenMask::D, "D"}}}};
+constexpr const auto& words_of(EdenMask) { return kEdenMaskWords; }
 
 //! The sites of a preset mask on a lattice, as offsets from the dropped site.
 inline std::vector<std::array<int, 3>> mask_sites(EdenMask mask, Lattice lattice) {

@@ -17,6 +17,7 @@
 #include "dla/models/dla.h"
 #include "dla/models/links.h"
 #include "dla/run/output.h"
+#include "dla/core/words.h"
 
 #include <cstddef>
 #include <optional>
@@ -76,9 +77,10 @@ enum class RootRegion {
   mesh,     //!< inside the mesh, deep and far apart
   surface,  //!< on the mesh's surface, half a spacing inside
 };
-
-std::string_view to_string(RootRegion region);
-RootRegion parse_root_region(std::string_view word);
+inline constexpr WordTable<RootRegion, 3> kRootRegionWords{
+    "root region",
+    {{{RootRegion::sphere, "sphere"}, {RootRegion::mesh, "mesh"}, {RootRegion::surface, "surface"}}}};
+constexpr const auto& words_of(RootRegion) { return kRootRegionWords; }
 
 //! `dla3d colonize`, `dla3d.colonize()`: space colonization among attractors.
 struct ColonizeRunOptions {

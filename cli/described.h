@@ -1,0 +1,96 @@
+#pragma once
+// The CLI's options for a table of described options (dla/core/option_description.h): the
+// flag's name, its help, range, unit and default all come from the description, and each value
+// given is set through it, so the CLI spells none of them.
+
+#include "dla/core/option_description.h"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace dla::cli {
+
+//! The help `--help` and the studio show: the description's, with its range, unit and special
+//! value.
+inline std::string help_text(const OptionDescription& about) {
+  std::string help(about.help);
+  if (about.range) help += ", in " + to_string(*about.range);
+  if (!about.unit.empty()) help += " " + std::string(about.unit);
+  if (about.special) help += "; " + detail::format_number(about.special->value) + ": " + std::string(about.special->means);
+  return help;
+}
+
+//! The options of one table, added to a subcommand; finish() sets those given.
+template <class Options>
+class DescribedOptions {
+ public:
+  //! Adds every option of `table` but those named in `without` to `app`, showing the defaults
+  //! of `defaults`; appends each description to `described` for `dla3d options`.
+  DescribedOptions(CLI::App& app, const OptionTable<Options>& table, const Options& defaults,
+                   std::vector<OptionDescription>& described, std::vector<std::string_view> without = {}) {
+    for (const DescribedOption<Options>& row : table) {
+      if (std::find(without.begin(), without.end(), row.about.name) != without.end()) continue;
+      auto given = std::make_unique<Given>();
+      given->row = &row;
+      const OptionDescription& about = row.about;
+      const OptionValue value = row.get(defaults);
+      const std::string name = cli_flag(about.name), help = help_text(about);
+      switch (about.kind) {
+        case OptionKind::flag:
+          given->on = std::get<bool>(value);
+          given->option = app.add_flag(name + (about.negation.empty() ? "" : ",!" + cli_flag(about.negation)),
+                                       given->on, help)
+                              ->default_str(to_string(value));
+          break;
+        case OptionKind::integer:
+          given->whole = std::get<std::int64_t>(value);
+          given->option = app.add_option(name, given->whole, help)->capture_default_str();
+          break;
+        case OptionKind::real:
+          given->number = std::get<double>(value);
+          given->option = app.add_option(name, given->number, help)->capture_default_str();
+          break;
+        case OptionKind::word: {
+          given->text = std::get<std::string>(value);
+          std::string words;
+          for (std::string_view w : about.choices) words += (words.empty() ? "" : "|") + std::string(w);
+          given->option = app.add_option(name, given->text, help)->capture_default_str()->type_name(words);
+          break;
+        }
+      }
+      given->option->group(std::string(about.group));
+      described.push_back(about);
+      given_.push_back(std::move(given));
+    }
+  }
+
+  //! Sets in `options` each option the command line gave, checked by its description.
+  void finish(Options& options) const {
+    for (const auto& given : given_) {
+      if (!given->option->count()) continue;
+      switch (given->row->about.kind) {
+        case OptionKind::flag: given->row->set(options, given->on); break;
+        case OptionKind::integer: given->row->set(options, given->whole); break;
+        case OptionKind::real: given->row->set(options, given->number); break;
+        case OptionKind::word: given->row->set(options, given->text); break;
+      }
+    }
+  }
+
+ private:
+  struct Given {  // where CLI11 puts one option's value; at a fixed address
+    const DescribedOption<Options>* row = nullptr;
+    CLI::Option* option = nullptr;
+    bool on = false;
+    std::int64_t whole = 0;
+    double number = 0.0;
+    std::string text;
+  };
+  std::vector<std::unique_ptr<Given>> given_;
+};
+
+}  // namespace dla::cli
