@@ -24,7 +24,6 @@
 #include <functional>
 #include <set>
 #include <string>
-#include <tuple>
 
 namespace dla {
 namespace {
@@ -129,7 +128,14 @@ void expect_described_soundly(const OptionTable<Options>& table) {
         const double step = about.kind == OptionKind::integer ? 1.0 : std::max(std::abs(r.max - r.min) * 1e-3, 1e-9);
         const std::string named = "`" + std::string(about.name) + "` ";
         // Each end: taken when closed, refused when open; a step past it refused by name.
-        for (const auto& [end, open, outward] : {std::tuple{r.min, r.min_open, -1.0}, std::tuple{r.max, r.max_open, 1.0}}) {
+        struct End {
+          double at;
+          bool open;
+          double outward;
+        };
+        for (const End& e : {End{r.min, r.min_open, -1.0}, End{r.max, r.max_open, 1.0}}) {
+          const double end = e.at, outward = e.outward;
+          const bool open = e.open;
           const std::string at_end = refusal([&] { option.set(again, as_value(end)); });
           if (open) EXPECT_EQ(at_end.rfind(named, 0), 0u) << end;
           else EXPECT_EQ(at_end, "") << end;
