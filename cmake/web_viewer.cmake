@@ -27,6 +27,10 @@ if(DLA_WEB_VIEWER)
     DEPENDS ${PROJECT_SOURCE_DIR}/viewer/package.json ${PROJECT_SOURCE_DIR}/viewer/package-lock.json
     COMMENT "Fetching three.js and esbuild for the web viewer (viewer/package-lock.json)"
     VERBATIM)
+  # One target runs npm: the viewer (dla_io) and the studio (dla_studio) both bundle with its
+  # esbuild, and a rule listed by two targets runs in each at once under make -j, one npm ci
+  # deleting the node_modules the other's esbuild runs from (CMake's add_custom_command docs).
+  add_custom_target(dla_viewer_npm DEPENDS ${viewer_dir}/npm.stamp)
   add_custom_command(OUTPUT ${viewer_dir}/viewer.bundle.js
     COMMAND ${CMAKE_COMMAND} -E copy_if_different ${PROJECT_SOURCE_DIR}/viewer/viewer.js ${viewer_dir}/viewer.js
     COMMAND ${viewer_dir}/node_modules/.bin/esbuild ${viewer_dir}/viewer.js --bundle --minify --format=iife
@@ -75,4 +79,7 @@ if(EXISTS ${DLA_BUST_OFF})
   list(APPEND studio_files ${studio_dir}/bust.off)
 endif()
 add_custom_target(dla_studio ALL DEPENDS ${studio_files})
+if(DLA_WEB_VIEWER)
+  add_dependencies(dla_studio dla_viewer_npm)
+endif()
 install(FILES ${studio_files} DESTINATION ${CMAKE_INSTALL_DATADIR}/dla3d/studio)
