@@ -84,7 +84,9 @@ class Studio:
         self.host = host
         self.token = secrets.token_urlsafe(32)
         self.models = models  # `dla3d options`, parsed
-        self.options = {m["name"]: {o["name"]: o for o in m["options"]} for m in models["models"]}
+        # Each option by its name and by its negations (--no-stop-at-strike), as a page may send either.
+        self.options = {m["name"]: {name: o for o in m["options"] for name in [o["name"], *o["negation"]]}
+                        for m in models["models"]}
         self.root = tempfile.mkdtemp(prefix="dla3d-studio-")
         self.sessions = {}
         self.runs = asyncio.Semaphore(RUN_LIMIT)

@@ -1,9 +1,9 @@
 // Drives the studio's option panel in Debian's Chromium, headless: picks the breakdown model,
 // reads the controls its described options became (a drop-down for --field, a slider for --eta,
 // a check box for --stop-at-strike), applies the lightning preset, moves the slider, picks a
-// field, and grows. Prints one JSON line: the console's errors, the controls seen, what the
-// preset set, the field the slider wrote, and the end of the run with the command the page
-// shows (and a screenshot of the panel in OUT_DIR).
+// field, clears the check box, and grows. Prints one JSON line: the console's errors, the
+// controls seen, what the preset set, the field the slider wrote, and the end of the run with
+// the command the page shows (and a screenshot of the panel in OUT_DIR).
 //   node studio_described.mjs ADDRESS OUT_DIR
 // Exits 0 when it could look; what it saw is for the test to judge.
 import { chromium } from 'playwright-core';
@@ -51,6 +51,7 @@ try {
   });
   const etaWritten = await page.locator('[data-option="--eta"]').inputValue();
   await page.locator('select[data-option="--field"]').selectOption('conductor');
+  await page.locator('[data-option="--stop-at-strike"]').uncheck();  // on by default: sends its negation
   await page.locator('[data-option="--particles"]').fill('300');
   await page.locator('[data-option="--formats"]').fill('csv');
   // The panel's top: the Preset menu and the Discharge group.

@@ -598,9 +598,10 @@ def test_the_panel_shows_a_choice_as_a_drop_down_and_a_range_as_a_slider_with_a_
     assert end["state"] == "done" and end["error"] == "", end
     for words in ["--eta 2.5", "--field conductor", "--seed-at 0,40,0", "--target-plane y=-40", "--radius pipe"]:
         assert words in end["command"], end["command"]
-    # The strike ends it before its count, at the ground.
-    assert 1 < end["count"] <= 301, end
-    assert "--no-stop-at-strike" not in end["command"], end["command"]
+    # With no stop at the strike, growth goes on to its count (and the seed).
+    assert end["count"] == 301, end
+    # The check box, on by default, cleared: its negation.
+    assert "--no-stop-at-strike" in end["command"], end["command"]
 
 
 @pytest.mark.skipif(browser_client() is None, reason="Chromium: needs chromium, node and Playwright "
