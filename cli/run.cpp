@@ -75,7 +75,14 @@ int run(const CommandLine& line, const std::vector<std::string>& given, const Re
   RunRecord record;
   record.command = command_line(args);
   StageBar links_bar("links", terminal);
-  const Cluster cluster = grow_recorded(run, progress, &stop.first, record, links_bar.progress());
+  const Cluster cluster = [&] {
+    try {
+      return grow_recorded(run, progress, &stop.first, record, links_bar.progress());
+    } catch (const InvalidInput&) {
+      stream.discard();
+      throw;
+    }
+  }();
   bar.clear();
   links_bar.clear();
   stream.send(cluster, run.done(cluster), run.total);

@@ -35,7 +35,7 @@ inline void check_stream_path(const std::string& path) {
 class ParticleStream {
  public:
   //! No stream for an empty path. Throws IOError if FILE cannot be opened for writing.
-  explicit ParticleStream(const std::string& path) {
+  explicit ParticleStream(const std::string& path) : path_(path) {
     if (path.empty()) return;
     file_ = std::fopen(path.c_str(), "wb");
     if (!file_) throw IOError("--stream " + path + ": " + std::strerror(errno));
@@ -44,6 +44,15 @@ class ParticleStream {
   ParticleStream& operator=(const ParticleStream&) = delete;
   ~ParticleStream() {
     if (file_) std::fclose(file_);
+  }
+
+  //! Bad input found only once growth began (a colonize root outside its vessel): the stream
+  //! file goes, as every other file of bad input does. A pipe or device is left as it is.
+  void discard() {
+    std::error_code error;
+    if (!path_.empty() && std::filesystem::is_regular_file(path_, error)) std::filesystem::remove(path_, error);
+    if (file_) std::fclose(file_);
+    file_ = nullptr;
   }
 
   //! The particles of `so_far` not yet sent, with the run's count. A reader that went away (a
@@ -75,6 +84,7 @@ class ParticleStream {
   }
 
  private:
+  std::string path_;
   std::FILE* file_ = nullptr;
   std::size_t sent_ = 0, last_done_ = static_cast<std::size_t>(-1);
   std::vector<float> positions_;

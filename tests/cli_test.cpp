@@ -1313,3 +1313,14 @@ TEST(Cli, EveryPresetGrowsAndOptionsBesideItOverrideIt) {
   for (const char* entry : {"lightning: a bolt", "--eta 3 --seed-at 0,40,0 --target-plane y=-40", "spark: "})
     EXPECT_NE(list.find(entry), std::string::npos) << list;
 }
+
+TEST(Cli, BadInputFoundOnceGrowthBeganLeavesNoStreamFile) {
+  // A root the vessel does not hold is found as colonization starts, after the stream is open.
+  ScratchDir dir;
+  dla::write_stl(dla::make_box(dla::Vec3(-10, -10, -10), dla::Vec3(10, 10, 10)), dir / "box.stl");
+  const CliRun run = dla3d(dir, "colonize --attractors 933 -n 33 --stl box.stl --root-at 50,0,0 --stream live.bin -o bad");
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "live.bin"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad.json"));
+}
