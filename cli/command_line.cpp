@@ -3,12 +3,14 @@
 
 #include "command_line.h"
 
+#include "described.h"
 #include "options.h"
 
 #include "dla/run/presets.h"
 #include "dla/version.h"
 
 #include <algorithm>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 
@@ -16,7 +18,38 @@ namespace dla::cli {
 
 Subcommand add_frames_command(CLI::App& app);
 
+namespace {
+
+//! The command of a model described whole (run.h's Model::option_table): its own options, then
+//! the files' and the look's.
+Subcommand add_described_command(CLI::App& app, const Model& model) {
+  struct Words {
+    RunOptions run;
+    bool quiet = false;
+    std::vector<OptionDescription> described;
+    std::unique_ptr<DescribedOptions<RunOptions>> own;
+    std::unique_ptr<OutputWords> files;  // bound to run's files, which stay put
+  };
+  auto w = std::make_shared<Words>(Words{model.options()});
+  CLI::App* command = app.add_subcommand(std::string(model.name), std::string(model.summary));
+  command->get_formatter()->column_width(34);
+  w->own = std::make_unique<DescribedOptions<RunOptions>>(*command, model.option_table, w->run, w->described);
+  w->files = std::make_unique<OutputWords>(*command, model.files(w->run), w->quiet);
+  return {command,
+          [w, &model](CommandLine& line, const std::vector<std::string>&) {
+            w->own->finish(w->run);
+            w->files->finish(model.files(w->run));
+            validate(w->run);
+            line.quiet = w->quiet;
+            line.run = w->run;
+          },
+          w->described};
+}
+
+}  // namespace
+
 Subcommand add_model_command(CLI::App& app, const Model& model) {
+  // The built-in models' command lines, until each is described whole.
   using Add = Subcommand (*)(CLI::App&, const Model&);
   static const std::pair<std::string_view, Add> commands[] = {
       {"grow", add_grow_options},    {"colonize", add_colonize_command},   {"eden", add_eden_command},
@@ -24,7 +57,7 @@ Subcommand add_model_command(CLI::App& app, const Model& model) {
   };
   for (const auto& [name, add] : commands)
     if (name == model.name) return add(app, model);
-  throw std::logic_error("the model " + std::string(model.name) + " has no command line");
+  return add_described_command(app, model);
 }
 
 namespace {
@@ -141,7 +174,11 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   analyze->add_option("csv", line.analyze_csv, "a CSV that dla3d wrote")->required();
   const Subcommand frames = add_frames_command(app);
   CLI::App* options = app.add_subcommand("options", "print every growth model's options as JSON (names, defaults, "
-                                                    "types, groups, help), as --help shows them, then stop");
+                                                    "kinds, ranges, choices, groups, help), as --help shows them, "
+                                                    "then stop");
+  std::string list_format(to_string(OptionListFormat::json));
+  options->add_option("--format", list_format, "json, or markdown: the page docs/options.md")
+      ->capture_default_str()->group("Listing");
   CLI::App* studio = app.add_subcommand("studio", "start the growth studio, a web page to paint seeds on a mesh, watch "
                                                   "growth live and download the files (docs/studio.md)");
   StudioCommand& s = line.studio;
@@ -195,7 +232,8 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     }
   if (options->parsed()) {
     line.kind = CommandLine::Kind::print;
-    line.text = options_json(models);
+    line.text = parse_word<OptionListFormat>(list_format) == OptionListFormat::json ? options_json(models)
+                                                                                    : options_markdown(app, models);
     return line;
   }
   if (studio->parsed()) {

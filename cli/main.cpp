@@ -67,7 +67,7 @@ int run(const std::vector<std::string>& args) {
   if (line.threads) command.insert(command.end(), {"--threads", std::to_string(*line.threads)});
   if (line.quiet) command.push_back("-q");
   dla::cli::CommandLine resumed = dla::cli::parse_command_line(command);
-  if (resumed.kind != Kind::run || resumed.run.index() != 0)
+  if (resumed.kind != Kind::run || !resumed.run.get_if<dla::DlaRunOptions>())
     throw dla::InvalidInput(line.resume_path + ": its command is not a growth run");
   resumed.stream_path = line.stream_path;  // a checkpoint's command never holds one: run.cpp
   catch_stop_signals();

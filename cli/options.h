@@ -36,10 +36,24 @@ struct Subcommand {
   std::vector<OptionDescription> described = {};
 };
 
+//! What `dla3d options --format` prints.
+enum class OptionListFormat {
+  json,      //!< for front ends that build a form from it (the studio, the Blender add-on)
+  markdown,  //!< docs/options.md
+};
+inline constexpr WordTable<OptionListFormat, 2> kOptionListFormatWords{
+    "--format", {{{OptionListFormat::json, "json"}, {OptionListFormat::markdown, "markdown"}}}};
+constexpr const auto& words_of(OptionListFormat) { return kOptionListFormatWords; }
+
 //! `dla3d options`: every growth model's options (`models`, in the library's order) as `--help`
 //! shows them, as JSON read from the parser itself, for front ends that build a form from them
-//! (the studio). In options_json.cpp.
+//! (the studio). In options_list.cpp.
 std::string options_json(const std::vector<Subcommand>& models);
+
+//! `dla3d options --format markdown`: docs/options.md, every command's options (`app`'s, the
+//! growth models' as `models` describe them) with their defaults, values and help, and the
+//! presets. In options_list.cpp.
+std::string options_markdown(const CLI::App& app, const std::vector<Subcommand>& models);
 
 //! The Output and Look options, the same for every growth model and for `frames`: added to
 //! `app`, bound to words kept here, then turned into `files` by finish().

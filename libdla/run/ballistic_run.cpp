@@ -65,8 +65,8 @@ class BallisticRun : public Run {
 
 }  // namespace
 
-std::unique_ptr<Run> prepare_ballistic(const RunOptions& options, const MeshReader&, const Resumed&) {
-  return std::make_unique<BallisticRun>(std::get<BallisticRunOptions>(options));
+std::unique_ptr<Run> prepare_ballistic(const BallisticRunOptions& options, const MeshReader&, const Resumed&) {
+  return std::make_unique<BallisticRun>(options);
 }
 
 }  // namespace detail

@@ -182,8 +182,8 @@ class BreakdownRun : public DlaRun {
 
 }  // namespace
 
-std::unique_ptr<Run> prepare_breakdown(const RunOptions& options, const MeshReader& read, const Resumed&) {
-  return std::make_unique<BreakdownRun>(std::get<BreakdownRunOptions>(options), read);
+std::unique_ptr<Run> prepare_breakdown(const BreakdownRunOptions& options, const MeshReader& read, const Resumed&) {
+  return std::make_unique<BreakdownRun>(options, read);
 }
 
 }  // namespace detail

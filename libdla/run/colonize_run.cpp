@@ -265,8 +265,8 @@ class ColonizeRun : public Run {
 
 }  // namespace
 
-std::unique_ptr<Run> prepare_colonize(const RunOptions& options, const MeshReader& read, const Resumed&) {
-  return std::make_unique<ColonizeRun>(std::get<ColonizeRunOptions>(options), read);
+std::unique_ptr<Run> prepare_colonize(const ColonizeRunOptions& options, const MeshReader& read, const Resumed&) {
+  return std::make_unique<ColonizeRun>(options, read);
 }
 
 }  // namespace detail

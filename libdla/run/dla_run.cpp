@@ -41,8 +41,8 @@ void validate(const DlaRunOptions& o) {
 
 namespace detail {
 
-std::unique_ptr<Run> prepare_dla(const RunOptions& options, const MeshReader& read, const Resumed& resumed) {
-  return std::make_unique<DlaRun>(std::get<DlaRunOptions>(options), read, resumed);
+std::unique_ptr<Run> prepare_dla(const DlaRunOptions& options, const MeshReader& read, const Resumed& resumed) {
+  return std::make_unique<DlaRun>(options, read, resumed);
 }
 
 }  // namespace detail

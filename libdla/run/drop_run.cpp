@@ -126,8 +126,8 @@ class DropRun : public Run {
 
 }  // namespace
 
-std::unique_ptr<Run> prepare_drop(const RunOptions& options, const MeshReader& read, const Resumed&) {
-  return std::make_unique<DropRun>(std::get<DropRunOptions>(options), read);
+std::unique_ptr<Run> prepare_drop(const DropRunOptions& options, const MeshReader& read, const Resumed&) {
+  return std::make_unique<DropRun>(options, read);
 }
 
 }  // namespace detail

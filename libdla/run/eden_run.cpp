@@ -91,8 +91,8 @@ class EdenRun : public Run {
 
 }  // namespace
 
-std::unique_ptr<Run> prepare_eden(const RunOptions& options, const MeshReader&, const Resumed&) {
-  return std::make_unique<EdenRun>(std::get<EdenRunOptions>(options));
+std::unique_ptr<Run> prepare_eden(const EdenRunOptions& options, const MeshReader&, const Resumed&) {
+  return std::make_unique<EdenRun>(options);
 }
 
 }  // namespace detail

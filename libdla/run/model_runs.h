@@ -14,12 +14,12 @@
 
 namespace dla::detail {
 
-std::unique_ptr<Run> prepare_dla(const RunOptions& options, const MeshReader& read, const Resumed& resumed);
-std::unique_ptr<Run> prepare_colonize(const RunOptions& options, const MeshReader& read, const Resumed& resumed);
-std::unique_ptr<Run> prepare_eden(const RunOptions& options, const MeshReader& read, const Resumed& resumed);
-std::unique_ptr<Run> prepare_drop(const RunOptions& options, const MeshReader& read, const Resumed& resumed);
-std::unique_ptr<Run> prepare_ballistic(const RunOptions& options, const MeshReader& read, const Resumed& resumed);
-std::unique_ptr<Run> prepare_breakdown(const RunOptions& options, const MeshReader& read, const Resumed& resumed);
+std::unique_ptr<Run> prepare_dla(const DlaRunOptions& options, const MeshReader& read, const Resumed& resumed);
+std::unique_ptr<Run> prepare_colonize(const ColonizeRunOptions& options, const MeshReader& read, const Resumed& resumed);
+std::unique_ptr<Run> prepare_eden(const EdenRunOptions& options, const MeshReader& read, const Resumed& resumed);
+std::unique_ptr<Run> prepare_drop(const DropRunOptions& options, const MeshReader& read, const Resumed& resumed);
+std::unique_ptr<Run> prepare_ballistic(const BallisticRunOptions& options, const MeshReader& read, const Resumed& resumed);
+std::unique_ptr<Run> prepare_breakdown(const BreakdownRunOptions& options, const MeshReader& read, const Resumed& resumed);
 
 //! "NAME: 1,234 triangles; REPAIRS; spacing S": what a run says of its constraint mesh.
 std::string mesh_line(const std::string& name, const MeshConstraint& constraint, double spacing);

@@ -6,7 +6,8 @@
 namespace dla {
 
 const OutputOptions& output_of(const RunOptions& options) {
-  return std::visit([](const auto& o) -> const OutputOptions& { return o.files; }, options);
+  // Only read through: the model's accessor serves the front ends that set the files too.
+  return options.model().files(const_cast<RunOptions&>(options));
 }
 
 std::vector<Vec3> seeds_on(const MeshConstraint& mesh, const MeshSeeds& seeds, std::uint64_t rng_seed,
@@ -50,7 +51,7 @@ void validate_mesh_seeds(const MeshSeeds& seeds, bool mesh, const char* placed_b
 }  // namespace detail
 
 void validate(const RunOptions& options) {
-  std::visit([](const auto& o) { validate(o); }, options);
+  options.model().validate(options);
 }
 
 }  // namespace dla

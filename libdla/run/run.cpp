@@ -13,8 +13,10 @@
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
+#include <deque>
 #include <memory>
 #include <mutex>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -89,42 +91,57 @@ TriangleMesh with_entering(TriangleMesh mesh, const std::vector<TriangleMesh>& e
 
 namespace {
 
-template <class Options>
-RunOptions options_of() {
-  return RunOptions(std::in_place_type<Options>);
+//! The models, the built-in ones first: a line each, in the order `dla3d --help` lists them.
+std::deque<Model>& registry() {
+  static std::deque<Model> all = {
+      make_model<DlaRunOptions>(
+          "grow", "grow by off-lattice diffusion-limited aggregation, in or around a mesh or text (docs/dla.md)",
+          detail::prepare_dla),
+      make_model<ColonizeRunOptions>(
+          "colonize", "grow a tree by space colonization: attractor points pull its nearest nodes (docs/colonization.md)",
+          detail::prepare_colonize),
+      make_model<EdenRunOptions>("eden",
+                                 "grow an Eden cluster on a lattice: sites join at random on its edge, or where a "
+                                 "mask counts enough of it (docs/eden.md)",
+                                 detail::prepare_eden),
+      make_model<DropRunOptions>("drop",
+                                 "grow by random-drop ballistic aggregation: particles dropped at random join the "
+                                 "closest particle (docs/drop.md)",
+                                 detail::prepare_drop),
+      make_model<BallisticRunOptions>("ballistic",
+                                      "grow by ballistic aggregation: particles fly in straight lines and stick where "
+                                      "they first touch (docs/ballistic.md)",
+                                      detail::prepare_ballistic),
+      make_model<BreakdownRunOptions>(
+          "breakdown",
+          "grow a discharge by the dielectric breakdown model: growth where the field to the power eta is strong, "
+          "towards a target electrode, around insulating meshes: lightning, Lichtenberg figures (docs/breakdown.md)",
+          detail::prepare_breakdown),
+  };
+  return all;
 }
 
 }  // namespace
 
-const std::vector<Model>& models() {
-  // One entry a model, in the order of RunOptions' alternatives; the summaries are the CLI's.
-  static const std::vector<Model> table = {
-      {"grow", "grow by off-lattice diffusion-limited aggregation, in or around a mesh or text (docs/dla.md)",
-       options_of<DlaRunOptions>, detail::prepare_dla},
-      {"colonize", "grow a tree by space colonization: attractor points pull its nearest nodes (docs/colonization.md)",
-       options_of<ColonizeRunOptions>, detail::prepare_colonize},
-      {"eden",
-       "grow an Eden cluster on a lattice: sites join at random on its edge, or where a mask counts enough of it "
-       "(docs/eden.md)",
-       options_of<EdenRunOptions>, detail::prepare_eden},
-      {"drop",
-       "grow by random-drop ballistic aggregation: particles dropped at random join the closest particle "
-       "(docs/drop.md)",
-       options_of<DropRunOptions>, detail::prepare_drop},
-      {"ballistic",
-       "grow by ballistic aggregation: particles fly in straight lines and stick where they first touch "
-       "(docs/ballistic.md)",
-       options_of<BallisticRunOptions>, detail::prepare_ballistic},
-      {"breakdown",
-       "grow a discharge by the dielectric breakdown model: growth where the field to the power eta is strong, "
-       "towards a target electrode, around insulating meshes: lightning, Lichtenberg figures (docs/breakdown.md)",
-       options_of<BreakdownRunOptions>, detail::prepare_breakdown},
-  };
-  static_assert(std::variant_size_v<RunOptions> == 6, "a model is one alternative of RunOptions and one entry here");
-  return table;
+RunOptions::RunOptions() : RunOptions(DlaRunOptions{}) {}
+
+void register_model(Model model) {
+  for (const Model& known : registry())
+    if (known.name == model.name || known.options_type == model.options_type)
+      throw std::logic_error("the model " + std::string(model.name) + " is registered twice, or its options are " +
+                             std::string(known.name) + "'s");
+  registry().push_back(std::move(model));
 }
 
-const Model& model_of(const RunOptions& options) { return models()[options.index()]; }
+const std::deque<Model>& models() { return registry(); }
+
+const Model& model_for(std::type_index type) {
+  for (const Model& model : registry())
+    if (model.options_type == type) return model;
+  throw std::logic_error(std::string("no model grows from options of type ") + type.name());
+}
+
+const Model& model_of(const RunOptions& options) { return options.model(); }
 
 const Model* find_model(std::string_view name) {
   for (const Model& model : models())
@@ -141,8 +158,8 @@ void require_input_files(const RunOptions& options) {
   const auto mesh_seeds = [&](const MeshSeeds& seeds) {
     for (const std::string& path : seeds.meshes) files.emplace_back(&path, "seed_mesh");
   };
-  const DlaRunOptions* dla = std::get_if<DlaRunOptions>(&options);
-  if (const auto* o = std::get_if<BreakdownRunOptions>(&options)) {
+  const DlaRunOptions* dla = options.get_if<DlaRunOptions>();
+  if (const auto* o = options.get_if<BreakdownRunOptions>()) {
     dla = o;
     files.emplace_back(&o->target_mesh, "target_mesh");
   }
@@ -150,12 +167,12 @@ void require_input_files(const RunOptions& options) {
     files.emplace_back(&o->stl, "stl");
     if (o->text) files.emplace_back(&o->text->font, "font");
     mesh_seeds(o->seeds);
-  } else if (const auto* o = std::get_if<ColonizeRunOptions>(&options)) {
+  } else if (const auto* o = options.get_if<ColonizeRunOptions>()) {
     files.insert(files.end(), {{&o->stl, "stl"}, {&o->collide, "collide"}, {&o->attractors_from, "attractors_from"}});
     mesh_seeds(o->seeds);
-  } else if (const auto* o = std::get_if<EdenRunOptions>(&options)) {
+  } else if (const auto* o = options.get_if<EdenRunOptions>()) {
     files.emplace_back(&o->mask_file, "mask");
-  } else if (const auto* o = std::get_if<DropRunOptions>(&options)) {
+  } else if (const auto* o = options.get_if<DropRunOptions>()) {
     files.emplace_back(&o->stl, "stl");
     mesh_seeds(o->seeds);
   }

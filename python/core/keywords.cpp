@@ -10,6 +10,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string_view>
+#include <type_traits>
 
 namespace dla::python {
 
@@ -189,16 +190,16 @@ void settle(RunOptions& run, const Given& given) {
   const auto all = [&](MeshSeeds& seeds) {
     if (given.seeds_all) seeds.surface = !seeds.paint && seeds.meshes.empty();
   };
-  if (auto* o = std::get_if<DlaRunOptions>(&run)) {
+  if (auto* o = run.get_if<DlaRunOptions>()) {
     all(o->seeds);
-  } else if (auto* o = std::get_if<BreakdownRunOptions>(&run)) {
+  } else if (auto* o = run.get_if<BreakdownRunOptions>()) {
     all(o->seeds);
-  } else if (auto* o = std::get_if<DropRunOptions>(&run)) {
+  } else if (auto* o = run.get_if<DropRunOptions>()) {
     all(o->seeds);
-  } else if (auto* o = std::get_if<ColonizeRunOptions>(&run)) {
+  } else if (auto* o = run.get_if<ColonizeRunOptions>()) {
     all(o->seeds);
     o->sample_attractors = given.attractors && !o->attractors_from.empty();
-  } else if (auto* o = std::get_if<EdenRunOptions>(&run)) {
+  } else if (auto* o = run.get_if<EdenRunOptions>()) {
     const int dimensions = given.eden_dimensions.value_or(2);
     if (dimensions != 2 && dimensions != 3) throw InvalidInput("`dimensions` " + std::to_string(dimensions) + " is not 2 or 3");
     if (!given.lattice) o->eden.lattice = dimensions == 3 ? Lattice::cubic6 : Lattice::square4;
@@ -208,11 +209,18 @@ void settle(RunOptions& run, const Given& given) {
   }
 }
 
+//! The part of `run` that a table of keywords sets: its options of type `Options`, or all of it.
+template <class Options>
+Options& part(RunOptions& run) {
+  if constexpr (std::is_same_v<Options, RunOptions>) return run;
+  else return run.get<Options>();
+}
+
 //! The run options of `model` that `keywords` ask for, from its defaults, with `table`.
 template <class Options>
 RunOptions set_all(const Table<Options>& table, const Model& model, const py::dict& keywords, Given& given) {
   RunOptions run = model.options();
-  Options& options = std::get<Options>(run);
+  Options& options = part<Options>(run);
   const std::string name(model.name);
   for (const auto& [key, value] : keywords) {
     const std::string keyword = key.template cast<std::string>();
@@ -231,9 +239,18 @@ RunOptions keywords_of(const Model& model, const py::dict& keywords, Given& give
   return set_all(table, model, keywords, given);
 }
 
+//! The keywords of a model described whole: its table, made once.
+RunOptions described_keywords(const Model& model, const py::dict& keywords, Given& given) {
+  static std::map<const Model*, Table<RunOptions>> tables;  // the registry's models stay put
+  auto table = tables.find(&model);
+  if (table == tables.end()) table = tables.emplace(&model, described_table(model)).first;
+  return set_all(table->second, model, keywords, given);
+}
+
 using Keywords = RunOptions (*)(const Model& model, const py::dict& keywords, Given& given);
 
-//! Each model's keywords, by its name in the library's registry (dla/run/run.h).
+//! Each model's keywords, by its name in the library's registry (dla/run/run.h): the built-in
+//! models' own tables, else the model's description.
 Keywords keywords_of(const Model& model) {
   static const std::pair<std::string_view, Keywords> tables[] = {
       {"grow", keywords_of<DlaRunOptions, dla_table>},
@@ -245,12 +262,10 @@ Keywords keywords_of(const Model& model) {
   };
   for (const auto& [name, set] : tables)
     if (name == model.name) return set;
-  throw std::logic_error("the model " + std::string(model.name) + " has no keywords in Python");
+  return described_keywords;
 }
 
 }  // namespace
-
-void require_keywords(const Model& model) { keywords_of(model); }
 
 RunOptions run_options(const std::string& model, const py::dict& keywords, Given& given) {
   const Model* found = find_model(model);

@@ -83,7 +83,4 @@ const Table<SolidOptions>& solid_keywords();
 //! the meshes handed over as arrays.
 RunOptions run_options(const std::string& model, const py::dict& keywords, Given& given);
 
-//! Fails if the registry has a model without keywords in Python.
-void require_keywords(const Model& model);
-
 }  // namespace dla::python

@@ -7,10 +7,10 @@ namespace dla::python {
 
 namespace {
 
-//! The look and output options every model has (the files themselves are Result.write()'s).
-template <class Options>
-void add_look(Table<Options>& t) {
-  const auto files = [](Options& o) -> OutputOptions& { return o.files; };
+//! The look and output options every model has (the files themselves are Result.write()'s), in
+//! the OutputOptions that `files` gives of the run's options.
+template <class Options, class Files>
+void add_look(Table<Options>& t, Files files) {
   t["ply_format"] = [=](Options& o, py::handle v, Given&) { files(o).ply_encoding = word<PlyEncoding>("ply_format", v); };
   t["png_scale"] = [=](Options& o, py::handle v, Given&) { files(o).png.pixels_per_spacing = number("png_scale", v); };
   t["png_bands"] = [=](Options& o, py::handle v, Given&) { files(o).png.bands = whole_int("png_bands", v); };
@@ -36,7 +36,12 @@ void add_look(Table<Options>& t) {
   t["tips_every"] = [=](Options& o, py::handle v, Given&) { files(o).instances.every = whole_int("tips_every", v); };
   t["up"] = [=](Options& o, py::handle v, Given&) { files(o).up = word<Axis>("up", v); };
   for (const auto& [name, set] : solid_keywords())
-    t[name] = [set = set](Options& o, py::handle v, Given& g) { set(o.files.solid, v, g); };
+    t[name] = [set = set, files](Options& o, py::handle v, Given& g) { set(files(o).solid, v, g); };
+}
+
+template <class Options>
+void add_look(Table<Options>& t) {
+  add_look(t, [](Options& o) -> OutputOptions& { return o.files; });
 }
 
 //! Where seeds (colonize: roots) go on the mesh, the same for DLA, drop and colonize.
@@ -249,6 +254,13 @@ Table<BreakdownRunOptions> breakdown_table() {
     o.breakdown.target.at = number("target_plane", v[py::int_(1)]);
   };
   t["target_mesh"] = [](O& o, py::handle v, Given& g) { o.target_mesh = mesh("target_mesh", v, g); };
+  return t;
+}
+
+Table<RunOptions> described_table(const Model& model) {
+  Table<RunOptions> t;
+  add_look(t, [&model](RunOptions& o) -> OutputOptions& { return model.files(o); });
+  add_described(t, model.option_table, [](RunOptions& o) -> RunOptions& { return o; });
   return t;
 }
 

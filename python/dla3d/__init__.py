@@ -226,3 +226,19 @@ def ensemble(model, count, seeds=1, client=None, **options):
     from .ensemble import run_ensemble
     return run_ensemble(model, count, seeds, client=client, **options)
 
+
+
+def _model_function(name, summary):
+    def run(progress=None, **options):
+        return _run(name, progress, options)
+    run.__name__ = run.__qualname__ = name
+    run.__doc__ = f"{summary[0].upper()}{summary[1:]}, as `dla3d {name} [options]`."
+    return run
+
+
+# A model registered in the library without a function above (one described whole, dla/run/run.h)
+# is a function all the same.
+for _name, _summary in _core.models():
+    if _name not in globals():
+        globals()[_name] = _model_function(_name, _summary)
+        __all__.append(_name)

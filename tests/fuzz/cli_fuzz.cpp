@@ -43,13 +43,13 @@ bool far_apart(const std::vector<dla::Vec3>& seeds, double spacing) {
 
 //! The run, small, or false for one that reads a file or would outgrow the fuzzer's memory.
 bool make_small(dla::RunOptions& run) {
-  if (auto* o = std::get_if<dla::DlaRunOptions>(&run)) {
+  if (auto* o = run.get_if<dla::DlaRunOptions>()) {
     if (o->has_mesh()) return false;
     o->particles = std::min<std::size_t>(o->particles.value_or(o->growth.particles), 16);
     o->growth.threads = std::min(o->growth.threads, 2);
     return !far_apart(o->seed_at.value_or(o->growth.seeds), o->spacing.value_or(o->growth.spacing));
   }
-  if (auto* o = std::get_if<dla::BreakdownRunOptions>(&run)) {
+  if (auto* o = run.get_if<dla::BreakdownRunOptions>()) {
     if (o->has_mesh() || !o->target_mesh.empty()) return false;
     o->particles = std::min<std::size_t>(o->particles.value_or(o->growth.particles), 16);
     o->growth.threads = std::min(o->growth.threads, 2);
@@ -61,21 +61,21 @@ bool make_small(dla::RunOptions& run) {
       return false;
     return !far_apart(o->seed_at.value_or(o->growth.seeds), spacing);
   }
-  if (auto* o = std::get_if<dla::ColonizeRunOptions>(&run)) {
+  if (auto* o = run.get_if<dla::ColonizeRunOptions>()) {
     if (!o->stl.empty() || !o->collide.empty() || !o->attractors_from.empty()) return false;
     o->colonization.max_nodes = std::min<std::size_t>(o->colonization.max_nodes, 64);
     o->attractors.count = std::min<std::size_t>(o->attractors.count, 300);
     return true;
   }
-  if (auto* o = std::get_if<dla::EdenRunOptions>(&run)) {
+  if (auto* o = run.get_if<dla::EdenRunOptions>()) {
     o->eden.sites = std::min<std::size_t>(o->eden.sites, 200);
     return o->mask_file.empty();
   }
-  if (auto* o = std::get_if<dla::DropRunOptions>(&run)) {
+  if (auto* o = run.get_if<dla::DropRunOptions>()) {
     o->drop.particles = std::min<std::size_t>(o->drop.particles, 64);
     return o->stl.empty() && !far_apart(o->seed_at.value_or(o->drop.seeds), o->spacing.value_or(o->drop.spacing));
   }
-  if (auto* o = std::get_if<dla::BallisticRunOptions>(&run)) {
+  if (auto* o = run.get_if<dla::BallisticRunOptions>()) {
     o->ballistic.particles = std::min<std::size_t>(o->ballistic.particles, 64);
     return !far_apart(o->ballistic.seeds, o->ballistic.spacing);
   }
@@ -85,12 +85,12 @@ bool make_small(dla::RunOptions& run) {
 
 //! What a tree of this model may hold beyond the rules of every tree.
 dla::testing::TreeRules rules_of(const dla::RunOptions& run) {
-  if (const auto* o = std::get_if<dla::ColonizeRunOptions>(&run)) {
+  if (const auto* o = run.get_if<dla::ColonizeRunOptions>()) {
     const double noise = std::sqrt(3.0) * o->colonization.noise_amplitude;  // one step, or as far as the noise moves it
     return {noise > 0 ? 0.0 : 1.0, 1.0 + noise, false};
   }
   // An Eden site hangs from the nearest occupied site of its mask, up to 8 sites away each way.
-  if (std::holds_alternative<dla::EdenRunOptions>(run)) return {1.0, 8 * std::sqrt(3.0), true};
+  if (run.get_if<dla::EdenRunOptions>()) return {1.0, 8 * std::sqrt(3.0), true};
   return {};
 }
 

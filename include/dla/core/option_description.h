@@ -21,6 +21,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -170,9 +171,10 @@ DescribedOption<Options> real(std::string_view name, double Options::*member, Ra
           [member](const Options& o) { return OptionValue(o.*member); }};
 }
 
-//! A whole number in `range`, in a member of type int.
-template <class Options>
-DescribedOption<Options> integer(std::string_view name, int Options::*member, Range range, std::string_view unit,
+//! A whole number in `range`, in a member of an integer type (int, std::size_t); the range
+//! keeps the value within what the type holds.
+template <class Options, class Whole, std::enable_if_t<std::is_integral_v<Whole> && !std::is_same_v<Whole, bool>, int> = 0>
+DescribedOption<Options> integer(std::string_view name, Whole Options::*member, Range range, std::string_view unit,
                                  std::string_view group, std::string_view help,
                                  std::optional<SpecialValue> special = std::nullopt) {
   OptionDescription about{name, OptionKind::integer, group, help, range, special, unit, {}, {}};
@@ -182,7 +184,7 @@ DescribedOption<Options> integer(std::string_view name, int Options::*member, Ra
             require_in(about, value);  // first: the range keeps the casts below defined
             if (value != static_cast<double>(static_cast<std::int64_t>(value)))
               throw InvalidInput("`" + std::string(about.name) + "` " + to_string(v) + " is not a whole number");
-            o.*member = static_cast<int>(value);
+            o.*member = static_cast<Whole>(value);
           },
           [member](const Options& o) { return OptionValue(static_cast<std::int64_t>(o.*member)); }};
 }
@@ -218,6 +220,17 @@ DescribedOption<Options> flag(std::string_view name, bool Options::*member, std:
             o.*member = *on;
           },
           [member](const Options& o) { return OptionValue(o.*member); }};
+}
+
+//! The options of `table`, which describes a part of `Outer` (a member, or a base), as options
+//! of `Outer`: DLA's walk options as options of a DLA run.
+template <class Outer, class Inner>
+OptionTable<Outer> nested(const OptionTable<Inner>& table, Inner Outer::*part) {
+  OptionTable<Outer> out;
+  for (const DescribedOption<Inner>& row : table)
+    out.push_back({row.about, [set = row.set, part](Outer& o, const OptionValue& v) { set(o.*part, v); },
+                   [get = row.get, part](const Outer& o) { return get(o.*part); }});
+  return out;
 }
 
 }  // namespace dla

@@ -19,10 +19,12 @@
 #include "dla/run/output.h"
 #include "dla/core/words.h"
 
+#include <any>
 #include <cstddef>
 #include <optional>
 #include <string>
-#include <variant>
+#include <type_traits>
+#include <typeindex>
 #include <vector>
 
 namespace dla {
@@ -158,9 +160,37 @@ std::vector<Vec3> seeds_on(const MeshConstraint& mesh, const MeshSeeds& seeds, s
 //! that offer every model the same controls.
 [[noreturn]] void refuse_for(std::string_view model, std::string_view option);
 
-//! A run of any model.
-using RunOptions = std::variant<DlaRunOptions, ColonizeRunOptions, EdenRunOptions, DropRunOptions, BallisticRunOptions,
-                                BreakdownRunOptions>;
+struct Model;
+//! The registered model whose run options are of `type` (run.h); throws std::logic_error for a
+//! type that no model registered.
+const Model& model_for(std::type_index type);
+
+//! A run of any registered model (run.h): that model's run options, and which model it is.
+//! Made from any model's options: `dla::RunOptions run = dla::DropRunOptions{};`.
+class RunOptions {
+ public:
+  //! DLA's options as no one changed them: `dla3d` without options.
+  RunOptions();
+  template <class Options, std::enable_if_t<!std::is_same_v<std::decay_t<Options>, RunOptions>, int> = 0>
+  RunOptions(Options options) : model_(&model_for(typeid(Options))), options_(std::move(options)) {}
+
+  const Model& model() const { return *model_; }
+  //! The options, if they are of type `Options` (exactly: BreakdownRunOptions are not
+  //! DlaRunOptions), else null.
+  template <class Options>
+  Options* get_if() { return std::any_cast<Options>(&options_); }
+  template <class Options>
+  const Options* get_if() const { return std::any_cast<Options>(&options_); }
+  //! The options, which must be of type `Options`.
+  template <class Options>
+  Options& get() { return std::any_cast<Options&>(options_); }
+  template <class Options>
+  const Options& get() const { return std::any_cast<const Options&>(options_); }
+
+ private:
+  const Model* model_;
+  std::any options_;
+};
 
 //! The files a run of any model writes.
 const OutputOptions& output_of(const RunOptions& options);

@@ -15,16 +15,19 @@
 //! \endcode
 
 #include "dla/core/cluster.h"
+#include "dla/core/option_description.h"
 #include "dla/io/leaf.h"
 #include "dla/io/run_report.h"
 #include "dla/mesh/constraint.h"
 #include "dla/run/models.h"
 
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
+#include <typeindex>
 #include <vector>
 
 namespace dla {
@@ -105,25 +108,79 @@ struct Resumed {
   std::uint64_t mesh_hash = 0;
 };
 
-//! A growth model, registered once in libdla/run/run.cpp's table: what the CLI, the Python
-//! module, the fuzzers and the property test loop over. Adding a model takes one file in
-//! libdla/run/ and one entry in the table (docs/dev/architecture.md).
+//! A growth model, as the registry holds it: what the CLI, the Python module, the studio, the
+//! fuzzers and the property test loop over. A model is one file and one registration: the
+//! built-in ones are a line each in libdla/run/run.cpp's table, others register_model() their
+//! make_model() (docs/dev/architecture.md#adding-a-model).
 struct Model {
   std::string_view name;     //!< the CLI's subcommand and Python's function: grow, colonize, ...
   std::string_view summary;  //!< what it grows, in a line, as `dla3d --help` says
-  //! Its options as no one changed them: the RunOptions alternative it grows from.
-  RunOptions (*options)();
-  //! Sets up a run of `options` (its alternative): prepare_run() for this model.
-  std::unique_ptr<Run> (*prepare)(const RunOptions& options, const MeshReader& read, const Resumed& resumed);
+  std::type_index options_type;  //!< the type of its run options, by which RunOptions knows it
+  //! Its options as no one changed them.
+  std::function<RunOptions()> options;
+  //! Sets up a run of `options` (of this model): prepare_run() for this model.
+  std::function<std::unique_ptr<Run>(const RunOptions& options, const MeshReader& read, const Resumed& resumed)> prepare;
+  //! Throws InvalidInput, in one line naming the option, for options that cannot work.
+  std::function<void(const RunOptions& options)> validate;
+  //! The files its run writes: its options' `files`.
+  OutputOptions& (*files)(RunOptions& options);
+  //! Its own options, described (option_description.h). A model whose options are all here
+  //! gets its command, its Python keywords and its record from them; the built-in models'
+  //! command lines and keywords are still their front ends' own, and describe only a part.
+  OptionTable<RunOptions> option_table;
 };
 
-//! Every model, in the order of RunOptions' alternatives: grow (DLA), colonize, eden, drop,
-//! ballistic.
-const std::vector<Model>& models();
+//! The model `name` that grows from run options of type `Options` with a `files` member (of
+//! type OutputOptions), checked by `validate(const Options&)`, found where `Options` is declared,
+//! and set up by `prepare`. `table` describes its own options (not the files'): those the CLI and
+//! Python give it when no front end of its own does.
+template <class Options>
+Model make_model(std::string_view name, std::string_view summary,
+                 std::unique_ptr<Run> (*prepare)(const Options&, const MeshReader&, const Resumed&),
+                 const OptionTable<Options>& table = {}) {
+  Model model{name,
+              summary,
+              typeid(Options),
+              [] { return RunOptions(Options{}); },
+              [prepare](const RunOptions& o, const MeshReader& read, const Resumed& resumed) {
+                return prepare(o.get<Options>(), read, resumed);
+              },
+              [](const RunOptions& o) { validate(o.get<Options>()); },
+              [](RunOptions& o) -> OutputOptions& { return o.get<Options>().files; },
+              {}};
+  for (const DescribedOption<Options>& row : table)
+    model.option_table.push_back({row.about,
+                                  [set = row.set](RunOptions& o, const OptionValue& v) { set(o.get<Options>(), v); },
+                                  [get = row.get](const RunOptions& o) { return get(o.get<Options>()); }});
+  return model;
+}
+
+//! Adds `model` to the registry, after the built-in ones: from then on the CLI parser, the
+//! Python module and `dla3d options` offer it. Register before any of them reads the
+//! registry (at static initialisation, as a test does). Throws std::logic_error for a name or an
+//! options type already registered.
+void register_model(Model model);
+
+//! Every model: grow (DLA), colonize, eden, drop, ballistic, breakdown, then the ones
+//! registered, in the order they were. References stay valid when one is registered.
+const std::deque<Model>& models();
 //! The model `options` are of.
 const Model& model_of(const RunOptions& options);
 //! The model called `name`, or null.
 const Model* find_model(std::string_view name);
+
+//! Writes each described option's value in `options` as a field of the JSON record: the
+//! record's "options" of a model described whole.
+template <class Options>
+void write_described(RecordWriter& out, const OptionTable<Options>& table, const Options& options) {
+  for (const DescribedOption<Options>& row : table) {
+    const OptionValue value = row.get(options);
+    if (const bool* b = std::get_if<bool>(&value)) out.flag(row.about.name, *b);
+    else if (const std::int64_t* i = std::get_if<std::int64_t>(&value)) out.integer(row.about.name, *i);
+    else if (const double* d = std::get_if<double>(&value)) out.number(row.about.name, *d);
+    else out.text(row.about.name, std::get<std::string>(value));
+  }
+}
 
 //! Sets up the run `options` ask for: validates them, reads the meshes with `read` (default
 //! read_mesh), takes their defaults and places seeds, roots or attractors. `resumed` is the
