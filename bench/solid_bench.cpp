@@ -8,6 +8,7 @@
 //   build/bench/dla_solid_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 // (medians in docs/solid.md).
 
+#include "dla/io/mesh_writers.h"
 #include "dla/io/solid_writers.h"
 #include "dla/look/look.h"
 #include "dla/look/solid.h"

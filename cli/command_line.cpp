@@ -30,7 +30,8 @@ Subcommand add_described_command(CLI::App& app, const Model& model) {
     std::unique_ptr<DescribedOptions<RunOptions>> own;
     std::unique_ptr<OutputWords> files;  // bound to run's files, which stay put
   };
-  auto w = std::make_shared<Words>(Words{model.options()});
+  auto w = std::make_shared<Words>();
+  w->run = model.options();
   CLI::App* command = app.add_subcommand(std::string(model.name), std::string(model.summary));
   command->get_formatter()->column_width(34);
   w->own = std::make_unique<DescribedOptions<RunOptions>>(*command, model.option_table, w->run, w->described);

@@ -1,5 +1,6 @@
 #include "commands.h"
 
+#include "dla/io/mesh_writers.h"
 #include "dla/mesh/mesh.h"
 
 #include <cstdio>

@@ -9,7 +9,7 @@
 #include "commands.h"
 
 #include "dla/io/checkpoint.h"
-#include "dla/io/input_file.h"
+#include "dla/core/input_file.h"
 
 #include <csignal>
 #include <cstdio>

@@ -55,22 +55,20 @@ std::string options_json(const std::vector<Subcommand>& models);
 //! presets. In options_list.cpp.
 std::string options_markdown(const CLI::App& app, const std::vector<Subcommand>& models);
 
-//! The Output and Look options, the same for every growth model and for `frames`: added to
-//! `app`, bound to words kept here, then turned into `files` by finish().
+//! The Output, Look and Solid options, the same for every growth model and for `frames`: the
+//! library's described ones (output_option_table()) and the files', the formats', the leaf's
+//! and the paint's, added to `app`; finish() sets those given in `files`.
 class OutputWords {
  public:
   OutputWords(CLI::App& app, OutputOptions& files, bool& quiet, std::string formats = "pov,csv,ply,json");
-  //! The words as values; the options the mesh gives defaults for only when given.
+  //! Sets in `files` (those given to the constructor) the options given; those the mesh gives
+  //! defaults for only when given.
   void finish(OutputOptions& files) const;
 
  private:
-  std::string up_, radius_model_, color_by_, instance_set_, pov_style_, ply_format_, formats_, solid_shape_,
-      exclude_paint_;
-  double base_radius_ = 0.0, tip_radius_ = 0.0;
-  CLI::Option* radius_ = nullptr;
-  CLI::Option* base_radius_option_ = nullptr;
-  CLI::Option* tip_radius_option_ = nullptr;
-  CLI::Option* up_option_ = nullptr;
+  std::string formats_, exclude_paint_;
+  std::vector<OptionDescription> described_;
+  std::unique_ptr<DescribedOptions<OutputOptions>> options_;
   CLI::Option* exclude_paint_option_ = nullptr;
 };
 

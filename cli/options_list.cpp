@@ -30,10 +30,14 @@ std::vector<const CLI::Option*> shown_options(const CLI::App& app) {
   return shown;
 }
 
-//! The library's description of `option`, if it has one.
+//! The library's description of `option`, if it has one: among a command's `described`, or
+//! the files' and the look's, which every growth model and `frames` have.
 const OptionDescription* description_of(const CLI::Option& option, const std::vector<OptionDescription>& described) {
+  const std::string name = "--" + option.get_lnames().front();
   for (const OptionDescription& about : described)
-    if (cli_flag(about.name) == "--" + option.get_lnames().front()) return &about;
+    if (cli_flag(about.name) == name) return &about;
+  for (const DescribedOption<OutputOptions>& row : output_option_table())
+    if (cli_flag(row.about.name) == name) return &row.about;
   return nullptr;
 }
 
@@ -200,8 +204,8 @@ std::vector<std::pair<std::string, std::string>> group_tables(const CLI::App& co
   return groups;
 }
 
-//! A command's usage, with its positional arguments: "`dla3d convert IN OUT`".
-std::string usage(const CLI::App& command, bool top) {
+//! A command's words, with its positional arguments: "dla3d convert IN OUT".
+std::string command_words(const CLI::App& command, bool top) {
   std::string words = top ? "dla3d" : "dla3d " + command.get_name();
   for (const CLI::Option* option : command.get_options())
     if (option->get_positional()) {
@@ -209,8 +213,12 @@ std::string usage(const CLI::App& command, bool top) {
       std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::toupper(c); });
       words += " " + name;
     }
-  if (!shown_options(command).empty()) words += " [options]";
-  return "`" + words + "`";
+  return words;
+}
+
+//! "`dla3d convert IN OUT`", "`dla3d eden [options]`": a command as it is typed.
+std::string usage(const CLI::App& command, bool top) {
+  return "`" + command_words(command, top) + (shown_options(command).empty() ? "" : " [options]") + "`";
 }
 
 }  // namespace
@@ -247,14 +255,14 @@ std::string options_markdown(const CLI::App& app, const std::vector<Subcommand>&
   for (const auto& group : tables.front())
     if (shared(group)) text += "\n**" + group.first + "**\n\n" + group.second;
   for (std::size_t m = 0; m < models.size(); ++m) {
-    text += "\n## " + usage(*models[m].app, models[m].app == &app) + "\n\n" + sentence(dla::models()[m].summary) +
+    text += "\n## `" + command_words(*models[m].app, models[m].app == &app) + "`\n\n" + sentence(dla::models()[m].summary) +
             " With the options of [every growth model](#every-growth-model).\n";
     for (const auto& group : tables[m])
       if (!shared(group)) text += "\n**" + group.first + "**\n\n" + group.second;
   }
   for (const CLI::App* command : others) {
     if (shown_options(*command).empty()) continue;
-    text += "\n## " + usage(*command, false) + "\n\n" + sentence(command->get_description()) + "\n";
+    text += "\n## `" + command_words(*command, false) + "`\n\n" + sentence(command->get_description()) + "\n";
     for (const auto& group : group_tables(*command, {})) text += "\n**" + group.first + "**\n\n" + group.second;
   }
   text += "\n## Presets\n\n`--preset NAME` starts from a named set of options; options given beside it override its "

@@ -7,6 +7,7 @@
 //   dla3d --stl bust_painted.ply --seed-paint red
 //   dla3d --stl bust.stl --seed-mesh bust_rods.stl --radius seed-distance
 
+#include "dla/io/mesh_writers.h"
 #include "dla/mesh/mesh.h"
 #include "dla/mesh/shapes.h"
 

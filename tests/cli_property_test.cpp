@@ -26,6 +26,7 @@
 #include "solid_check.h"
 #include "test_util.h"
 
+#include "dla/io/mesh_writers.h"
 #include "dla/io/checkpoint.h"
 #include "dla/io/csv_reader.h"
 #include "dla/io/csv_writer.h"
@@ -116,7 +117,7 @@ std::vector<OptionDescription> descriptions(const OptionTable<Options>& table) {
 }
 
 const std::map<std::string, std::vector<std::string>>& option_table() {
-  static const std::map<std::string, std::vector<std::string>> table = with_presets(with_described({
+  static const std::map<std::string, std::vector<std::string>> table = with_presets(with_described(with_described({
       {"--particles", {"0", "1", "40", "150", "-1", "abc", "1e3", "99999999999999999999", "''"}},
       {"--spacing", {"1", "0.5", "1e-6", "1e6", "1e-25", "1e25", "1e-100", "1e100", "0", "-1", "inf", "nan", "1e-300", "1e300",
                      "4.9e-324", "x"}},
@@ -188,7 +189,7 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--resume", {"saved.ck", "missing.ck", "out.csv", "noise.stl", "folder.stl", "pipe.stl", "zero.stl", "empty.stl", "cut.ck"}},
       {"--help", {}},
       {"--version", {}},
-  }, descriptions(dla_option_table())), "grow");
+  }, descriptions(dla_option_table())), descriptions(output_option_table())), "grow");
   return table;
 }
 
@@ -1274,6 +1275,58 @@ TEST(CliProperty, TheStudioStartsAndStopsWithRandomOptions) {
     }
   }
   EXPECT_GT(exits[0], 3) << "too few studios started";
+}
+
+//! `dla3d options`' own options, drawn as the others; every option of `dla3d options --help`.
+const std::map<std::string, std::vector<std::string>>& option_list_table() {
+  static const std::map<std::string, std::vector<std::string>> table = {
+      {"--format", {"json", "markdown", "JSON", "md", "''", "'json markdown'"}},
+      {"--help", {}},
+  };
+  return table;
+}
+
+// `dla3d options` with random options: the JSON, the page docs/options.md is, its help, or one
+// line and exit 2.
+TEST(CliProperty, TheOptionListTakesRandomOptions) {
+  ScratchDir root;
+  for (const std::string& name : options_of_help(root, "options"))
+    EXPECT_TRUE(option_list_table().count(name)) << name << " is in dla3d options --help but not in the property test's table";
+  std::mt19937_64 rng(70);
+  const auto pick = [&](std::size_t n) { return static_cast<std::size_t>(rng() % n); };
+  std::vector<std::string> flags;
+  for (const auto& [flag, values] : option_list_table()) flags.push_back(flag);
+  std::map<int, int> exits;
+  for (int run = 0; run < 12; ++run) {
+    std::string args = " options", format = "json";
+    for (std::size_t i = 0, n = pick(3); i < n; ++i) {
+      const std::string& flag = flags[pick(flags.size())];
+      if (flag == "--help" && pick(3) != 0) continue;
+      const std::vector<std::string>& values = option_list_table().at(flag);
+      args += " " + flag;
+      if (!values.empty()) args += " " + (format = values[pick(2) == 0 ? pick(values.size()) : pick(2)]);
+    }
+    ScratchDir dir;
+    const std::string script = "cd '" + dir.path().string() + "' && timeout -s KILL 60 '" DLA3D_PATH "'" + args +
+                               " > out.txt 2> err.txt; echo $? > rc.txt";
+    ASSERT_EQ(std::system(script.c_str()), 0);
+    const int code = std::atoi(read_file(dir / "rc.txt").c_str());
+    const std::string out = read_file(dir / "out.txt"), err = read_file(dir / "err.txt");
+    SCOPED_TRACE("dla3d" + args + "\nstderr: " + err);
+    ++exits[code];
+    if (code == 0) {
+      EXPECT_TRUE(err.empty());
+      if (args.find("--help") != std::string::npos) continue;
+      EXPECT_TRUE(format == "json" || format == "markdown");  // the last --format given
+      EXPECT_EQ(out.rfind(format == "markdown" ? "# Options\n" : "{\"version\": ", 0), 0u) << out.substr(0, 80);
+      EXPECT_EQ(out.back(), '\n');
+    } else {
+      EXPECT_EQ(code, 2);
+      EXPECT_EQ(err.rfind("dla3d: error: ", 0), 0u);
+      EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1);
+    }
+  }
+  EXPECT_GT(exits[0], 3) << "too few lists printed";
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // dla3d as a user meets it: `dla3d -n N -o PREFIX` writes every file; every bad flag or value
 // is one line on stderr, a non-zero exit and no files.
 
+#include "dla/io/mesh_writers.h"
 #include "dla/io/csv_reader.h"
 #include "dla/run/presets.h"
 #include "dla/run/run.h"
@@ -62,7 +63,7 @@ TEST(Cli, PlyFormat) {
   EXPECT_EQ(format_of("--binary"), "ply\nformat binary_little_endian");
   const CliRun bad = dla3d(dir, "-n 300 -q --ply-format text -o bad");
   EXPECT_EQ(bad.exit_code, 2);
-  EXPECT_EQ(bad.err, "dla3d: error: ply-format 'text' is not one of binary, ascii\n");
+  EXPECT_EQ(bad.err, "dla3d: error: --ply-format 'text' is not one of binary, ascii\n");
 }
 
 TEST(Cli, SameSeedSameFiles) {
@@ -345,8 +346,8 @@ TEST(Cli, ExtremeNumbersAreOneLineErrors) {
       {"--seed-at nan,0,0", "seed 1 is not finite"},
       {"--spawn box --box 0,0,0,1e300,1,1", "spawn box's max corner lies more than 1e+09 spacings"},
       {"--drift 0,0,nan", "drift length nan is not below 1"},
-      {"--tip-radius 1e300", "tip radius 1e+300 is not in [0.001, 1000]"},
-      {"--base-radius 1e-300", "base radius 1e-300 is not in [0.001, 1000]"},
+      {"--tip-radius 1e300", "--tip-radius 1e+300 is not in [0.001, 1000]"},
+      {"--base-radius 1e-300", "--base-radius 1e-300 is not in [0.001, 1000]"},
       {"--checkpoint-every nan --checkpoint c.ck", "--checkpoint-every nan is not a number of seconds"},
       {"-n 99999999999999999999", "is more than 2e9"},
       {"-n 1999999999", "needs about 96 GB of memory"},
@@ -626,7 +627,7 @@ TEST(Cli, ColonizeWritesTheSameFilesAsGrowth) {
   // The default root: the attractors' lowest point.
   EXPECT_EQ(tree.particles[0].position, dla::Vec3(0, -25, 0));
   const std::string json = read_file(dir / "tree.json");
-  EXPECT_NE(json.find("\"model\": \"colonization\""), std::string::npos);
+  EXPECT_NE(json.find("\"model\": \"colonize\""), std::string::npos);
   EXPECT_NE(json.find("\"influence\": null"), std::string::npos) << "unbounded";
   EXPECT_NE(json.find("\"particles\": " + std::to_string(tree.particles.size())), std::string::npos);
   // The same seed, the same bytes; three roots on the sphere around the attractors; 2D.

@@ -2,6 +2,7 @@
 // independent reference: files written and read back, the generalized winding number by solid
 // angles, and segment/triangle hits by brute force.
 
+#include "dla/io/mesh_writers.h"
 #include "dla/mesh/constraint.h"
 #include "dla/mesh/inside_test.h"
 #include "dla/mesh/mesh.h"

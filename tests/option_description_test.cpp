@@ -13,6 +13,7 @@
 #include "dla/look/solid.h"
 #include "dla/mesh/constraint.h"
 #include "dla/models/breakdown.h"
+#include "dla/run/output.h"
 #include "dla/models/colonization.h"
 #include "dla/models/drop.h"
 #include "dla/models/eden.h"
@@ -146,9 +147,12 @@ void expect_described_soundly(const OptionTable<Options>& table) {
           EXPECT_NE(refused.find(to_string(r)), std::string::npos) << refused;
         }
         EXPECT_EQ(refusal([&] { option.set(again, std::nan("")); }).rfind(named, 0), 0u);
-        if (about.kind == OptionKind::integer && r.max >= r.min + 1)
+        if (about.kind == OptionKind::integer && r.max >= r.min + 1) {
           EXPECT_EQ(refusal([&] { option.set(again, r.min + 0.5); }), named + detail::format_number(r.min + 0.5) + " is not a whole number");
-        if (about.special) EXPECT_EQ(refusal([&] { option.set(again, as_value(about.special->value)); }), "");
+        }
+        if (about.special) {
+          EXPECT_EQ(refusal([&] { option.set(again, as_value(about.special->value)); }), "");
+        }
         break;
       }
     }
@@ -158,6 +162,19 @@ void expect_described_soundly(const OptionTable<Options>& table) {
 TEST(OptionDescription, DlasOptionsAreDescribedSoundly) { expect_described_soundly(dla_option_table()); }
 
 TEST(OptionDescription, BreakdownsOptionsAreDescribedSoundly) { expect_described_soundly(breakdown_option_table()); }
+
+TEST(OptionDescription, EveryModelsFilesAndLookAreDescribedSoundly) {
+  expect_described_soundly(output_option_table());
+  // An override a mesh gives its default for stays unset until it is given.
+  OutputOptions files;
+  const DescribedOption<OutputOptions>* tip = find_option(output_option_table(), "tip_radius");
+  ASSERT_NE(tip, nullptr);
+  EXPECT_TRUE(tip->get(files) == OptionValue(RadiusOptions{}.tip_radius));
+  EXPECT_FALSE(files.tip_radius);
+  tip->set(files, 0.125);
+  EXPECT_EQ(files.tip_radius, 0.125);
+  EXPECT_EQ(files.look.radius.tip_radius, RadiusOptions{}.tip_radius);
+}
 
 TEST(OptionDescription, ValidateRefusesWhatTheDescriptionRefuses) {
   // A value set past the description, not through it, is refused by validate() with the
@@ -176,6 +193,16 @@ TEST(OptionDescription, ValidateRefusesWhatTheDescriptionRefuses) {
   EXPECT_EQ(refusal([&] { validate(breakdown, DlaOptions{}); }), "`walkers` 4097 is not in [1, 4096] (0: chosen by eta)");
   breakdown.walkers = 0;
   EXPECT_EQ(refusal([&] { validate(breakdown, DlaOptions{}); }), "");
+  OutputOptions files;
+  files.look.tubes.sides = 65;
+  EXPECT_EQ(refusal([&] { validate(files, 3, false); }), "`tube_sides` 65 is not in [3, 64]");
+  files = OutputOptions{};
+  files.base_radius = 2000;
+  EXPECT_EQ(refusal([&] { validate(files, 3, false); }), "`base_radius` 2000 is not in [0.001, 1000]");
+  files = OutputOptions{};
+  files.solid.voxel = -1;
+  EXPECT_EQ(refusal([&] { validate(files, 3, false); }),
+            "`solid_voxel` -1 is not in [0.001, 100] (0: a third of the thinnest branch's diameter)");
 }
 
 TEST(OptionDescription, RangesAndNamesAreWrittenAsTheFrontEndsSpellThem) {

@@ -8,6 +8,7 @@
 #include "tree_check.h"
 #include "tube_check.h"
 
+#include "dla/io/mesh_writers.h"
 #include "dla/core/random.h"
 #include "dla/io/solid_writers.h"
 #include "dla/look/look.h"

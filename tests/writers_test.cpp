@@ -1,6 +1,7 @@
 // The files: CSV reads back exactly, PLY is self-consistent, the same seed gives the same
 // bytes, and a file that cannot be written fails cleanly with nothing left behind.
 
+#include "dla/io/mesh_writers.h"
 #include "dla/io/csv_writer.h"
 #include "dla/models/dla.h"
 #include "dla/io/ply_writer.h"
@@ -201,7 +202,7 @@ TEST(RunReport, RecordsOptionsSeedAndCounts) {
   record.write_seconds = 0.5;
   write_run_report(c, run->record(), LookOptions{}, PovOptions{}, record, dir / "r.json");
   const std::string json = read_file(dir / "r.json");
-  for (const char* expected : {"\"model\": \"dla\"", "\"rng_seed\": 99", "\"stickiness\": 0.5", "\"attached\": 500",
+  for (const char* expected : {"\"model\": \"grow\"", "\"rng_seed\": 99", "\"stickiness\": 0.5", "\"attached\": 500",
                                "\"complete\": true", "\"grow_seconds\": 1", "\"particles_per_second\": 500",
                                "\"walkers\": 500", "\"fractal_dimension_gyration\": "})
     EXPECT_NE(json.find(expected), std::string::npos) << expected;

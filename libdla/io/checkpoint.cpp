@@ -4,7 +4,7 @@
 
 #include "dla/io/checkpoint.h"
 
-#include "dla/io/input_file.h"
+#include "dla/core/input_file.h"
 
 #include "output_file.h"
 

@@ -1,6 +1,6 @@
 #include "dla/io/csv_reader.h"
 
-#include "dla/io/input_file.h"
+#include "dla/core/input_file.h"
 
 #include "dla/io/csv_writer.h"
 

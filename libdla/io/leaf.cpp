@@ -5,7 +5,7 @@
 
 #include "leaf_parts.h"
 
-#include "dla/io/input_file.h"
+#include "dla/core/input_file.h"
 
 #include "dla/core/errors.h"
 

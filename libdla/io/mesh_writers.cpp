@@ -13,6 +13,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <utility>
@@ -544,6 +545,33 @@ void write_solid_glb(const Solid& solid, const Cluster& cluster, const Look& loo
 
 void write_solid_obj(const Solid& solid, const Cluster& cluster, const Look& look, const std::string& path) {
   obj_of(cluster, look, SolidPieces(solid, cluster, look), "solid", path);
+}
+
+void write_stl(const TriangleMesh& mesh, const std::string& path) {
+  detail::OutputFile out(path);
+  char header[80] = {};
+  std::snprintf(header, sizeof header, "binary STL written by dla3d, %zu triangles", mesh.triangles.size());
+  out << std::string_view(header, sizeof header);
+  const auto u32 = [&](std::uint32_t v) {
+    const char b[4] = {char(v & 0xff), char(v >> 8 & 0xff), char(v >> 16 & 0xff), char(v >> 24 & 0xff)};
+    out << std::string_view(b, 4);
+  };
+  const auto f32 = [&](double v) {
+    const float f = static_cast<float>(v);
+    std::uint32_t bits;
+    std::memcpy(&bits, &f, 4);
+    u32(bits);
+  };
+  u32(static_cast<std::uint32_t>(mesh.triangles.size()));
+  for (const auto& t : mesh.triangles) {
+    const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
+    const Vec3 n = (b - a).cross(c - a).normalized();
+    for (int i = 0; i < 3; ++i) f32(n.allFinite() ? n[i] : 0.0);
+    for (const Vec3* v : {&a, &b, &c})
+      for (int i = 0; i < 3; ++i) f32((*v)[i]);
+    out << std::string_view("\0\0", 2);
+  }
+  out.commit();
 }
 
 }  // namespace dla

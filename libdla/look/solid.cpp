@@ -649,16 +649,11 @@ Filled orient_and_fill(SolidMesh& mesh, double least) {
 }  // namespace
 
 void validate(const SolidOptions& o) {
-  if (o.voxel != 0.0) detail::require_in("`solid_voxel`, in spacings,", o.voxel, 1e-3, 100.0);
-  detail::require_in("`solid_smooth`, in spacings,", o.smooth, 0.0, 100.0);
-  detail::require_in("`solid_adaptivity`", o.adaptivity, 0.0, 1.0);
-  if (o.print_size != 0.0) detail::require_in("`print_size`, in mm,", o.print_size, 1e-3, kMaxPrintSize);
-  detail::require_in("`min_wall`, in mm,", o.min_wall, 0.0, 100.0);
+  require_in_ranges(solid_option_table(), o);
   if (o.print_size != 0.0 && o.print_size < kPrintSizeWalls * o.min_wall)
     throw InvalidInput("`print_size` " + detail::format_number(o.print_size) + " mm leaves no room for branches `min_wall` " +
                        detail::format_number(o.min_wall) + " mm thick: give at least " +
                        detail::format_number(kPrintSizeWalls * o.min_wall) + " mm, or a thinner `min_wall`");
-  if (o.memory != 0.0) detail::require_in("`solid_memory`, in MB,", o.memory, 1.0, 1e9);
   if (o.threads < 0 || o.threads > 256) throw InvalidInput("solid threads " + std::to_string(o.threads) + " is not in 0-256");
 }
 

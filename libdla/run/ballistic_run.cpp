@@ -41,7 +41,7 @@ class BallisticRun : public Run {
   }
 
   ModelRecord record() const override {
-    ModelRecord out{"ballistic", options_.rng_seed};
+    ModelRecord out{model, options_.rng_seed};
     out.options = [this](RecordWriter& w) {
       const BallisticOptions& o = options_;
       w.count("particles", o.particles).integer("dimensions", o.dimensions).number("spacing", o.spacing).points("seeds", o.seeds);

@@ -121,7 +121,7 @@ class BreakdownRun : public DlaRun {
   }
 
   ModelRecord record() const override {
-    ModelRecord out{"breakdown", options_.rng_seed};
+    ModelRecord out{model, options_.rng_seed};
     out.options = [this](RecordWriter& w) {
       record_options(w);
       const BreakdownOptions& b = breakdown_;

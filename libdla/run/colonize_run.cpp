@@ -219,7 +219,7 @@ class ColonizeRun : public Run {
   }
 
   ModelRecord record() const override {
-    ModelRecord out{"colonization", options_.rng_seed};
+    ModelRecord out{model, options_.rng_seed};
     out.options = [this](RecordWriter& w) { record_options(w); };
     return out;
   }

@@ -88,7 +88,7 @@ class DlaRun : public Run {
   }
 
   ModelRecord record() const override {
-    ModelRecord out{"dla", options_.rng_seed};
+    ModelRecord out{model, options_.rng_seed};
     out.options = [this](RecordWriter& w) { record_options(w); };
     out.statistics = [this](RecordWriter& w) {
       if (constraint_) record_constraint(w);

@@ -82,7 +82,7 @@ class DropRun : public Run {
   }
 
   ModelRecord record() const override {
-    ModelRecord out{"drop", options_.rng_seed};
+    ModelRecord out{model, options_.rng_seed};
     out.options = [this](RecordWriter& w) { record_options(w); };
     out.statistics = [this](RecordWriter& w) {
       const DropStats& s = stats_;

@@ -3,7 +3,7 @@
 
 #include "model_runs.h"
 
-#include "dla/io/input_file.h"
+#include "dla/core/input_file.h"
 
 #include <cstdio>
 
@@ -60,7 +60,7 @@ class EdenRun : public Run {
   }
 
   ModelRecord record() const override {
-    ModelRecord out{"eden", options_.rng_seed};
+    ModelRecord out{model, options_.rng_seed};
     out.options = [this](RecordWriter& w) { record_options(w); };
     return out;
   }

@@ -88,21 +88,45 @@ std::vector<std::string> file_names(const OutputOptions& output) {
   return names;
 }
 
+const OptionTable<OutputOptions>& output_option_table() {
+  using O = OutputOptions;
+  static const OptionTable<O> table = [] {
+    OptionTable<O> rows;
+    const auto add = [&rows](const OptionTable<O>& more) { rows.insert(rows.end(), more.begin(), more.end()); };
+    rows.push_back(word("ply_format", &O::ply_encoding, "Output",
+                        "the PLYs as binary (little-endian) or ascii (text: twice the size, three times slower to write)"));
+    add(nested(png_option_table(), &O::png));
+    rows.push_back(override_of(*find_option(pov_option_table(), "up"), &O::up));
+    for (const DescribedOption<LookOptions>& row : look_option_table()) {
+      const std::string_view name = row.about.name;
+      if (name == "radius") rows.push_back(override_of(row, &O::radius));
+      else if (name == "base_radius") rows.push_back(override_of(row, &O::base_radius));
+      else if (name == "tip_radius") rows.push_back(override_of(row, &O::tip_radius));
+      else add(nested(OptionTable<LookOptions>{row}, &O::look));
+      if (name == "color_by") add(nested(OptionTable<PovOptions>{*find_option(pov_option_table(), "look")}, &O::pov));
+    }
+    rows.push_back(integer("lod", &O::lods, closed(0, kMaxLods), "", "Look",
+                           "glb: levels of detail beside it, PREFIX_lod1.glb on, each with about half the triangles "
+                           "of the one before"));
+    add(nested(instance_option_table(), &O::instances));
+    add(nested(solid_option_table(), &O::solid));
+    return rows;
+  }();
+  return table;
+}
+
 void validate(const OutputOptions& f, int dimensions, bool with_mesh) {
   LookOptions look = f.look;
   if (f.radius) look.radius.model = *f.radius;
   if (f.base_radius) look.radius.base_radius = *f.base_radius;
   if (f.tip_radius) look.radius.tip_radius = *f.tip_radius;
-  validate(look);
-  validate(f.instances);
+  require_in_ranges(output_option_table(), f);
   if (f.formats.svg && dimensions != 2)
     throw InvalidInput("`formats` svg draws 2D growth: add `dimensions` 2, or leave svg out");
   if (f.formats.png && dimensions != 2)
     throw InvalidInput("`formats` png draws 2D growth: add `dimensions` 2, or leave png out");
-  validate(f.png);
-  validate(f.solid);
-  if (f.lods < 0 || f.lods > kMaxLods)
-    throw InvalidInput("`lod` " + std::to_string(f.lods) + " is not in 0-" + std::to_string(kMaxLods));
+  validate(f.png);    // its margin
+  validate(f.solid);  // its print size against its walls
   if (!with_mesh) {
     if (look.radius.model == RadiusModel::boundary)
       throw InvalidInput("`radius` boundary measures to a constraint mesh: give one with `stl`");

@@ -4,7 +4,7 @@
 #include "model_runs.h"
 
 #include "dla/core/particle_feed.h"
-#include "dla/io/input_file.h"
+#include "dla/core/input_file.h"
 #include "dla/look/attributes.h"
 #include "dla/mesh/mesh.h"
 

@@ -25,7 +25,15 @@ py::tuple tubes(Result& result, std::optional<int> sides, std::optional<double> 
   if (tolerance) options.tolerance = *tolerance;
   if (min_branch) options.min_branch = *min_branch;
   if (uv_scale) options.uv_scale = *uv_scale;
-  validate(options);
+  try {
+    validate(options);
+  } catch (const InvalidInput& e) {
+    // Result.tubes() spells its keywords without the tube_ of a run's: sides=, not tube_sides=.
+    std::string message = e.what();
+    for (std::size_t at = message.find("`tube_"); at != std::string::npos; at = message.find("`tube_", at))
+      message.erase(at + 1, 5);
+    throw InvalidInput(message);
+  }
   std::vector<float> positions, normals, uvs, tangents;
   std::vector<std::uint32_t> triangles;
   std::vector<std::int32_t> particles;

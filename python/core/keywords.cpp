@@ -169,17 +169,11 @@ std::string mesh(const char* name, py::handle value, Given& given) {
 }
 
 const Table<SolidOptions>& solid_keywords() {
-  using O = SolidOptions;
-  static const Table<O> t = {
-      {"solid_shape", [](O& o, py::handle v, Given&) { o.shape = word<SolidShape>("solid_shape", v); }},
-      {"solid_voxel", [](O& o, py::handle v, Given&) { o.voxel = number("solid_voxel", v); }},
-      {"solid_smooth", [](O& o, py::handle v, Given&) { o.smooth = number("solid_smooth", v); }},
-      {"solid_adaptivity", [](O& o, py::handle v, Given&) { o.adaptivity = number("solid_adaptivity", v); }},
-      {"print_size", [](O& o, py::handle v, Given&) { o.print_size = number("print_size", v); }},
-      {"min_wall", [](O& o, py::handle v, Given&) { o.min_wall = number("min_wall", v); }},
-      {"solid_join", [](O& o, py::handle v, Given&) { o.join_seeds = flag("solid_join", v); }},
-      {"solid_memory", [](O& o, py::handle v, Given&) { o.memory = number("solid_memory", v); }},
-  };
+  static const Table<SolidOptions> t = [] {
+    Table<SolidOptions> table;
+    add_described(table, solid_option_table(), [](SolidOptions& o) -> SolidOptions& { return o; });
+    return table;
+  }();
   return t;
 }
 

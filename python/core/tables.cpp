@@ -11,32 +11,11 @@ namespace {
 //! the OutputOptions that `files` gives of the run's options.
 template <class Options, class Files>
 void add_look(Table<Options>& t, Files files) {
-  t["ply_format"] = [=](Options& o, py::handle v, Given&) { files(o).ply_encoding = word<PlyEncoding>("ply_format", v); };
-  t["png_scale"] = [=](Options& o, py::handle v, Given&) { files(o).png.pixels_per_spacing = number("png_scale", v); };
-  t["png_bands"] = [=](Options& o, py::handle v, Given&) { files(o).png.bands = whole_int("png_bands", v); };
-  t["radius"] = [=](Options& o, py::handle v, Given&) { files(o).radius = word<RadiusModel>("radius", v); };
-  t["base_radius"] = [=](Options& o, py::handle v, Given&) { files(o).base_radius = number("base_radius", v); };
-  t["tip_radius"] = [=](Options& o, py::handle v, Given&) { files(o).tip_radius = number("tip_radius", v); };
-  t["pipe_exponent"] = [=](Options& o, py::handle v, Given&) { files(o).look.radius.pipe_exponent = number("pipe_exponent", v); };
-  t["color_by"] = [=](Options& o, py::handle v, Given&) { files(o).look.color_by = word<ColorBy>("color_by", v); };
-  t["look"] = [=](Options& o, py::handle v, Given&) { files(o).pov.style = word<PovStyle>("look", v); };
-  t["tube_sides"] = [=](Options& o, py::handle v, Given&) { files(o).look.tubes.sides = whole_int("tube_sides", v); };
-  t["tube_tolerance"] = [=](Options& o, py::handle v, Given&) { files(o).look.tubes.tolerance = number("tube_tolerance", v); };
-  t["uv_scale"] = [=](Options& o, py::handle v, Given&) { files(o).look.tubes.uv_scale = number("uv_scale", v); };
-  t["lod"] = [=](Options& o, py::handle v, Given&) { files(o).lods = whole_int("lod", v); };
+  add_described(t, output_option_table(), files);
   t["leaf"] = [=](Options& o, py::handle v, Given&) { files(o).leaf = path_text("leaf", v); };
-  t["tube_min_branch"] = [=](Options& o, py::handle v, Given&) {
-    files(o).look.tubes.min_branch = whole_int("tube_min_branch", v);
-  };
-  t["instances"] = [=](Options& o, py::handle v, Given&) { files(o).instances.set = word<InstanceSet>("instances", v); };
-  t["tips_within"] = [=](Options& o, py::handle v, Given&) { files(o).instances.within = number("tips_within", v); };
   t["tips_exclude_paint"] = [=](Options& o, py::handle v, Given&) {
     files(o).instances.exclude_paint = parse_paint(text("tips_exclude_paint", v), "tips_exclude_paint");
   };
-  t["tips_every"] = [=](Options& o, py::handle v, Given&) { files(o).instances.every = whole_int("tips_every", v); };
-  t["up"] = [=](Options& o, py::handle v, Given&) { files(o).up = word<Axis>("up", v); };
-  for (const auto& [name, set] : solid_keywords())
-    t[name] = [set = set, files](Options& o, py::handle v, Given& g) { set(files(o).solid, v, g); };
 }
 
 template <class Options>

@@ -120,10 +120,11 @@ inline std::string to_string(const OptionValue& value) {
 
 //! Throws InvalidInput "`eta` 11 is not in [0, 10]" unless `value` is in the option's range or
 //! is its special value.
-inline void require_in(const OptionDescription& about, double value) {
+//! `shown` is the value as the message writes it (default "%g"; a whole number exactly).
+inline void require_in(const OptionDescription& about, double value, const std::string& shown = {}) {
   if (!about.range || about.range->contains(value) || (about.special && value == about.special->value)) return;
-  std::string message = "`" + std::string(about.name) + "` " + detail::format_number(value) + " is not in " +
-                        to_string(*about.range);
+  std::string message = "`" + std::string(about.name) + "` " + (shown.empty() ? detail::format_number(value) : shown) +
+                        " is not in " + to_string(*about.range);
   if (about.special)
     message += " (" + detail::format_number(about.special->value) + ": " + std::string(about.special->means) + ")";
   throw InvalidInput(message);
@@ -181,7 +182,7 @@ DescribedOption<Options> integer(std::string_view name, Whole Options::*member, 
   return {about,
           [about, member](Options& o, const OptionValue& v) {
             const double value = detail::number_of(about.name, v);
-            require_in(about, value);  // first: the range keeps the casts below defined
+            require_in(about, value, to_string(v));  // first: the range keeps the casts below defined
             if (value != static_cast<double>(static_cast<std::int64_t>(value)))
               throw InvalidInput("`" + std::string(about.name) + "` " + to_string(v) + " is not a whole number");
             o.*member = static_cast<Whole>(value);
@@ -231,6 +232,33 @@ OptionTable<Outer> nested(const OptionTable<Inner>& table, Inner Outer::*part) {
     out.push_back({row.about, [set = row.set, part](Outer& o, const OptionValue& v) { set(o.*part, v); },
                    [get = row.get, part](const Outer& o) { return get(o.*part); }});
   return out;
+}
+
+namespace detail {
+//! A value an option's row gave back, as the member's type: a number, or a mode's word parsed.
+template <class Value>
+Value value_as(const OptionValue& value) {
+  if constexpr (has_words<Value>) return parse_word<Value>(std::get<std::string>(value));
+  else return static_cast<Value>(std::get<double>(value));
+}
+}  // namespace detail
+
+//! `row`, which describes a member of `Inner`, as an option of `Outer` that sets `member`: a
+//! value left unset unless given, because another input (a mesh) gives its default then.
+//! Checked as `row` checks it; unset, it shows `Inner`'s default.
+template <class Outer, class Inner, class Value>
+DescribedOption<Outer> override_of(const DescribedOption<Inner>& row, std::optional<Value> Outer::*member) {
+  return {row.about,
+          [row, member](Outer& o, const OptionValue& v) {
+            Inner scratch;
+            row.set(scratch, v);
+            o.*member = detail::value_as<Value>(row.get(scratch));
+          },
+          [row, member](const Outer& o) {
+            if (!(o.*member)) return row.get(Inner{});
+            if constexpr (has_words<Value>) return OptionValue(std::string(to_string(*(o.*member))));
+            else return OptionValue(static_cast<double>(*(o.*member)));
+          }};
 }
 
 }  // namespace dla

@@ -6,6 +6,7 @@
 #include "dla/io/leaf.h"
 #include "dla/look/instances.h"
 #include "dla/look/look.h"
+#include "dla/mesh/mesh.h"
 
 #include <cstddef>
 #include <string>
@@ -47,5 +48,9 @@ GlbWritten write_glb(const Cluster& cluster, const Look& look, const std::string
 //! Writes PATH as OBJ: `v x y z [r g b]`, `vn`, `vt u 1-v`, and `f v/vt/vn` triangles, one
 //! object. Throws IOError.
 void write_obj(const Cluster& cluster, const Look& look, const std::string& path);
+
+//! Writes a mesh as binary STL (its header does not begin with "solid"), as `dla3d convert`
+//! does. Throws IOError.
+void write_stl(const TriangleMesh& mesh, const std::string& path);
 
 }  // namespace dla

@@ -6,6 +6,7 @@
 
 #include "dla/core/cluster.h"
 #include "dla/core/errors.h"
+#include "dla/core/option_description.h"
 #include "dla/core/options.h"
 
 #include <string>
@@ -21,10 +22,19 @@ struct PngOptions {
   int margin = 8;                   //!< pixels around the structure, 0 to 1000
 };
 
+//! The picture's options, described once (option_description.h); the margin is the library's.
+inline const OptionTable<PngOptions>& png_option_table() {
+  using O = PngOptions;
+  static const OptionTable<O> table{
+      real("png_scale", &O::pixels_per_spacing, closed(1e-6, 64), "pixels a spacing", "Output", "png: the scale"),
+      integer("png_bands", &O::bands, closed(1, 1e6), "", "Output",
+              "png: times the white, grey, black bands cycle over the attach order"),
+  };
+  return table;
+}
+
 inline void validate(const PngOptions& o) {
-  detail::require_in("`png_scale`", o.pixels_per_spacing, 1e-6, 64.0);
-  if (o.bands < 1 || o.bands > 1'000'000)
-    throw InvalidInput("`png_bands` " + std::to_string(o.bands) + " is not in [1, 1e6]");
+  require_in_ranges(png_option_table(), o);
   if (o.margin < 0 || o.margin > 1000) throw InvalidInput("png margin " + std::to_string(o.margin) + " is not in [0, 1000]");
 }
 

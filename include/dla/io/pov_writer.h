@@ -9,6 +9,7 @@
 #include "dla/look/instances.h"
 #include "dla/look/look.h"
 #include "dla/mesh/mesh.h"
+#include "dla/core/option_description.h"
 #include "dla/core/words.h"
 
 #include <string>
@@ -44,6 +45,19 @@ struct PovOptions {
 //! Throws InvalidInput if the prefix's file name has a double quote, a backslash or a control
 //! character: POV-Ray's #include cannot name such a file (spaces and other characters work).
 void validate_pov_prefix(const std::string& prefix);
+
+//! The scene's options a user sets, described once (option_description.h).
+inline const OptionTable<PovOptions>& pov_option_table() {
+  using O = PovOptions;
+  static const OptionTable<O> table{
+      word("look", &O::style, "Look",
+           "POV-Ray: branches (sphere sweeps), blob (metaballs) or glow (emissive branches on black, brightest "
+           "where the colour value is highest)"),
+      word("up", &O::up, "Output",
+           "POV-Ray: the axis that is up in the picture; with a mesh, default: its longest side's"),
+  };
+  return table;
+}
 
 //! Writes PREFIX.pov, PREFIX.inc and PREFIX_growth.inc (and PREFIX_mesh.inc with a mesh,
 //! PREFIX_tips.inc with `options.tips`); the .pov includes them by their file names, so they

@@ -105,7 +105,7 @@ class RecordWriter {
 struct ModelRecord {
   ModelRecord(std::string_view model, std::uint64_t rng_seed) : model(model), rng_seed(rng_seed) {}
 
-  std::string_view model;  //!< "model": dla, colonization, eden, drop or ballistic
+  std::string_view model;  //!< "model": the registry's name (Run::model): grow, colonize, eden, ...
   std::uint64_t rng_seed;
   //! Writes the fields of "options": what grows the same structure again.
   std::function<void(RecordWriter&)> options;

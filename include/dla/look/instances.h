@@ -8,6 +8,7 @@
 #include "dla/look/attributes.h"
 #include "dla/index/nearest_points.h"
 #include "dla/mesh/paint.h"
+#include "dla/core/option_description.h"
 #include "dla/core/words.h"
 
 #include <algorithm>
@@ -50,11 +51,23 @@ inline bool picks_every_tip(const InstanceOptions& options) {
          options.every == 1 && !options.exclude_paint;
 }
 
-inline void validate(const InstanceOptions& options) {
-  if (!(options.within >= 0.0)) throw InvalidInput("tips within " + detail::format_number(options.within) + " is not >= 0");
-  if (options.every < 1 || options.every > 1'000'000)
-    throw InvalidInput("tips every " + std::to_string(options.every) + " is not in 1-1000000");
+//! Which particles are instancing points, described once (option_description.h); the paint
+//! that leaves some out is the front ends' (a colour and a tolerance).
+inline const OptionTable<InstanceOptions>& instance_option_table() {
+  using O = InstanceOptions;
+  static const OptionTable<O> table{
+      word("instances", &O::set, "Look",
+           "tips: which particles get instancing points and the scene's DLA_Tip, tips or all (object fill)"),
+      real("tips_within", &O::within, closed(0, 1e9), "spacings", "Look",
+           "tips: only points within this of the mesh's surface",
+           SpecialValue{std::numeric_limits<double>::infinity(), "all of them"}),
+      integer("tips_every", &O::every, closed(1, 1e6), "", "Look",
+              "tips: keep one point in K, in attach order (sparser leaves)"),
+  };
+  return table;
 }
+
+inline void validate(const InstanceOptions& options) { require_in_ranges(instance_option_table(), options); }
 
 struct Instance {
   Vec3 position;

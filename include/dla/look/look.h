@@ -17,10 +17,21 @@ struct LookOptions {
   TubeOptions tubes;                  //!< the glTF and OBJ tube meshes
 };
 
-inline void validate(const LookOptions& options) {
-  validate(options.radius);
-  validate(options.tubes);
+//! The look's options, described once (option_description.h): the radii, the colour, the tubes.
+inline const OptionTable<LookOptions>& look_option_table() {
+  static const OptionTable<LookOptions> table = [] {
+    OptionTable<LookOptions> rows = nested(radius_option_table(), &LookOptions::radius);
+    rows.push_back(word("color_by", &LookOptions::color_by, "Look",
+                        "colour the glb, obj, svg and POV-Ray scene by none, age, depth, seed, distance (to the "
+                        "mesh, or to the seeds) or current (what flows through it: a discharge's main channel "
+                        "brightest)"));
+    for (DescribedOption<LookOptions>& row : nested(tube_option_table(), &LookOptions::tubes)) rows.push_back(row);
+    return rows;
+  }();
+  return table;
 }
+
+inline void validate(const LookOptions& options) { require_in_ranges(look_option_table(), options); }
 
 //! A structure's look: its options and what they give for each particle.
 struct Look {

@@ -5,6 +5,7 @@
 //! uniform`). See docs/look.md.
 
 #include "dla/look/attributes.h"
+#include "dla/core/option_description.h"
 #include "dla/core/words.h"
 
 #include <algorithm>
@@ -39,11 +40,23 @@ struct RadiusOptions {
                                //!< 3 is Murray's law
 };
 
-inline void validate(const RadiusOptions& options) {
-  detail::require_in("base radius", options.base_radius, kMinBranchRadius, kMaxBranchRadius);
-  detail::require_in("tip radius", options.tip_radius, kMinBranchRadius, kMaxBranchRadius);
-  detail::require_in("pipe exponent", options.pipe_exponent, 1.0, 10.0);
+//! The branch thickness, described once (option_description.h).
+inline const OptionTable<RadiusOptions>& radius_option_table() {
+  using O = RadiusOptions;
+  static const OptionTable<O> table{
+      word("radius", &O::model, "Look",
+           "branch thickness: taper, pipe, boundary (needs a mesh), seed-distance or uniform; with a mesh, default pipe"),
+      real("base_radius", &O::base_radius, closed(kMinBranchRadius, kMaxBranchRadius), "spacings", "Look",
+           "the thickest branch's radius; with a mesh, default 3"),
+      real("tip_radius", &O::tip_radius, closed(kMinBranchRadius, kMaxBranchRadius), "spacings", "Look",
+           "the finest branch's radius; with a mesh, default 0.05"),
+      real("pipe_exponent", &O::pipe_exponent, closed(1, 10), "", "Look",
+           "pipe: e in r = tip * (descendants + 1)^(1/e); 2 keeps the area, 3 is Murray's law"),
+  };
+  return table;
 }
+
+inline void validate(const RadiusOptions& options) { require_in_ranges(radius_option_table(), options); }
 
 //! Where particle i lies between the tip radius (0) and the base radius (1) under the model.
 //! The largest distances of the structure (Attributes::boundary_reach, seed_reach) map to the

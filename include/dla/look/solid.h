@@ -7,6 +7,7 @@
 //! docs/solid.md.
 
 #include "dla/core/cluster.h"
+#include "dla/core/option_description.h"
 #include "dla/core/options.h"
 #include "dla/core/stop.h"
 #include "dla/core/words.h"
@@ -64,6 +65,30 @@ struct SolidOptions {
   //! Threads, 1-256, or 0 for every core; the solid does not depend on them.
   int threads = 0;
 };
+
+//! The solid's options, described once (option_description.h); its threads are the run's.
+inline const OptionTable<SolidOptions>& solid_option_table() {
+  using O = SolidOptions;
+  static constexpr std::string_view group = "Solid (stl, 3mf, vdb, solid-glb, solid-obj)";
+  static const OptionTable<O> table{
+      word("solid_shape", &O::shape, group,
+           "what each particle adds: branches (tapered capsules to its parent), spheres (with --solid-smooth: "
+           "metaballs) or cubes (lattice sites)"),
+      real("solid_voxel", &O::voxel, closed(1e-3, 100), "spacings", group, "the voxel's edge",
+           SpecialValue{0, "a third of the thinnest branch's diameter"}),
+      real("solid_smooth", &O::smooth, closed(0, 100), "spacings", group,
+           "round inner corners to this radius and web branches closer than twice it: the organic look"),
+      real("solid_adaptivity", &O::adaptivity, closed(0, 1), "", group, "merge flat parts into larger triangles"),
+      real("print_size", &O::print_size, closed(1e-3, kMaxPrintSize), "mm", group,
+           "scale the solid so its longest side is this", SpecialValue{0, "the scene's units"}),
+      real("min_wall", &O::min_wall, closed(0, 100), "mm", group,
+           "with --print-size: thicken every branch thinner than this"),
+      flag("solid_join", &O::join_seeds, group, "join the seeds' trees by bars, so several seeds print as one piece"),
+      real("solid_memory", &O::memory, closed(1, 1e9), "MB", group, "megabytes the solid may take",
+           SpecialValue{0, "half the free memory"}),
+  };
+  return table;
+}
 
 //! Throws InvalidInput, naming the option, for a value out of range.
 void validate(const SolidOptions& options);

@@ -9,6 +9,7 @@
 
 #include "dla/look/attributes.h"
 #include "dla/look/strands.h"
+#include "dla/core/option_description.h"
 
 #include <Eigen/Core>
 
@@ -32,16 +33,22 @@ struct TubeOptions {
                            //!< tube's radius), so a square texture keeps its aspect on the trunk
 };
 
-inline void validate(const TubeOptions& options) {
-  if (options.sides < 3 || options.sides > 64)
-    throw InvalidInput("tube sides " + std::to_string(options.sides) + " is not in 3-64");
-  detail::require_in("tube tolerance", options.tolerance, 0.0, 10.0);
-  if (options.min_branch < 1 || options.min_branch > 1000)
-    throw InvalidInput("tube min branch " + std::to_string(options.min_branch) + " is not in 1-1000");
-  if (options.uv_scale != 0.0 && !(options.uv_scale >= 1e-9 && options.uv_scale <= 1e9))
-    throw InvalidInput("`uv_scale` " + detail::format_number(options.uv_scale) +
-                       " is neither 0 (the base circumference) nor in [1e-9, 1e9]");
+//! The tube meshes' resolution, described once (option_description.h).
+inline const OptionTable<TubeOptions>& tube_option_table() {
+  using O = TubeOptions;
+  static const OptionTable<O> table{
+      integer("tube_sides", &O::sides, closed(3, 64), "", "Look", "glb, obj: vertices around a tube"),
+      real("tube_tolerance", &O::tolerance, closed(0, 10), "spacings", "Look",
+           "glb, obj: leave out strand points the tube passes within this of"),
+      integer("tube_min_branch", &O::min_branch, closed(1, 1000), "particles", "Look",
+              "glb, obj: leave out branches of fewer particles (counting all that grow from them)"),
+      real("uv_scale", &O::uv_scale, closed(1e-9, 1e9), "scene units", "Look",
+           "glb, obj: strand length per unit of the texture's v", SpecialValue{0, "the base circumference"}),
+  };
+  return table;
 }
+
+inline void validate(const TubeOptions& options) { require_in_ranges(tube_option_table(), options); }
 
 //! One strand's tube: vertices with normals, texture coordinates and tangents, each tied to
 //! the particle whose attributes it carries, and outward-facing triangles of local vertex

@@ -47,8 +47,6 @@ std::vector<Vec3> read_points(const std::string& path);
 //! The reader behind read_points(), from bytes, the format named by `extension`.
 std::vector<Vec3> parse_points(std::string_view bytes, std::string_view extension, const std::string& name);
 
-//! Writes a binary STL (its header does not begin with "solid"). Throws IOError.
-void write_stl(const TriangleMesh& mesh, const std::string& path);
 
 //! Adds `more`'s vertices and triangles to `mesh`, as separate parts of one mesh (colours: a
 //! part without them is white).

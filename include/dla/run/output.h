@@ -65,6 +65,13 @@ struct OutputOptions {
   std::optional<double> base_radius, tip_radius;
 };
 
+//! The files' and the look's options with a single value, described once
+//! (option_description.h): the tables of PngOptions, PovOptions, LookOptions, InstanceOptions
+//! and SolidOptions as options of OutputOptions, those a mesh gives a default for setting its
+//! overrides (`up`, `radius`, `base_radius`, `tip_radius`). The file names, the formats, the
+//! leaf and the paint are the front ends'.
+const OptionTable<OutputOptions>& output_option_table();
+
 //! Throws InvalidInput for levels of detail or a leaf without the glb they belong to: checked
 //! where the formats are final, before growth on the command line and at write() in Python.
 //! The leaf file itself is read, once, by prepare_run (Run::leaf).

@@ -71,7 +71,7 @@ class Run {
     return false;
   }
 
-  std::string_view model;          //!< grow (DLA), colonize, eden, drop or ballistic
+  std::string_view model;          //!< its name in the registry (models()): grow, colonize, ...
   //! The files, with the defaults the mesh gives resolved (the up axis, the radii).
   OutputOptions files;
   std::size_t total = 0;           //!< particles at most, for a progress bar

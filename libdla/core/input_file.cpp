@@ -1,7 +1,7 @@
 // Input files read within bounds (input_file.h).
 
 #include "dla/core/memory.h"
-#include "dla/io/input_file.h"
+#include "dla/core/input_file.h"
 
 #include "dla/core/errors.h"
 #include "dla/core/options.h"
