@@ -8,14 +8,17 @@ namespace {
 
 struct ColonizeWords {
   std::vector<std::string> root_at;
-  std::string attractor_region, attractor_center, attractor_box, attractor_paint, noise, tropism, roots_in, collision, venation;
+  std::string attractor_center, attractor_box, attractor_paint, noise, tropism;
   long long max_nodes, attractor_count, max_iterations, root_count = 0;
   CLI::Option *attractors, *roots;
+  std::vector<OptionDescription> described;
+  std::unique_ptr<DescribedOptions<ColonizeRunOptions>> options;  // colonize_option_table()
   std::unique_ptr<SeedWords> seeds;
   std::unique_ptr<OutputWords> files;
 };
 
 void finish(ColonizeRunOptions& c, const ColonizeWords& w) {
+  w.options->finish(c);
   w.files->finish(c.files);
   validate(c.files, c.colonization.dimensions, !c.stl.empty());
   if (w.max_nodes < 1) throw InvalidInput("--max-nodes " + std::to_string(w.max_nodes) + " is not at least 1");
@@ -26,11 +29,7 @@ void finish(ColonizeRunOptions& c, const ColonizeWords& w) {
   c.colonization.max_iterations = static_cast<std::size_t>(w.max_iterations);
   c.attractors.count = static_cast<std::size_t>(w.attractor_count);
   c.root_count = static_cast<std::size_t>(w.root_count);
-  c.attractors.region = parse_word<AttractorRegion>(w.attractor_region);
-  c.colonization.venation = parse_word<Venation>(w.venation);
   c.sample_attractors = w.attractors->count() > 0 && !c.attractors_from.empty();
-  c.roots_in = parse_word<RootRegion>(w.roots_in);
-  c.collision = parse_word<CollisionMode>(w.collision);
   if (!w.attractor_center.empty()) c.attractors.center = parse_vec3("--attractor-center", w.attractor_center);
   if (!w.attractor_box.empty()) {
     const Box box = parse_box("--attractor-box", w.attractor_box);
@@ -58,7 +57,6 @@ Subcommand add_colonize_command(CLI::App& app, const Model& model) {
   CLI::App* command = app.add_subcommand(std::string(model.name), std::string(model.summary));
   command->get_formatter()->column_width(34);
   const char* colonizing = "Colonization";
-  w->attractor_region = std::string(to_string(c->attractors.region));
   w->max_nodes = static_cast<long long>(c->colonization.max_nodes);
   w->attractor_count = static_cast<long long>(c->attractors.count);
   w->max_iterations = static_cast<long long>(c->colonization.max_iterations);
@@ -68,47 +66,29 @@ Subcommand add_colonize_command(CLI::App& app, const Model& model) {
       ->capture_default_str()->group(colonizing);
   command->add_option("--spacing", c->colonization.spacing, "the step: distance between a node and its parent, "
                                                              "[1e-25, 1e25]")->capture_default_str()->group(colonizing);
-  command->add_option("--kill-distance", c->colonization.kill_distance, "an attractor dies once a node is this close, "
-                                                                         "in spacings, [1, 1e6]")
-      ->capture_default_str()->group(colonizing);
   command->add_option("--influence", c->colonization.influence, "an attractor pulls its nearest node only this close, "
                                                                  "in spacings, above the kill distance; default: any, and for --venation closed 4 "
                                                                  "times --kill-distance")
       ->group(colonizing);
-  w->venation = std::string(to_string(c->colonization.venation));
-  command->add_option("--venation", w->venation, "open: an attractor pulls its nearest node, a tree; closed: every "
-                                                 "node of its relative neighbourhood, and veins that reach it join: "
-                                                 "loops (Runions et al.)")
-      ->capture_default_str()->group(colonizing);
   command->add_option("--noise", w->noise, "each new node moves by up to A spacings, in features S spacings wide; "
                                            "A in [0, 10], S > 0")->type_name("A,S")->group(colonizing);
   command->add_option("--tropism", w->tropism, "added to each step's unit direction (gravity, light), "
                                                "each in [-10, 10]")->type_name("X,Y,Z")->group(colonizing);
-  command->add_option("--dimensions", c->colonization.dimensions, "3, or 2 for venation in the plane z = 0")
-      ->capture_default_str()->group(colonizing);
   command->add_option("--rng-seed", c->colonization.rng_seed, "seeds the attractors, the roots and the noise")
       ->capture_default_str()->group(colonizing);
   const char* attracting = "Attractors and roots";
   w->attractors = command->add_option("--attractors", w->attractor_count, "how many attractors, [1, 1e8]")
                       ->capture_default_str()->group(attracting);
-  CLI::Option* attractors_in =
-      command->add_option("--attractors-in", w->attractor_region, "where they lie: sphere, box, mesh (inside "
-                                                                  "the --stl vessel, else the --collide mesh) or "
-                                                                  "surface (on it)")
-          ->capture_default_str()->group(attracting);
+  w->options = std::make_unique<DescribedOptions<ColonizeRunOptions>>(*command, colonize_option_table(), *c, w->described);
+  CLI::Option* attractors_in = command->get_option("--attractors-in");
   command->add_option("--attractors-from", c->attractors_from, "read them from a file: CSV rows x,y,z (or a "
                                                                "header naming x, y, z) or PLY points; with "
                                                                "--attractors N, a seeded sample of N")
       ->type_name("FILE")->group(attracting)->excludes(attractors_in);
   command->add_option("--attractor-center", w->attractor_center, "the sphere's centre; default the origin")
       ->type_name("X,Y,Z")->group(attracting);
-  command->add_option("--attractor-radius", c->attractors.radius, "the sphere's radius, scene units, > 0")
-      ->capture_default_str()->group(attracting);
   command->add_option("--attractor-box", w->attractor_box, "the box; default -50,-50,-50,50,50,50")
       ->type_name("X0,Y0,Z0,X1,Y1,Z1")->group(attracting);
-  command->add_option("--attractor-falloff", c->attractors.falloff, "grading towards the sphere's centre, "
-                                                                    "[0, 100]; 0 is uniform")
-      ->capture_default_str()->group(attracting);
   command->add_option("--attractor-paint", w->attractor_paint, "with --attractors-in surface: only on the part "
                                                                "of the --stl or --collide mesh painted this colour "
                                                                "(a name or ff8000), within TOLERANCE per channel, "
@@ -120,14 +100,6 @@ Subcommand add_colonize_command(CLI::App& app, const Model& model) {
           ->type_name("X,Y,Z")->allow_extra_args(false)->group(attracting);
   w->roots = command->add_option("--roots", w->root_count, "K roots at random, where --roots-in says")
                  ->type_name("K")->group(attracting)->excludes(root_at_option);
-  w->roots_in = std::string(to_string(c->roots_in));
-  command->add_option("--roots-in", w->roots_in, "--roots K: on the sphere around the attractors, in the mesh "
-                                                "(the vessel, else the collision mesh) or on its surface")
-      ->capture_default_str()->group(attracting);
-  command->add_option("--roots-scale", c->roots_scale, "--roots-in sphere: the roots' sphere is this times the attractors', "
-                                                       "[0.01, 100]")
-      ->capture_default_str()->group(attracting);
-  w->collision = std::string(to_string(c->collision));
   const char* colliding = "Vessel and collision";
   command->add_option("--stl", c->stl, "a vessel (STL, OFF, OBJ or PLY) that growth stays inside: a "
                                        "step that would cross its surface is refused")
@@ -135,8 +107,6 @@ Subcommand add_colonize_command(CLI::App& app, const Model& model) {
   command->add_option("--collide", c->collide, "a collision mesh (STL, OFF, OBJ or PLY) that new nodes "
                                                "are pushed out of or stuck to")
       ->type_name("FILE")->group(colliding);
-  command->add_option("--collision", w->collision, "push (growth flows around the mesh) or stick (it crawls over its surface)")
-      ->capture_default_str()->group(colliding);
   w->seeds = std::make_unique<SeedWords>(
       *command, c->seeds, colliding, root_at_option,
       "roots on the mesh (the vessel, else the collision mesh): K far apart, or all: the surface, the paint or the "
@@ -144,11 +114,13 @@ Subcommand add_colonize_command(CLI::App& app, const Model& model) {
       "roots over the whole surface (or the painted part), a spacing apart");
   add_refused_mesh_controls(*command, colliding, "colonize");
   w->files = std::make_unique<OutputWords>(*command, c->files, *quiet);
-  return {command, [w, c, quiet](CommandLine& line, const std::vector<std::string>&) {
+  return {command,
+          [w, c, quiet](CommandLine& line, const std::vector<std::string>&) {
             finish(*c, *w);
             line.quiet = *quiet;
             line.run = *c;
-          }};
+          },
+          w->described};
 }
 
 }  // namespace dla::cli

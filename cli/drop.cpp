@@ -9,7 +9,9 @@ namespace {
 
 struct DropWords {
   SeededWords seeded;
-  std::string zone, zone_box, bias = "uniform", side, constraint;
+  std::string zone_box, bias = "uniform", side, constraint;
+  std::vector<OptionDescription> described;
+  std::unique_ptr<DescribedOptions<DropOptions>> options;  // drop_option_table()
   std::unique_ptr<SeedWords> seeds;
   std::unique_ptr<OutputWords> files;
 };
@@ -18,7 +20,7 @@ void finish(DropRunOptions& d, const DropWords& w) {
   d.drop.particles = parse_count("--particles", w.seeded.particles);
   if (w.seeded.spacing->count()) d.spacing = d.drop.spacing;
   if (w.seeded.seed_at_option->count()) d.seed_at = parse_points("--seed-at", w.seeded.seed_at);
-  d.drop.zone = parse_word<DropZone>(w.zone);
+  w.options->finish(d.drop);
   d.drop.bias = parse_drop_bias(w.bias);
   if (!w.zone_box.empty()) d.drop.zone_box = parse_box("--zone-box", w.zone_box);
   d.constraint.side = parse_word<Side>(w.side);
@@ -38,22 +40,14 @@ Subcommand add_drop_command(CLI::App& app, const Model& model) {
   CLI::App* command = app.add_subcommand(std::string(model.name), std::string(model.summary));
   command->get_formatter()->column_width(34);
   const char* dropping = "Random drops";
-  w->zone = std::string(to_string(d->drop.zone));
   w->side = std::string(to_string(d->constraint.side));
   w->constraint = std::string(to_string(d->constraint.mode));
   add_seeded_options(*command, dropping, w->seeded, d->drop.dimensions, d->drop.spacing, d->drop.rng_seed,
                      "; with a mesh, default: its longest side / 100");
-  command->add_option("--stickiness", d->drop.stickiness, "chance of sticking on reaching the structure, "
-                                                          "[1e-4, 1]; else a random step and again")
-      ->capture_default_str()->group(dropping);
-  command->add_option("--zone", w->zone, "where particles drop: ball (a disk in 2D), box, or mesh (inside --stl)")
-      ->capture_default_str()->group(dropping);
+  w->options = std::make_unique<DescribedOptions<DropOptions>>(*command, drop_option_table(), d->drop, w->described);
   command->add_option("--zone-radius", d->drop.zone_radius, "ball: a fixed radius about the seeds' centre, "
                                                             "scene units; default: growing, see --zone-margin")
       ->group(dropping);
-  command->add_option("--zone-margin", d->drop.zone_margin, "growing ball: spacings beyond the farthest "
-                                                            "particle, [0.5, 1e6]")
-      ->capture_default_str()->group(dropping);
   command->add_option("--zone-box", w->zone_box, "box: a fixed box; default: the square or cube around the ball")
       ->type_name("X0,Y0,Z0,X1,Y1,Z1")->group(dropping);
   command->add_option("--drop", w->bias, "uniform; circle (on the zone's edge); same:N (N drops at one "
@@ -76,11 +70,13 @@ Subcommand add_drop_command(CLI::App& app, const Model& model) {
       ->capture_default_str()->group(meshes);
   add_refused_mesh_controls(*command, meshes, "drop");
   w->files = std::make_unique<OutputWords>(*command, d->files, *quiet);
-  return {command, [w, d, quiet](CommandLine& line, const std::vector<std::string>&) {
+  return {command,
+          [w, d, quiet](CommandLine& line, const std::vector<std::string>&) {
             finish(*d, *w);
             line.quiet = *quiet;
             line.run = *d;
-          }};
+          },
+          w->described};
 }
 
 }  // namespace dla::cli

@@ -9,8 +9,10 @@ namespace {
 struct EdenWords {
   long long sites = 0;
   int dimensions = 2;
-  std::string lattice, mode, mask, links;
+  std::string lattice, mask, links;
   CLI::Option* dimensions_option;
+  std::vector<OptionDescription> described;
+  std::unique_ptr<DescribedOptions<EdenOptions>> options;  // eden_option_table()
   std::unique_ptr<OutputWords> files;
 };
 
@@ -22,7 +24,7 @@ void finish(EdenRunOptions& e, const EdenWords& w) {
   e.eden.lattice = w.lattice.empty() ? (w.dimensions == 3 ? Lattice::cubic6 : Lattice::square4) : parse_word<Lattice>(w.lattice);
   if (!w.lattice.empty() && w.dimensions_option->count() && dimensions_of(e.eden.lattice) != w.dimensions)
     throw InvalidInput("--lattice " + w.lattice + " is not a lattice in " + std::to_string(w.dimensions) + "D");
-  e.eden.mode = parse_word<EdenMode>(w.mode);
+  w.options->finish(e.eden);
   if (w.mask.size() == 1 && w.mask.find_first_of("ABCD") == 0) {
     e.eden.mask = parse_word<EdenMask>(w.mask);
   } else {
@@ -43,22 +45,16 @@ Subcommand add_eden_command(CLI::App& app, const Model& model) {
   command->get_formatter()->column_width(34);
   const char* group = "Eden";
   w->sites = static_cast<long long>(e->eden.sites);
-  w->mode = std::string(to_string(e->eden.mode));
   command->add_option("-n,--sites", w->sites, "sites at most, the seed included")->capture_default_str()->group(group);
   w->dimensions_option = command->add_option("--dimensions", w->dimensions, "2, or 3 for a cubic lattice")
                              ->capture_default_str()->group(group);
   command->add_option("--lattice", w->lattice, "square4, square8 or hex in 2D; cubic6, cubic18 or cubic26 in 3D "
                                                "(the number: neighbours); default square4, in 3D cubic6")
       ->group(group);
-  command->add_option("--mode", w->mode, "perimeter (a random empty neighbour joins) or drop (a random site "
-                                         "joins where the mask counts enough of the cluster)")
-      ->capture_default_str()->group(group);
+  w->options = std::make_unique<DescribedOptions<EdenOptions>>(*command, eden_option_table(), e->eden, w->described);
   command->add_option("--mask", w->mask, "drop: A, B, C or D (the paper's masks: 4, 8, 12 and 24 sites around), "
                                          "or a file drawing one; default A")->group(group);
   command->add_option("--mask-threshold", e->eden.mask_threshold, "drop: occupied mask sites a site needs, 1 to the mask's size")
-      ->capture_default_str()->group(group);
-  command->add_option("--seed-radius", e->eden.seed_radius, "the cluster starts as every site within this "
-                                                            "many spacings of the seed, [0, 100]")
       ->capture_default_str()->group(group);
   command->add_option("--spacing", e->eden.spacing, "distance between neighbouring sites, [1e-25, 1e25]")
       ->capture_default_str()->group(group);
@@ -67,11 +63,13 @@ Subcommand add_eden_command(CLI::App& app, const Model& model) {
       ->capture_default_str()->group(group);
   add_links_option(*command, group, w->links, true);
   w->files = std::make_unique<OutputWords>(*command, e->files, *quiet);
-  return {command, [w, e, quiet](CommandLine& line, const std::vector<std::string>&) {
+  return {command,
+          [w, e, quiet](CommandLine& line, const std::vector<std::string>&) {
             finish(*e, *w);
             line.quiet = *quiet;
             line.run = *e;
-          }};
+          },
+          w->described};
 }
 
 }  // namespace dla::cli

@@ -208,7 +208,7 @@ std::map<std::string, std::vector<std::string>> with_mesh_seeds(std::map<std::st
 }
 
 const std::map<std::string, std::vector<std::string>>& colonize_table() {
-  static const std::map<std::string, std::vector<std::string>> table = with_presets(with_mesh_seeds({
+  static const std::map<std::string, std::vector<std::string>> table = with_presets(with_described(with_mesh_seeds({
       {"--max-nodes", {"30", "200", "1", "0", "-5", "3e9", "x"}},
       {"--max-iterations", {"50", "1000", "1", "0", "-1"}},
       {"--spacing", {"1", "0.5", "1e-6", "1e6", "1e-25", "1e25", "0", "-1", "nan", "1e-300", "1e100"}},
@@ -234,14 +234,14 @@ const std::map<std::string, std::vector<std::string>>& colonize_table() {
       {"--stl", {"ball.stl", "box.off", "paint.ply", "missing.stl", "noise.stl"}},
       {"--collide", {"ball.stl", "box.off", "missing.stl", "noise.stl", "out.csv", "folder.stl", "pipe.stl", "zero.stl", "empty.stl", "cut.stl"}},
       {"--collision", {"push", "stick", "bounce"}},
-  }), "colonize");
+  }), descriptions(colonize_option_table())), "colonize");
   return table;
 }
 
 //! `dla3d eden`'s own options, drawn as the table's; its Output and Look options are the
 //! table's.
 const std::map<std::string, std::vector<std::string>>& eden_table() {
-  static const std::map<std::string, std::vector<std::string>> table = {
+  static const std::map<std::string, std::vector<std::string>> table = with_described({
       {"--sites", {"40", "300", "1", "0", "-5", "3e9", "x"}},
       {"--dimensions", {"2", "3", "1", "x"}},
       {"--lattice", {"square4", "hex", "square8", "cubic6", "cubic18", "cubic26", "square5"}},
@@ -252,7 +252,7 @@ const std::map<std::string, std::vector<std::string>>& eden_table() {
       {"--spacing", {"1", "0.5", "1e-6", "1e6", "1e-25", "1e25", "0", "-1", "nan", "1e-300", "1e100"}},
       {"--rng-seed", {"1", "7", "18446744073709551615", "-1"}},
       {"--links", {"lattice", "lattice", "1.5,2", "0", "x"}},
-  };
+  }, descriptions(eden_option_table()));
   return table;
 }
 
@@ -272,7 +272,7 @@ std::map<std::string, std::vector<std::string>> seeded_table(std::map<std::strin
 //! `dla3d drop`'s own options, drawn as the table's; its Output and Look options are the
 //! table's.
 const std::map<std::string, std::vector<std::string>>& drop_table() {
-  static const std::map<std::string, std::vector<std::string>> table = with_presets(with_mesh_seeds(seeded_table({
+  static const std::map<std::string, std::vector<std::string>> table = with_presets(with_described(with_mesh_seeds(seeded_table({
       {"--stickiness", {"0.5", "1", "1e-4", "0", "2", "nan"}},
       {"--zone", {"box", "ball", "mesh", "cone"}},
       {"--zone-radius", {"30", "3", "1e6", "0.5", "-1", "1e300", "nan"}},
@@ -284,7 +284,7 @@ const std::map<std::string, std::vector<std::string>>& drop_table() {
       {"--constraint", {"clip", "reject", "bounce"}},
       {"--scene-mesh", {}},
       {"--no-scene-mesh", {}},
-  })), "drop");
+  })), descriptions(drop_option_table())), "drop");
   return table;
 }
 

@@ -13,6 +13,7 @@
 #include "dla/look/solid.h"
 #include "dla/mesh/constraint.h"
 #include "dla/models/breakdown.h"
+#include "dla/run/models.h"
 #include "dla/run/output.h"
 #include "dla/models/colonization.h"
 #include "dla/models/drop.h"
@@ -162,6 +163,12 @@ void expect_described_soundly(const OptionTable<Options>& table) {
 TEST(OptionDescription, DlasOptionsAreDescribedSoundly) { expect_described_soundly(dla_option_table()); }
 
 TEST(OptionDescription, BreakdownsOptionsAreDescribedSoundly) { expect_described_soundly(breakdown_option_table()); }
+
+TEST(OptionDescription, TheOtherModelsOptionsAreDescribedSoundly) {
+  expect_described_soundly(colonize_option_table());
+  expect_described_soundly(drop_option_table());
+  expect_described_soundly(eden_option_table());
+}
 
 TEST(OptionDescription, EveryModelsFilesAndLookAreDescribedSoundly) {
   expect_described_soundly(output_option_table());

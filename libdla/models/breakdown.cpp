@@ -4,7 +4,7 @@
 #include "dla/models/breakdown.h"
 
 #include "dla/index/grid_index.h"
-#include "dla/models/dla.h"
+#include "models/aggregation.h"
 #include "dla/models/electrode.h"
 #include "dla/models/model_shell.h"
 #include "models/breakdown_charges.h"

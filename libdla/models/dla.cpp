@@ -1,7 +1,7 @@
 // The non-template entry points: validate the options and run the engine with the chosen
 // index, so programs that call grow() compile the engine once, here.
 
-#include "dla/models/dla.h"
+#include "aggregation.h"
 
 #include "dla/index/grid_index.h"
 #include "dla/index/kdtree_index.h"
@@ -126,5 +126,13 @@ Cluster grow(const DlaOptions& options, const MeshConstraint& constraint, const 
   start_counting(stats);
   return grow_any(options, progress, &constraint, nullptr, stop, stats);
 }
+
+// The engine for every index: the template dla.h declares, compiled here once.
+template Cluster grow_with<GridIndex>(const DlaOptions&, const ProgressFn&, const MeshConstraint*, const Cluster*,
+                                      const StopFlag*, DlaStats*);
+template Cluster grow_with<KdTreeIndex>(const DlaOptions&, const ProgressFn&, const MeshConstraint*, const Cluster*,
+                                        const StopFlag*, DlaStats*);
+template Cluster grow_with<BruteForceIndex>(const DlaOptions&, const ProgressFn&, const MeshConstraint*,
+                                            const Cluster*, const StopFlag*, DlaStats*);
 
 }  // namespace dla

@@ -77,12 +77,29 @@ std::vector<Vec3> colonize_roots(const ColonizeRunOptions& options, const std::v
   return roots;
 }
 
+const OptionTable<ColonizeRunOptions>& colonize_option_table() {
+  using O = ColonizeRunOptions;
+  static const OptionTable<O> table = [] {
+    OptionTable<O> rows = nested(colonization_option_table(), &O::colonization);
+    for (DescribedOption<O>& row : nested(attractor_option_table(), &O::attractors)) rows.push_back(std::move(row));
+    rows.push_back(word("roots_in", &O::roots_in, "Attractors and roots",
+                        "--roots K: on the sphere around the attractors, in the mesh (the vessel, else the collision "
+                        "mesh) or on its surface"));
+    rows.push_back(real("roots_scale", &O::roots_scale, closed(0.01, 100), "", "Attractors and roots",
+                        "--roots-in sphere: the roots' sphere is this times the attractors'"));
+    rows.push_back(word("collision", &O::collision, "Vessel and collision",
+                        "push (growth flows around the mesh) or stick (it crawls over its surface)"));
+    return rows;
+  }();
+  return table;
+}
+
 void validate(const ColonizeRunOptions& c) {
+  require_in_ranges(colonize_option_table(), c);
   const ColonizationOptions& o = c.colonization;
   validate(c.files, o.dimensions, !c.stl.empty());
   if (c.roots_in != RootRegion::sphere && c.root_count == 0)
     throw InvalidInput("`roots_in` says where `roots` K puts its roots: give `roots`");
-  detail::require_in("`roots_scale`", c.roots_scale, 0.01, 100.0);
   if (c.roots_scale != 1.0 && (c.root_count == 0 || c.roots_in != RootRegion::sphere))
     throw InvalidInput("`roots_scale` sizes the sphere of `roots` K (`roots_in` sphere): give `roots`");
   if (!c.root_at.empty() && c.root_count)

@@ -104,34 +104,29 @@ Table<ColonizeRunOptions> colonize_table() {
   using O = ColonizeRunOptions;
   Table<O> t;
   add_look(t);
+  add_described(t, colonize_option_table(), [](O& o) -> O& { return o; });
   t["max_nodes"] = [](O& o, py::handle v, Given&) { o.colonization.max_nodes = count("max_nodes", v); };
   t["max_iterations"] = [](O& o, py::handle v, Given&) { o.colonization.max_iterations = count("max_iterations", v); };
   t["spacing"] = [](O& o, py::handle v, Given&) { o.colonization.spacing = number("spacing", v); };
-  t["kill_distance"] = [](O& o, py::handle v, Given&) { o.colonization.kill_distance = number("kill_distance", v); };
   t["influence"] = [](O& o, py::handle v, Given&) { o.colonization.influence = number("influence", v); };
-  t["venation"] = [](O& o, py::handle v, Given&) { o.colonization.venation = word<Venation>("venation", v); };
   t["noise"] = [](O& o, py::handle v, Given&) {
     const std::vector<double> n = numbers("noise", v, 2);
     o.colonization.noise_amplitude = n[0];
     o.colonization.noise_scale = n[1];
   };
   t["tropism"] = [](O& o, py::handle v, Given&) { o.colonization.tropism = vec3("tropism", v); };
-  t["dimensions"] = [](O& o, py::handle v, Given&) { o.colonization.dimensions = whole_int("dimensions", v); };
   t["rng_seed"] = [](O& o, py::handle v, Given&) { o.colonization.rng_seed = count("rng_seed", v); };
   t["attractors"] = [](O& o, py::handle v, Given& g) {
     o.attractors.count = count("attractors", v);
     g.attractors = true;
   };
-  t["attractors_in"] = [](O& o, py::handle v, Given&) { o.attractors.region = word<AttractorRegion>("attractors_in", v); };
   t["attractors_from"] = [](O& o, py::handle v, Given&) { o.attractors_from = text("attractors_from", v); };
   t["attractor_center"] = [](O& o, py::handle v, Given&) { o.attractors.center = vec3("attractor_center", v); };
-  t["attractor_radius"] = [](O& o, py::handle v, Given&) { o.attractors.radius = number("attractor_radius", v); };
   t["attractor_box"] = [](O& o, py::handle v, Given&) {
     const Box b = box("attractor_box", v);
     o.attractors.box_min = b.min;
     o.attractors.box_max = b.max;
   };
-  t["attractor_falloff"] = [](O& o, py::handle v, Given&) { o.attractors.falloff = number("attractor_falloff", v); };
   t["attractor_paint"] = [](O& o, py::handle v, Given&) {
     o.attractors.paint = parse_paint(text("attractor_paint", v), "attractor_paint");
   };
@@ -139,11 +134,8 @@ Table<ColonizeRunOptions> colonize_table() {
   t["roots"] = [](O& o, py::handle v, Given&) {
     if ((o.root_count = count("roots", v)) == 0) throw InvalidInput("`roots` 0: there must be a root");
   };
-  t["roots_in"] = [](O& o, py::handle v, Given&) { o.roots_in = word<RootRegion>("roots_in", v); };
-  t["roots_scale"] = [](O& o, py::handle v, Given&) { o.roots_scale = number("roots_scale", v); };
   t["stl"] = [](O& o, py::handle v, Given& g) { o.stl = mesh("stl", v, g); };
   t["collide"] = [](O& o, py::handle v, Given& g) { o.collide = mesh("collide", v, g); };
-  t["collision"] = [](O& o, py::handle v, Given&) { o.collision = word<CollisionMode>("collision", v); };
   add_mesh_seeds(t);
   add_refused(t, "colonize");
   t["n"] = t["max_nodes"];
@@ -163,14 +155,13 @@ Table<EdenRunOptions> eden_table() {
     o.eden.lattice = word<Lattice>("lattice", v);
     g.lattice = true;
   };
-  t["mode"] = [](O& o, py::handle v, Given&) { o.eden.mode = word<EdenMode>("mode", v); };
+  add_described(t, eden_option_table(), [](O& o) -> EdenOptions& { return o.eden; });
   t["mask"] = [](O& o, py::handle v, Given&) {
     const std::string mask = text("mask", v);
     if (mask.size() == 1 && mask.find_first_of("ABCD") == 0) o.eden.mask = parse_word<EdenMask>(mask);
     else o.mask_file = mask;
   };
   t["mask_threshold"] = [](O& o, py::handle v, Given&) { o.eden.mask_threshold = whole_int("mask_threshold", v); };
-  t["seed_radius"] = [](O& o, py::handle v, Given&) { o.eden.seed_radius = number("seed_radius", v); };
   t["spacing"] = [](O& o, py::handle v, Given&) { o.eden.spacing = number("spacing", v); };
   t["rng_seed"] = [](O& o, py::handle v, Given&) { o.eden.rng_seed = count("rng_seed", v); };
   t["n"] = t["sites"];
@@ -181,13 +172,11 @@ Table<DropRunOptions> drop_table() {
   using O = DropRunOptions;
   Table<O> t;
   add_seeded(t, &O::drop);
+  add_described(t, drop_option_table(), [](O& o) -> DropOptions& { return o.drop; });
   add_refused(t, "drop");
   t["spacing"] = [](O& o, py::handle v, Given&) { o.spacing = number("spacing", v); };
   t["seed_at"] = [](O& o, py::handle v, Given&) { o.seed_at = points("seed_at", v); };
-  t["stickiness"] = [](O& o, py::handle v, Given&) { o.drop.stickiness = number("stickiness", v); };
-  t["zone"] = [](O& o, py::handle v, Given&) { o.drop.zone = word<DropZone>("zone", v); };
   t["zone_radius"] = [](O& o, py::handle v, Given&) { o.drop.zone_radius = number("zone_radius", v); };
-  t["zone_margin"] = [](O& o, py::handle v, Given&) { o.drop.zone_margin = number("zone_margin", v); };
   t["zone_box"] = [](O& o, py::handle v, Given&) { o.drop.zone_box = box("zone_box", v); };
   t["drop"] = [](O& o, py::handle v, Given&) { o.drop.bias = parse_drop_bias(text("drop", v)); };
   t["stl"] = [](O& o, py::handle v, Given& g) { o.stl = mesh("stl", v, g); };

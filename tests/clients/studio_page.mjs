@@ -91,7 +91,7 @@ try {
   for (const cell of [39, 31]) await page.locator(`#mask span[data-cell="${cell}"]`).click();
   await page.locator('#mask-use').check();
   await page.evaluate(() => document.querySelectorAll('#options details').forEach((group) => { group.open = true; }));
-  await page.locator('input[data-option="--mode"]').fill('drop');
+  await page.locator('select[data-option="--mode"]').selectOption('drop');  // a word of a list: a drop-down
   await page.locator('input[data-option="--sites"]').fill('2000');
   await page.locator('input[data-option="--formats"]').fill('csv');
   await page.locator('#grow').click();

@@ -23,6 +23,7 @@
 #include "dla/core/cluster.h"
 #include "dla/mesh/constraint.h"
 #include "dla/core/errors.h"
+#include "dla/core/option_description.h"
 #include "dla/core/options.h"
 #include "dla/core/random.h"
 #include "dla/index/attractor_tree.h"
@@ -76,14 +77,28 @@ struct AttractorOptions {
   std::optional<Paint> paint;
 };
 
+//! Where the attractors lie, described once (option_description.h); their count, centre, box,
+//! file and paint are the front ends'.
+inline const OptionTable<AttractorOptions>& attractor_option_table() {
+  using O = AttractorOptions;
+  static constexpr std::string_view group = "Attractors and roots";
+  static const OptionTable<O> table{
+      word("attractors_in", &O::region, group,
+           "where they lie: sphere, box, mesh (inside the --stl vessel, else the --collide mesh) or surface (on it)"),
+      real("attractor_radius", &O::radius, closed(1e-300, 1e300), "scene units", group, "the sphere's radius"),
+      real("attractor_falloff", &O::falloff, closed(0, 100), "", group,
+           "grading towards the sphere's centre: 0 is uniform, more is denser towards it"),
+  };
+  return table;
+}
+
 inline void validate(const AttractorOptions& o) {
+  require_in_ranges(attractor_option_table(), o);
   if (o.count < 1 || o.count > kMaxAttractors)
     throw InvalidInput("attractors " + std::to_string(o.count) + " is not in [1, 1e8]");
   // Whether the points fit the tree's spacing is colonize()'s to check.
   if (!o.center.allFinite() || !o.box_min.allFinite() || !o.box_max.allFinite())
     throw InvalidInput("the attractors' centre or box is not finite");
-  detail::require_in("attractor radius", o.radius, 1e-300, 1e300);
-  detail::require_in("attractor falloff", o.falloff, 0.0, 100.0);
   if (o.region == AttractorRegion::box && !(o.box_min.array() < o.box_max.array()).head<2>().all())
     throw InvalidInput("the attractor box's min corner is not below its max corner");
   if (o.paint && o.region != AttractorRegion::surface)
@@ -252,9 +267,24 @@ inline double influence_of(const ColonizationOptions& o) {
                                                                         : o.influence;
 }
 
+//! Space colonization's options with a single value, described once (option_description.h); its
+//! counts, spacing, influence, noise and tropism are the front ends'.
+inline const OptionTable<ColonizationOptions>& colonization_option_table() {
+  using O = ColonizationOptions;
+  static const OptionTable<O> table{
+      real("kill_distance", &O::kill_distance, closed(1, 1e6), "spacings", "Colonization",
+           "an attractor dies once a node is this close"),
+      word("venation", &O::venation, "Colonization",
+           "open: an attractor pulls its nearest node, a tree; closed: every node of its relative neighbourhood, "
+           "and veins that reach it join: loops (Runions et al.)"),
+      integer("dimensions", &O::dimensions, closed(2, 3), "", "Colonization", "3, or 2 for venation in the plane z = 0"),
+  };
+  return table;
+}
+
 inline void validate(const ColonizationOptions& o) {
+  require_in_ranges(colonization_option_table(), o);
   detail::require_in("spacing", o.spacing, kMinSpacing, kMaxSpacing);
-  detail::require_in("kill distance", o.kill_distance, 1.0, 1e6);
   if (!(o.influence > o.kill_distance))
     throw InvalidInput("influence " + detail::format_number(o.influence) + " is not above the kill distance " +
                        detail::format_number(o.kill_distance));
@@ -265,8 +295,6 @@ inline void validate(const ColonizationOptions& o) {
   detail::require_in("noise scale", o.noise_scale, 1e-3, 1e6);
   if (!o.tropism.allFinite() || o.tropism.cwiseAbs().maxCoeff() > 10.0)
     throw InvalidInput("tropism has a coordinate that is not in [-10, 10]");
-  if (o.dimensions != 2 && o.dimensions != 3)
-    throw InvalidInput("dimensions " + std::to_string(o.dimensions) + " is not 2 or 3");
   if (o.collide && o.dimensions != 3) throw InvalidInput("a collision mesh needs 3 dimensions");
   if (o.vessel && o.dimensions != 3) throw InvalidInput("a vessel needs 3 dimensions");
 }

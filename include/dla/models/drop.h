@@ -13,9 +13,7 @@
 #include "dla/core/errors.h"
 #include "dla/core/options.h"
 #include "dla/core/random.h"
-#include "dla/index/grid_index.h"
 #include "dla/mesh/constraint.h"
-#include "dla/models/one_by_one.h"
 #include "dla/core/words.h"
 
 #include <array>
@@ -144,11 +142,26 @@ struct DropStats {
 //! Drops that fail in a row before growth ends early, the zone full: ~0.1 s of drops.
 inline constexpr std::uint64_t kMaxFailedDrops = 1'000'000;
 
+//! Random drops' options with a single value, described once (option_description.h); the count,
+//! plane, spacing and seeds are those drop shares with ballistic aggregation, the zone's radius
+//! and box and the drop pattern the front ends'.
+inline const OptionTable<DropOptions>& drop_option_table() {
+  using O = DropOptions;
+  static constexpr std::string_view group = "Random drops";
+  static const OptionTable<O> table{
+      real("stickiness", &O::stickiness, closed(kMinStickiness, 1), "", group,
+           "chance of sticking on reaching the structure; else a random step and again"),
+      word("zone", &O::zone, group, "where particles drop: ball (a disk in 2D), box, or mesh (inside --stl)"),
+      real("zone_margin", &O::zone_margin, closed(0.5, 1e6), "spacings", group,
+           "growing ball: how far beyond the farthest particle"),
+  };
+  return table;
+}
+
 inline void validate(const DropOptions& o) {
   detail::validate_seeded(o.particles, o.seeds, o.spacing, o.dimensions);
-  detail::require_in("stickiness", o.stickiness, kMinStickiness, 1.0);
+  require_in_ranges(drop_option_table(), o);
   if (o.zone_radius != 0.0) detail::require_in("zone radius", o.zone_radius / o.spacing, 1.0, 1e6);
-  detail::require_in("zone margin", o.zone_margin, 0.5, 1e6);
   if (o.zone_box) {
     detail::require_representable("zone box's min corner", o.zone_box->min, o.spacing);
     detail::require_representable("zone box's max corner", o.zone_box->max, o.spacing);
@@ -185,161 +198,6 @@ inline void validate(const DropOptions& o, const MeshConstraint& constraint) {
       throw InvalidInput("seed " + std::to_string(i + 1) + " is not on the growing side of the mesh");
 }
 
-namespace detail {
-
-template <class Index>
-class RandomDrop {
- public:
-  RandomDrop(const DropOptions& o, const MeshConstraint* constraint, DropStats& stats)
-      : o_(o), constraint_(constraint), stats_(stats), growth_(o.seeds, o.spacing, o.dimensions, o.particles, false),
-        rng_(o.rng_seed, 0x64726f70ULL) {}  // a stream of its own: "drop"
-
-  Cluster run(const ProgressFn& progress, const StopFlag* stop) {
-    std::uint64_t failed = 0;  // drops in a row that attached nothing
-    return growth_.run(o_.particles, progress, stop, [&] {
-      if (drop_one()) {
-        failed = 0;
-        return Attempt::attached;
-      }
-      if (++failed < kMaxFailedDrops) return Attempt::failed;
-      stats_.zone_full = true;
-      return Attempt::done;
-    });
-  }
-
- private:
-  //! One drop: true if it attached a particle.
-  bool drop_one() {
-    ++stats_.drops;
-    Vec3 at = next_drop();
-    const auto lost = [&] {
-      if (!constraint_ || !constraint_->lost(at)) return false;
-      ++stats_.lost;
-      return true;
-    };
-    if (lost()) return false;
-    Probe closest = growth_.index().nearest(at);
-    while (closest.distance >= o_.spacing && o_.stickiness < 1.0 && rng_.uniform() >= o_.stickiness) {
-      ++stats_.refused;
-      at += o_.spacing * random_direction(rng_, o_.dimensions);
-      if (lost()) return false;
-      closest = growth_.index().nearest(at);
-    }
-    if (closest.distance < o_.spacing) {
-      ++stats_.on_structure;
-      return false;
-    }
-    const Vec3& parent = growth_.position(closest.nearest);
-    Vec3 end = parent + (at - parent) * (o_.spacing / closest.distance);
-    if (constraint_) {
-      const BranchCheck check = constraint_->check_branch(parent, end);
-      if (!check.accepted) {
-        ++stats_.mesh_rejected;
-        return false;
-      }
-      stats_.clipped += check.clipped;
-      end = check.end;
-    }
-    growth_.attach(end, closest.nearest);
-    return true;
-  }
-
-  const Vec3& center() const { return growth_.cluster().center; }
-
-  double ball_radius() const {
-    return o_.zone_radius > 0.0 ? o_.zone_radius : growth_.cluster_radius() + o_.zone_margin * o_.spacing;
-  }
-
-  Vec3 next_drop() {
-    switch (o_.bias.pattern) {
-      case DropPattern::uniform: return in_zone();
-      case DropPattern::circle: return on_edge();
-      case DropPattern::same:
-        if (left_ == 0) place_ = in_zone(), left_ = o_.bias.count;
-        --left_;
-        return place_;
-      case DropPattern::offset:
-        if (left_ == 0) {
-          place_ = in_zone();
-          left_ = o_.bias.count;
-        } else {
-          place_ += o_.bias.offset_radius * in_unit_ball();
-          --left_;
-        }
-        return place_;
-    }
-    return in_zone();
-  }
-
-  Vec3 in_unit_ball() {
-    // One draw a statement: the order of a call's arguments is the compiler's to choose (GCC
-    // and clang differ), and the radius came first in the files dla3d has written.
-    const double radius = std::pow(rng_.uniform(), 1.0 / o_.dimensions);
-    return random_direction(rng_, o_.dimensions) * radius;
-  }
-
-  //! The box zone: the given one, or the square or cube around the ball.
-  Box box() const {
-    if (o_.zone_box) return *o_.zone_box;
-    const double r = ball_radius();
-    Box b{center().array() - r, center().array() + r};
-    if (o_.dimensions == 2) b.min.z() = b.max.z() = 0.0;
-    return b;
-  }
-
-  Vec3 in_zone() {
-    switch (o_.zone) {
-      case DropZone::ball: return center() + ball_radius() * in_unit_ball();
-      case DropZone::box: {
-        const Box b = box();
-        Vec3 p = Vec3::Zero();
-        for (int a = 0; a < o_.dimensions; ++a) p[a] = b.min[a] + rng_.uniform() * (b.max[a] - b.min[a]);
-        return p;
-      }
-      case DropZone::mesh: return constraint_->draw_inside(rng_);
-    }
-    return center();
-  }
-
-  Vec3 on_edge() {
-    switch (o_.zone) {
-      case DropZone::ball: return center() + ball_radius() * random_direction(rng_, o_.dimensions);
-      case DropZone::box: {
-        // A face (an edge in 2D) chosen by its area, then a uniform point on it.
-        const Box b = box();
-        const Vec3 size = b.max - b.min;
-        std::array<double, 3> area{};
-        double total = 0.0;
-        for (int a = 0; a < o_.dimensions; ++a) {
-          area[a] = 1.0;
-          for (int other = 0; other < o_.dimensions; ++other)
-            if (other != a) area[a] *= size[other];
-          total += 2.0 * area[a];
-        }
-        double pick = rng_.uniform() * total;
-        int axis = 0;
-        while (axis + 1 < o_.dimensions && pick >= 2.0 * area[axis]) pick -= 2.0 * area[axis++];
-        Vec3 p = Vec3::Zero();
-        for (int a = 0; a < o_.dimensions; ++a) p[a] = b.min[a] + rng_.uniform() * size[a];
-        p[axis] = pick < area[axis] ? b.min[axis] : b.max[axis];
-        return p;
-      }
-      case DropZone::mesh: return constraint_->draw_near_surface(rng_);
-    }
-    return center();
-  }
-
-  const DropOptions& o_;
-  const MeshConstraint* constraint_;
-  DropStats& stats_;
-  OneByOne<Index> growth_;  // no distance maps: only nearest() is asked
-  Rng rng_;
-  Vec3 place_ = Vec3::Zero();    // same, offset: the last drop point
-  std::uint64_t left_ = 0;       // same, offset: drops left at or about place_
-};
-
-}  // namespace detail
-
 //! Grows a structure by random drops with a given index (GridIndex, or BruteForceIndex to test
 //! against), constrained by `constraint` if set. Does not validate. Calls `progress` every 256
 //! particles and at the end; `stop` ends growth early, the cluster marked incomplete. Growth
@@ -347,18 +205,10 @@ class RandomDrop {
 //! `stats->zone_full` set. Throws PartialGrowth if the structure outgrows the index.
 template <class Index>
 Cluster drop_with(const DropOptions& options, const MeshConstraint* constraint, const ProgressFn& progress = {},
-                  const StopFlag* stop = nullptr, DropStats* stats = nullptr) {
-  DropStats local;
-  return detail::RandomDrop<Index>(options, constraint, stats ? *stats : local).run(progress, stop);
-}
+                  const StopFlag* stop = nullptr, DropStats* stats = nullptr);
 
 //! Validates the options (against the constraint, if any) and grows with the grid index.
-inline Cluster drop(const DropOptions& options, const MeshConstraint* constraint = nullptr,
-                    const ProgressFn& progress = {}, const StopFlag* stop = nullptr, DropStats* stats = nullptr) {
-  if (constraint) validate(options, *constraint);
-  else validate(options);
-  if (options.zone == DropZone::mesh && !constraint) throw InvalidInput("the mesh zone drops inside a mesh: give one with `stl`");
-  return drop_with<GridIndex>(options, constraint, progress, stop, stats);
-}
+Cluster drop(const DropOptions& options, const MeshConstraint* constraint = nullptr, const ProgressFn& progress = {},
+             const StopFlag* stop = nullptr, DropStats* stats = nullptr);
 
 }  // namespace dla

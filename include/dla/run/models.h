@@ -106,6 +106,11 @@ struct ColonizeRunOptions {
   OutputOptions files;
 };
 
+//! Space colonization's run options with a single value, described once
+//! (option_description.h): the model's and the attractors' tables, and where the roots go and
+//! how growth meets the collision mesh.
+const OptionTable<ColonizeRunOptions>& colonize_option_table();
+
 //! `dla3d eden`, `dla3d.eden()`: an Eden cluster on a lattice.
 struct EdenRunOptions {
   EdenOptions eden;
