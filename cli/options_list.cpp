@@ -263,7 +263,9 @@ std::string options_markdown(const CLI::App& app, const std::vector<Subcommand>&
   for (const CLI::App* command : others) {
     if (shown_options(*command).empty()) continue;
     text += "\n## `" + command_words(*command, false) + "`\n\n" + sentence(command->get_description()) + "\n";
-    for (const auto& group : group_tables(*command, {})) text += "\n**" + group.first + "**\n\n" + group.second;
+    for (const auto& group : group_tables(*command, {}))
+      text += shared(group) ? "\n**" + group.first + "**: as for [every growth model](#every-growth-model).\n"
+                            : "\n**" + group.first + "**\n\n" + group.second;
   }
   text += "\n## Presets\n\n`--preset NAME` starts from a named set of options; options given beside it override its "
           "own.\n`dla3d MODEL --preset list` prints them. The JSON record lists the options a preset gave.\n\n"
