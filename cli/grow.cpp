@@ -55,10 +55,10 @@ void add_options(CLI::App& app, DlaRunOptions& g, CommandLine& line, GrowWords& 
   app.add_option("--rng-seed", options.rng_seed, "seed of the random generator: the same seed gives the same files")
       ->capture_default_str()->group(growth);
   add_links_option(app, growth, w.links);
-  // The breakdown model has no index choice and no fill.
+  // The breakdown model takes all but kNotForBreakdown (models.h).
   w.walk = std::make_unique<DescribedOptions<DlaOptions>>(
       app, dla_option_table(), options, w.described,
-      dla ? std::vector<std::string_view>{} : std::vector<std::string_view>{"index", "fill_distance"});
+      dla ? std::vector<std::string_view>{} : std::vector<std::string_view>(kNotForBreakdown.begin(), kNotForBreakdown.end()));
   w.threads_option = app.get_option("--threads");
 
   const char* meshes = "Mesh constraint";

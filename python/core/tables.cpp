@@ -3,6 +3,8 @@
 
 #include "tables.h"
 
+#include <algorithm>
+
 namespace dla::python {
 
 namespace {
@@ -206,7 +208,7 @@ Table<BreakdownRunOptions> breakdown_table() {
   Table<O> t;
   // DLA's keywords, on the DLA run a breakdown run is, but those it has not.
   for (const auto& [name, set] : dla_table())
-    if (name != "drift" && name != "rotate" && name != "index" && name != "fill" && name != "fill_distance")
+    if (std::find(kNotForBreakdown.begin(), kNotForBreakdown.end(), name) == kNotForBreakdown.end())
       t[name] = [set = set](O& o, py::handle v, Given& g) { set(o, v, g); };
   t["fill"] = [](O&, py::handle, Given&) { refuse_for("breakdown", "fill"); };
   add_described(t, breakdown_option_table(), [](O& o) -> BreakdownOptions& { return o.breakdown; });

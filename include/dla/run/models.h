@@ -20,6 +20,7 @@
 #include "dla/core/words.h"
 
 #include <any>
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -148,6 +149,11 @@ struct BreakdownRunOptions : DlaRunOptions {
   //! `breakdown.target` becomes that mesh. Empty: the target is `breakdown.target`'s.
   std::string target_mesh;
 };
+
+//! The options of a DLA run that a breakdown run does not take, as C++ and Python name them: its
+//! walkers neither drift nor turn, its walk needs the grid index, and it grows to its count or
+//! its strike, not to fill a mesh. The front ends leave them out (`fill` they refuse, with why).
+inline constexpr std::array<std::string_view, 5> kNotForBreakdown{"fill", "fill_distance", "drift", "rotate", "index"};
 
 //! The roots a colonize run grows from: its `root_at` points; or `root_count` on the sphere
 //! around the attractors, or in or on `mesh` (the vessel, else the collision mesh); or one at
