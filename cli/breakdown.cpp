@@ -35,7 +35,7 @@ Subcommand add_breakdown_command(CLI::App& app, const Model& model) {
   const char* discharge = "Discharge";
   std::vector<OptionDescription> described;
   auto discharge_options = std::make_shared<DescribedOptions<BreakdownOptions>>(*command, breakdown_option_table(),
-                                                                               BreakdownOptions{}, described);
+                                                                               BreakdownOptions{}, &described);
   CLI::Option* point = command->add_option("--target-point", w->target_point, "the other electrode: a small ball at "
                                                                               "x,y,z; walkers leave it")
                            ->type_name("X,Y,Z")->group(discharge);

@@ -79,7 +79,7 @@ Subcommand add_colonize_command(CLI::App& app, const Model& model) {
   const char* attracting = "Attractors and roots";
   w->attractors = command->add_option("--attractors", w->attractor_count, "how many attractors, [1, 1e8]")
                       ->capture_default_str()->group(attracting);
-  w->options = std::make_unique<DescribedOptions<ColonizeRunOptions>>(*command, colonize_option_table(), *c, w->described);
+  w->options = std::make_unique<DescribedOptions<ColonizeRunOptions>>(*command, colonize_option_table(), *c, &w->described);
   CLI::Option* attractors_in = command->get_option("--attractors-in");
   command->add_option("--attractors-from", c->attractors_from, "read them from a file: CSV rows x,y,z (or a "
                                                                "header naming x, y, z) or PLY points; with "

@@ -34,7 +34,7 @@ Subcommand add_described_command(CLI::App& app, const Model& model) {
   w->run = model.options();
   CLI::App* command = app.add_subcommand(std::string(model.name), std::string(model.summary));
   command->get_formatter()->column_width(34);
-  w->own = std::make_unique<DescribedOptions<RunOptions>>(*command, model.option_table, w->run, w->described);
+  w->own = std::make_unique<DescribedOptions<RunOptions>>(*command, model.option_table, w->run, &w->described);
   w->files = std::make_unique<OutputWords>(*command, model.files(w->run), w->quiet);
   return {command,
           [w, &model](CommandLine& line, const std::vector<std::string>&) {

@@ -29,9 +29,10 @@ template <class Options>
 class DescribedOptions {
  public:
   //! Adds every option of `table` but those named in `without` to `app`, showing the defaults
-  //! of `defaults`; appends each description to `described` for `dla3d options`.
+  //! of `defaults`; appends each description to `described`, if given, for `dla3d options`
+  //! (which finds the files' and the look's in output_option_table() itself).
   DescribedOptions(CLI::App& app, const OptionTable<Options>& table, const Options& defaults,
-                   std::vector<OptionDescription>& described, std::vector<std::string_view> without = {}) {
+                   std::vector<OptionDescription>* described, std::vector<std::string_view> without = {}) {
     for (const DescribedOption<Options>& row : table) {
       if (std::find(without.begin(), without.end(), row.about.name) != without.end()) continue;
       auto given = std::make_unique<Given>();
@@ -63,7 +64,7 @@ class DescribedOptions {
         }
       }
       given->option->group(std::string(about.group));
-      described.push_back(about);
+      if (described) described->push_back(about);
       given_.push_back(std::move(given));
     }
   }

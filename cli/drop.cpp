@@ -44,7 +44,7 @@ Subcommand add_drop_command(CLI::App& app, const Model& model) {
   w->constraint = std::string(to_string(d->constraint.mode));
   add_seeded_options(*command, dropping, w->seeded, d->drop.dimensions, d->drop.spacing, d->drop.rng_seed,
                      "; with a mesh, default: its longest side / 100");
-  w->options = std::make_unique<DescribedOptions<DropOptions>>(*command, drop_option_table(), d->drop, w->described);
+  w->options = std::make_unique<DescribedOptions<DropOptions>>(*command, drop_option_table(), d->drop, &w->described);
   command->add_option("--zone-radius", d->drop.zone_radius, "ball: a fixed radius about the seeds' centre, "
                                                             "scene units; default: growing, see --zone-margin")
       ->group(dropping);

@@ -51,7 +51,7 @@ Subcommand add_eden_command(CLI::App& app, const Model& model) {
   command->add_option("--lattice", w->lattice, "square4, square8 or hex in 2D; cubic6, cubic18 or cubic26 in 3D "
                                                "(the number: neighbours); default square4, in 3D cubic6")
       ->group(group);
-  w->options = std::make_unique<DescribedOptions<EdenOptions>>(*command, eden_option_table(), e->eden, w->described);
+  w->options = std::make_unique<DescribedOptions<EdenOptions>>(*command, eden_option_table(), e->eden, &w->described);
   command->add_option("--mask", w->mask, "drop: A, B, C or D (the paper's masks: 4, 8, 12 and 24 sites around), "
                                          "or a file drawing one; default A")->group(group);
   command->add_option("--mask-threshold", e->eden.mask_threshold, "drop: occupied mask sites a site needs, 1 to the mask's size")

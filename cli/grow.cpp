@@ -57,7 +57,7 @@ void add_options(CLI::App& app, DlaRunOptions& g, CommandLine& line, GrowWords& 
   add_links_option(app, growth, w.links);
   // The breakdown model takes all but kNotForBreakdown (models.h).
   w.walk = std::make_unique<DescribedOptions<DlaOptions>>(
-      app, dla_option_table(), options, w.described,
+      app, dla_option_table(), options, &w.described,
       dla ? std::vector<std::string_view>{} : std::vector<std::string_view>(kNotForBreakdown.begin(), kNotForBreakdown.end()));
   w.threads_option = app.get_option("--threads");
 

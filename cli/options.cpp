@@ -54,7 +54,7 @@ OutputWords::OutputWords(CLI::App& app, OutputOptions& f, bool& quiet, std::stri
   // Binary became the default on 2026-11-24; the old flag still runs the scripts and resumes
   // the checkpoints that name it. Not in --help.
   app.add_flag_callback("--binary", [&f] { f.ply_encoding = PlyEncoding::binary; })->group("");
-  options_ = std::make_unique<DescribedOptions<OutputOptions>>(app, output_option_table(), f, described_);
+  options_ = std::make_unique<DescribedOptions<OutputOptions>>(app, output_option_table(), f, nullptr);
   const char* looks = "Look";
   app.add_option("--leaf", f.leaf, "glb: a binary glTF whose mesh goes at each instancing point (as tips picks "
                                   "them), along its direction and scaled by its pscale; its +Y is the leaf's stem")

@@ -67,7 +67,6 @@ class OutputWords {
 
  private:
   std::string formats_, exclude_paint_;
-  std::vector<OptionDescription> described_;
   std::unique_ptr<DescribedOptions<OutputOptions>> options_;
   CLI::Option* exclude_paint_option_ = nullptr;
 };

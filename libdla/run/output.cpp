@@ -116,11 +116,7 @@ const OptionTable<OutputOptions>& output_option_table() {
 }
 
 void validate(const OutputOptions& f, int dimensions, bool with_mesh) {
-  LookOptions look = f.look;
-  if (f.radius) look.radius.model = *f.radius;
-  if (f.base_radius) look.radius.base_radius = *f.base_radius;
-  if (f.tip_radius) look.radius.tip_radius = *f.tip_radius;
-  require_in_ranges(output_option_table(), f);
+  require_in_ranges(output_option_table(), f);  // the overrides a mesh gives defaults for too
   if (f.formats.svg && dimensions != 2)
     throw InvalidInput("`formats` svg draws 2D growth: add `dimensions` 2, or leave svg out");
   if (f.formats.png && dimensions != 2)
@@ -128,7 +124,7 @@ void validate(const OutputOptions& f, int dimensions, bool with_mesh) {
   validate(f.png);    // its margin
   validate(f.solid);  // its print size against its walls
   if (!with_mesh) {
-    if (look.radius.model == RadiusModel::boundary)
+    if (f.radius.value_or(f.look.radius.model) == RadiusModel::boundary)
       throw InvalidInput("`radius` boundary measures to a constraint mesh: give one with `stl`");
     if (f.instances.within != std::numeric_limits<double>::infinity())
       throw InvalidInput("`tips_within` measures to a constraint mesh: give one with `stl`");

@@ -171,7 +171,7 @@ std::string mesh(const char* name, py::handle value, Given& given) {
 const Table<SolidOptions>& solid_keywords() {
   static const Table<SolidOptions> t = [] {
     Table<SolidOptions> table;
-    add_described(table, solid_option_table(), [](SolidOptions& o) -> SolidOptions& { return o; });
+    add_described(table, solid_option_table());
     return table;
   }();
   return t;

@@ -76,6 +76,12 @@ void add_described(Table<Options>& t, const OptionTable<Described>& table, Part 
     };
 }
 
+//! The keywords of a table that describes the options the keywords set, whole.
+template <class Options>
+void add_described(Table<Options>& t, const OptionTable<Options>& table) {
+  add_described(t, table, [](Options& o) -> Options& { return o; });
+}
+
 //! The solid's keywords (solid.h): in every model's table, and Result.solid()'s.
 const Table<SolidOptions>& solid_keywords();
 

@@ -106,7 +106,7 @@ Table<ColonizeRunOptions> colonize_table() {
   using O = ColonizeRunOptions;
   Table<O> t;
   add_look(t);
-  add_described(t, colonize_option_table(), [](O& o) -> O& { return o; });
+  add_described(t, colonize_option_table());
   t["max_nodes"] = [](O& o, py::handle v, Given&) { o.colonization.max_nodes = count("max_nodes", v); };
   t["max_iterations"] = [](O& o, py::handle v, Given&) { o.colonization.max_iterations = count("max_iterations", v); };
   t["spacing"] = [](O& o, py::handle v, Given&) { o.colonization.spacing = number("spacing", v); };
@@ -230,7 +230,7 @@ Table<BreakdownRunOptions> breakdown_table() {
 Table<RunOptions> described_table(const Model& model) {
   Table<RunOptions> t;
   add_look(t, [&model](RunOptions& o) -> OutputOptions& { return model.files(o); });
-  add_described(t, model.option_table, [](RunOptions& o) -> RunOptions& { return o; });
+  add_described(t, model.option_table);
   return t;
 }
 
