@@ -39,7 +39,9 @@ class DescribedOptions {
       given->row = &row;
       const OptionDescription& about = row.about;
       const OptionValue value = row.get(defaults);
-      const std::string name = cli_flag(about.name), help = help_text(about);
+      const std::string name = (about.short_name.empty() ? "" : "-" + std::string(about.short_name) + ",") +
+                               cli_flag(about.name),
+                        help = help_text(about);
       switch (about.kind) {
         case OptionKind::flag:
           given->on = std::get<bool>(value);

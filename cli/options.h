@@ -60,7 +60,8 @@ std::string options_markdown(const CLI::App& app, const std::vector<Subcommand>&
 //! and the paint's, added to `app`; finish() sets those given in `files`.
 class OutputWords {
  public:
-  OutputWords(CLI::App& app, OutputOptions& files, bool& quiet, std::string formats = "pov,csv,ply,json");
+  //! `formats`: the --formats default; empty: those `files` holds (the model's).
+  OutputWords(CLI::App& app, OutputOptions& files, bool& quiet, std::string formats = {});
   //! Sets in `files` (those given to the constructor) the options given; those the mesh gives
   //! defaults for only when given.
   void finish(OutputOptions& files) const;

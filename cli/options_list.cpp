@@ -243,15 +243,18 @@ std::string options_markdown(const CLI::App& app, const std::vector<Subcommand>&
     text += "| " + usage(*models[m].app, models[m].app == &app) + " | " + sentence(dla::models()[m].summary) + " |\n";
   for (const CLI::App* command : others) text += "| " + usage(*command, false) + " | " + sentence(command->get_description()) + " |\n";
 
-  // The groups every model has alike (the files, the look, the solid) once, before the models.
+  // The groups most models have alike (the files, the look, the solid) once, before the models;
+  // a model whose defaults there differ (an aggregate's) lists its own.
   std::vector<std::vector<std::pair<std::string, std::string>>> tables;
   for (const Subcommand& model : models) tables.push_back(group_tables(*model.app, model.described));
   const auto shared = [&](const std::pair<std::string, std::string>& group) {
-    return std::all_of(tables.begin(), tables.end(), [&](const auto& model) {
+    const auto alike = std::count_if(tables.begin(), tables.end(), [&](const auto& model) {
       return std::find(model.begin(), model.end(), group) != model.end();
     });
+    return 2 * static_cast<std::size_t>(alike) > tables.size();
   };
-  text += "\n## Every growth model\n\nThe files, the look and the solid, the same for every model below.\n";
+  text += "\n## Every growth model\n\nThe files, the look and the solid, the same for every model below but where a "
+          "model lists its own (its defaults differ).\n";
   for (const auto& group : tables.front())
     if (shared(group)) text += "\n**" + group.first + "**\n\n" + group.second;
   for (std::size_t m = 0; m < models.size(); ++m) {

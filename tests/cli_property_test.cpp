@@ -13,8 +13,8 @@
 //     incomplete.
 // Every model the library registers (dla/run/run.h) has a share of the command lines: a
 // quarter are `dla3d colonize` ones, an eighth `dla3d eden` ones and a sixteenth each `dla3d
-// drop`, `dla3d ballistic`, `dla3d breakdown` and `dla3d frames` ones, each drawn from its own table and the
-// Output and Look options.
+// drop`, `dla3d ballistic`, `dla3d breakdown`, `dla3d aggregate` and `dla3d frames` ones, each drawn from its
+// own table and the Output and Look options.
 // DLA_PROPERTY_RUNS sets the number of command lines (default 150, about a minute;
 // CliProperty.Long, in the full tier, runs 1,000) and DLA_PROPERTY_SEED the generator's seed.
 // Every option and model added to dla3d must join the tables below: the test fails on an
@@ -154,6 +154,7 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--ply-format", {"binary", "ascii", "text"}},
       {"--binary", {}},
       {"--formats", {"pov,csv,ply,json", "glb,obj,tips,json", "csv,svg,json", "png,csv,json", "html,json", "json", "''",
+                     "spheres,csv,json",
                      "pov,jpg", "glb,,obj", "stl,json", "3mf,vdb,json", "solid-glb,solid-obj,csv,json", "stl,3mf"}},
       {"--solid-shape", {"branches", "spheres", "cubes", "blobs"}},
       {"--solid-voxel", {"0", "0.2", "0.05", "0.001", "100", "-1", "nan"}},
@@ -318,6 +319,17 @@ const std::map<std::string, std::vector<std::string>>& breakdown_table() {
                                "--no-scene-mesh", "--fill", "--spawn", "--spawn-axis", "--disk-radius", "--box"})
       t.emplace(shared, option_table().at(shared));
     return with_presets(with_described(t, descriptions(breakdown_option_table())), "breakdown");
+  }();
+  return table;
+}
+
+//! `dla3d aggregate`'s options, all described; the monomers' count is drawn by hand, as the
+//! description's largest (10^8) would take hours, not a fault.
+const std::map<std::string, std::vector<std::string>>& aggregate_table() {
+  static const std::map<std::string, std::vector<std::string>> table = [] {
+    std::map<std::string, std::vector<std::string>> t = with_described({}, descriptions(aggregate_run_option_table()));
+    t["--monomers"] = {"40", "150", "1", "2", "0", "100000001", "-5", "2.5", "x"};
+    return t;
   }();
   return table;
 }
@@ -735,7 +747,26 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
     // An Eden site hangs from the nearest occupied site of its mask, up to 8 sites away along
     // each axis.
     if (json.find("\"model\": \"eden\"") != std::string::npos) reach = 8 * std::sqrt(3.0);
+    // A monomer of an aggregate touches its parent at the sum of their radii, which spread as
+    // far as the options draw them: the tree's shape alone.
+    if (json.find("\"model\": \"aggregate\"") != std::string::npos) reach = std::numeric_limits<double>::infinity();
     counted = true;
+  }
+
+  if (wants("spheres")) {
+    // The sphere list: x,y,z,r, a row a particle, every radius positive.
+    std::istringstream spheres(read_file(dir / (prefix + "_spheres.csv")));
+    std::string line;
+    if (!std::getline(spheres, line) || line != "x,y,z,r") return prefix + "_spheres.csv has no header";
+    std::size_t rows = 0;
+    for (; std::getline(spheres, line); ++rows) {
+      double x, y, z, r;
+      char c[3];
+      std::istringstream row(line);
+      if (!(row >> x >> c[0] >> y >> c[1] >> z >> c[2] >> r) || !(r > 0.0) || !std::isfinite(x + y + z + r))
+        return prefix + "_spheres.csv row " + line + " is not a sphere";
+    }
+    if (counted && rows != particles) return prefix + "_spheres.csv has another count than the JSON";
   }
 
   if (wants("csv")) {
@@ -763,7 +794,7 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
     // Branches clipped at a mesh are shorter; a collision mesh moves a node as far as its
     // surface. Without the JSON's spacing, the tree's shape alone.
     const double longest = collided || !counted ? std::numeric_limits<double>::infinity() : reach + std::sqrt(3.0) * noise;
-    if (!counted) grown.spacing = 1.0;
+    if (!counted || !(grown.spacing > 0.0)) grown.spacing = 1.0;
     const std::string fault = dla::testing::tree_fault(grown, {0.0, longest, false});
     if (!fault.empty()) return prefix + ".csv is not a tree: " + fault;
     // The links: as many as the JSON counts, each two particles, none a tree edge or twice.
@@ -979,7 +1010,8 @@ std::string stopped_files_fault(const ScratchDir& dir, const std::set<std::strin
       if (bytes.size() < 2 || bytes.substr(bytes.size() - 2) != "}\n" || !balanced(bytes, '{', '}')) return name + " is not whole";
       if (!ended && bytes.find("\"stopped_in\": ") == std::string::npos && bytes.find("\"generator\"") != std::string::npos)
         return name + " does not say where the run stopped";
-    } else if (ends_with(".csv") && !ends_with("_links.csv") && name.find("frame") == std::string::npos) {
+    } else if (ends_with(".csv") && !ends_with("_links.csv") && !ends_with("_spheres.csv") &&
+               name.find("frame") == std::string::npos) {
       try {
         const std::string fault = testing::tree_fault(read_csv(entry.path().string()), {0.0, 1e300, false});
         if (!fault.empty()) return name + " is not a tree: " + fault;
@@ -1010,7 +1042,7 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
   const ModelRuns model_runs[] = {{"colonize", 4, &colonize_table()}, {"eden", 2, &eden_table()},
                                   {"drop", 1, &drop_table()},         {"ballistic", 1, &ballistic_table()},
                                   {"breakdown", 1, &breakdown_table()}, {"frames", 1, &frames_table()},
-                                  {"grow", 6, nullptr}};
+                                  {"aggregate", 1, &aggregate_table()}, {"grow", 5, nullptr}};
   for (const dla::Model& model : dla::models())
     EXPECT_TRUE(std::any_of(std::begin(model_runs), std::end(model_runs), [&](const ModelRuns& m) { return m.name == model.name; }))
         << "the property test runs no " << model.name;
@@ -1066,7 +1098,8 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
       }
       args += " " + flag;
       if (!values.empty()) args += " " + values[pick(3) == 0 ? pick(values.size()) : pick(std::min<std::size_t>(2, values.size()))];
-      particles_given = particles_given || flag == "--particles" || flag == "--max-nodes" || flag == "--sites";
+      particles_given = particles_given || flag == "--particles" || flag == "--max-nodes" || flag == "--sites" ||
+                        flag == "--monomers";
       output_given = output_given || flag == "--output";
     }
     // A resume takes no -n: leave it alone so that some resumes are valid.
@@ -1130,7 +1163,13 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
         if (command.find("--help") != std::string::npos || command.find("--version") != std::string::npos ||
             command.find("--preset list") != std::string::npos)
           break;
-        std::string prefix = command.find("--resume saved.ck") != std::string::npos ? "resumed" : framing ? "grown" : "dla";
+        // The model's own defaults for the files: an aggregate's are aggregate.* with its sphere list.
+        const dla::Model* registered = dla::find_model(model->name);
+        dla::RunOptions defaults = registered ? registered->options() : dla::RunOptions();
+        const dla::OutputOptions& default_files = (registered ? *registered : dla::model_of(defaults)).files(defaults);
+        std::string prefix = command.find("--resume saved.ck") != std::string::npos ? "resumed"
+                             : framing                                          ? "grown"
+                                                                                : default_files.output;
         if (output_given) {
           const std::size_t at = command.rfind("--output ");
           std::string value = command.substr(at + 9, command.find(" -", at + 9) - at - 9);
@@ -1144,7 +1183,7 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
           stop_again();
           break;
         }
-        ASSERT_EQ(check_files(dir, prefix, value_as_run(command, model->name, "--formats", "pov,csv,ply,json"),
+        ASSERT_EQ(check_files(dir, prefix, value_as_run(command, model->name, "--formats", dla::format_words(default_files.formats)),
                               std::atoi(last_value(command, "--lod", "0").c_str())), "");
         if (last_value(command, "--stream", "") == "live.bin") {
           ASSERT_EQ(stream_fault(dir / "live.bin"), "");

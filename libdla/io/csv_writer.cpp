@@ -64,4 +64,20 @@ void write_csv(const Cluster& cluster, const std::string& path) { write(cluster,
 
 void write_csv(const Cluster& cluster, const Look& look, const std::string& path) { write(cluster, &look, path); }
 
+void write_spheres_csv(const Cluster& cluster, const Look& look, const std::string& path) {
+  detail::OutputFile out(path);
+  out << "x,y,z,r\n";
+  const bool own = cluster.radii.size() == cluster.particles.size();
+  write_in_order(out, cluster.particles.size(), 1 << 12, detail::format_threads(), [&](detail::Text& text, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const Vec3& p = cluster.particles[i].position;
+      text.number(p.x()) << ',';
+      text.number(p.y()) << ',';
+      text.number(p.z()) << ',';
+      text.number(own ? cluster.radii[i] : look.radius(cluster, i)) << '\n';
+    }
+  });
+  out.commit();
+}
+
 }  // namespace dla

@@ -148,11 +148,17 @@ ColorBy painted_by(const Look& look, const PovOptions& options) {
   return options.style == PovStyle::glow && by == ColorBy::none ? ColorBy::current : by;
 }
 
+//! Whether the scene's DLA_R takes each particle's own radius as a fifth argument, M: with the
+//! `particle` radius model (an aggregate's monomers), which has nothing else to go by.
+bool own_radii(const Look& look) { return look.options.radius.model == RadiusModel::particle; }
+
 //! Writes the arguments of DLA_R for particle i: its place along its strand, its flow (the
-//! subtree's size, or a discharge's current), and its distances to the mesh and to the seeds as fractions of the largest.
+//! subtree's size, or a discharge's current), and its distances to the mesh and to the seeds as fractions of the largest;
+//! with own_radii(), its own radius in scene units.
 class RadiusArguments {
  public:
-  RadiusArguments(const Cluster& cluster, const Look& look) : cluster_(cluster), attributes_(look.attributes) {}
+  RadiusArguments(const Cluster& cluster, const Look& look, double scale)
+      : cluster_(cluster), attributes_(look.attributes), own_(own_radii(look)), scale_(scale) {}
 
   void operator()(detail::Text& out, std::size_t i) const {
     const Attributes& a = attributes_;
@@ -161,7 +167,12 @@ class RadiusArguments {
     out.integer(a.flow(i)) << ", ";
     out.fixed(a.boundary_reach > 0 ? a.boundary_distance[i] / a.boundary_reach : 0.0, 3) << ", ";
     const double seed = a.seed_distance(cluster_.particles[i].position);
-    out.fixed(a.seed_reach > 0 ? seed / a.seed_reach : 0.0, 3) << ')';
+    out.fixed(a.seed_reach > 0 ? seed / a.seed_reach : 0.0, 3);
+    if (own_) {
+      out << ", ";
+      out.number(cluster_.radii[i] * scale_, 7);
+    }
+    out << ')';
   }
 
   //! Starts loading particle i's attributes. A strand's particles lie far apart in memory: at
@@ -175,12 +186,14 @@ class RadiusArguments {
  private:
   const Cluster& cluster_;
   const Attributes& attributes_;
+  bool own_;
+  double scale_;
 };
 
 void write_geometry(const Cluster& cluster, const SceneFrame& frame, const Look& look, const PovOptions& options,
                     const std::string& path) {
   const auto& ps = cluster.particles;
-  const RadiusArguments radius(cluster, look);
+  const RadiusArguments radius(cluster, look, frame.scale);
   const ColorBy by = painted_by(look, options);
   const bool colored = by != ColorBy::none;
   const ColorScale color(cluster, look.attributes, by);
@@ -225,6 +238,19 @@ void write_geometry(const Cluster& cluster, const SceneFrame& frame, const Look&
       paint(out, b);
       out << " }\n";
     }
+    out << "}\n";
+  } else if (options.style == PovStyle::spheres) {
+    out << "#declare DLA_Structure = union {\n";
+    write_in_order(out, ps.size(), kChunk, detail::format_threads(), [&](detail::Text& text, std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        text << "  sphere { ";
+        vector(text, ps[i].position, frame);
+        text << ", ";
+        radius(text, i);
+        paint(text, i);
+        text << " }\n";
+      }
+    });
     out << "}\n";
   } else {
     out << "#declare DLA_Structure = union {\n";
@@ -347,6 +373,11 @@ void write_growth(const Cluster& cluster, const SceneFrame& frame, const Look& l
     text.fixed(a.seed_reach > 0 ? a.seed_distance(ps[i].position) / a.seed_reach : 0.0, 3);
   });
   if (colored) write_array(out, "DLA_Value", ps.size(), [&](detail::Text& text, std::size_t i) { text.fixed(color(i), 4); });
+  const bool own = own_radii(look);
+  if (own)
+    write_array(out, "DLA_Own", ps.size(), [&](detail::Text& text, std::size_t i) {
+      text.number(cluster.radii[i] * frame.scale, 7);
+    });
   // The links, each shown once its later particle is.
   const std::vector<Link>& links = cluster.links;
   if (!links.empty()) {
@@ -361,7 +392,8 @@ void write_growth(const Cluster& cluster, const SceneFrame& frame, const Look& l
 
   const auto radius = [&](const char* i) {
     return std::string("DLA_R(DLA_Place[") + i + "], DLA_Descendants[" + i + "] + 1, " +
-           (boundary ? std::string("DLA_Boundary[") + i + "]" : std::string("0")) + ", DLA_SeedDistance[" + i + "])";
+           (boundary ? std::string("DLA_Boundary[") + i + "]" : std::string("0")) + ", DLA_SeedDistance[" + i + "]" +
+           (own ? std::string(", DLA_Own[") + i + "]" : std::string()) + ")";
   };
   const auto paint = [&](const char* i) {
     return colored ? std::string(" texture { DLA_Paint(DLA_Value[") + i + "]) }" : std::string();
@@ -400,6 +432,12 @@ void write_growth(const Cluster& cluster, const SceneFrame& frame, const Look& l
                      radius("DLA_LinkA[DLA_K]") + "), DLA_BlobRadius(" + radius("DLA_LinkB[DLA_K]") + ")), 1" +
                      paint("DLA_LinkB[DLA_K]") + " }")
         << "}\n";
+  } else if (options.style == PovStyle::spheres) {
+    out << "#declare DLA_Structure = union {\n"
+           "  #for (DLA_I, 0, DLA_N - 1)\n"
+           "    sphere { DLA_Position[DLA_I], " << radius("DLA_I") << paint("DLA_I") << " }\n"
+           "  #end\n"
+           "}\n";
   } else {
     out << "// A sphere at each seed, and a sphere_sweep along the part grown of each strand, from its last\n"
            "// particle so far up to its start: a strand leaving a branch point starts there, inside its\n"
@@ -565,7 +603,8 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
   }
   out << "// The look: change these and render again, no need to grow again.\n"
          "#declare DLA_RadiusModel = \"" << to_string(radius.model)
-      << "\";  // taper, pipe, boundary, seed-distance or uniform (docs/look.md)\n"
+      << "\";  // taper, pipe, boundary, seed-distance" << (own_radii(used) ? ", uniform or particle" : " or uniform")
+      << " (docs/look.md)\n"
          "#declare DLA_BaseRadius = ";
   out.number(radius.base_radius * unit, 7) << ";  // the thickest branch\n#declare DLA_TipRadius = ";
   out.number(radius.tip_radius * unit, 7) << ";  // the finest branch\n#declare DLA_PipeExponent = ";
@@ -625,21 +664,28 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
            "  finish { DLA_Finish }\n"
            "#end\n";
   }
+  // With each particle's own radius (own_radii), DLA_R takes it as M, and the particle model is M.
+  const bool own = own_radii(used);
+  const std::string args = own ? "(F, P, B, S, M)" : "(F, P, B, S)";
   out << "\n// Radius of a branch point: F its place along its strand (1 at the start), P the particles\n"
-         "// in its subtree, B and S its distances to the mesh and to the seeds (1: the largest).\n"
+         "// in its subtree, B and S its distances to the mesh and to the seeds (1: the largest)"
+      << (own ? ", M its own radius" : "") << ".\n"
          "#if (strcmp(DLA_RadiusModel, \"taper\") = 0)\n"
-         "  #declare DLA_R = function(F, P, B, S) { DLA_TipRadius + (DLA_BaseRadius - DLA_TipRadius) * F }\n"
+         "  #declare DLA_R = function" << args << " { DLA_TipRadius + (DLA_BaseRadius - DLA_TipRadius) * F }\n"
          "#elseif (strcmp(DLA_RadiusModel, \"pipe\") = 0)\n"
-         "  #declare DLA_R = function(F, P, B, S) { min(DLA_TipRadius * pow(P, 1 / DLA_PipeExponent), "
+         "  #declare DLA_R = function" << args << " { min(DLA_TipRadius * pow(P, 1 / DLA_PipeExponent), "
          "max(DLA_BaseRadius, DLA_TipRadius)) }\n"
          "#elseif (strcmp(DLA_RadiusModel, \"boundary\") = 0)\n"
-         "  #declare DLA_R = function(F, P, B, S) { DLA_TipRadius + (DLA_BaseRadius - DLA_TipRadius) * B }\n"
+         "  #declare DLA_R = function" << args << " { DLA_TipRadius + (DLA_BaseRadius - DLA_TipRadius) * B }\n"
          "#elseif (strcmp(DLA_RadiusModel, \"seed-distance\") = 0)\n"
-         "  #declare DLA_R = function(F, P, B, S) { DLA_TipRadius + (DLA_BaseRadius - DLA_TipRadius) * (1 - S) }\n"
+         "  #declare DLA_R = function" << args << " { DLA_TipRadius + (DLA_BaseRadius - DLA_TipRadius) * (1 - S) }\n"
          "#elseif (strcmp(DLA_RadiusModel, \"uniform\") = 0)\n"
-         "  #declare DLA_R = function(F, P, B, S) { DLA_BaseRadius }\n"
-         "#else\n"
-         "  #error \"DLA_RadiusModel is not taper, pipe, boundary, seed-distance or uniform\"\n"
+         "  #declare DLA_R = function" << args << " { DLA_BaseRadius }\n";
+  if (own)
+    out << "#elseif (strcmp(DLA_RadiusModel, \"particle\") = 0)\n"
+           "  #declare DLA_R = function" << args << " { M }\n";
+  out << "#else\n"
+         "  #error \"DLA_RadiusModel is not taper, pipe, boundary, seed-distance" << (own ? ", uniform or particle" : " or uniform") << "\"\n"
          "#end\n"
          "// Called at every tip: Position, Direction (unit, from the parent) and Scale (the largest radius\n"
          "// at which copies do not overlap). Replace it with a leaf or a flower scaled by Scale.\n"
@@ -655,7 +701,8 @@ void write_pov(const Cluster& cluster, const std::string& prefix, const PovOptio
                      : options.up == Axis::z ? "<0.35, 1, 0.45>"
                      : options.up == Axis::x ? "<0.45, 0.35, -1>"
                                              : "<0.35, 0.45, -1>";
-  const double thickest = std::max(radius.base_radius, radius.tip_radius) * unit;
+  const double thickest = own ? *std::max_element(cluster.radii.begin(), cluster.radii.end()) * frame.scale
+                              : std::max(radius.base_radius, radius.tip_radius) * unit;
   const double reach = options.style == PovStyle::blob ? 2.0 * thickest + 0.5 * unit : thickest;
   out.number(extent * frame.scale + reach, 7) << ";\n#declare DLA_View = " << view
                                << ";  // from the centre towards the camera\n#declare DLA_Sky = "

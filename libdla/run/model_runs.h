@@ -1,6 +1,6 @@
 #pragma once
 // What the model runs share (one file each: dla_run.cpp, colonize_run.cpp, eden_run.cpp,
-// drop_run.cpp, ballistic_run.cpp, breakdown_run.cpp) and the function each registers in run.cpp's table.
+// drop_run.cpp, ballistic_run.cpp, breakdown_run.cpp, aggregate_run.cpp) and the function each registers in run.cpp's table.
 
 #include "dla/run/run.h"
 
@@ -20,6 +20,7 @@ std::unique_ptr<Run> prepare_eden(const EdenRunOptions& options, const MeshReade
 std::unique_ptr<Run> prepare_drop(const DropRunOptions& options, const MeshReader& read, const Resumed& resumed);
 std::unique_ptr<Run> prepare_ballistic(const BallisticRunOptions& options, const MeshReader& read, const Resumed& resumed);
 std::unique_ptr<Run> prepare_breakdown(const BreakdownRunOptions& options, const MeshReader& read, const Resumed& resumed);
+std::unique_ptr<Run> prepare_aggregate(const AggregateRunOptions& options, const MeshReader& read, const Resumed& resumed);
 
 //! "NAME: 1,234 triangles; REPAIRS; spacing S": what a run says of its constraint mesh.
 std::string mesh_line(const std::string& name, const MeshConstraint& constraint, double spacing);

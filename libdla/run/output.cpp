@@ -25,6 +25,7 @@ const std::vector<FormatEntry>& format_table() {
   static const std::vector<FormatEntry> table = {
       {"pov", &Formats::pov, {".pov", ".inc", "_growth.inc"}},
       {"csv", &Formats::csv, {".csv"}},
+      {"spheres", &Formats::spheres, {"_spheres.csv"}},
       {"ply", &Formats::ply, {".ply"}},
       {"glb", &Formats::glb, {".glb"}},
       {"obj", &Formats::obj, {".obj"}},
@@ -67,6 +68,13 @@ Formats parse_formats(std::string_view words) {
     throw InvalidInput("`formats` html: this dla3d was built without npm, which fetches the web viewer's three.js; "
                        "install npm and build again");
   return formats;
+}
+
+std::string format_words(const Formats& formats) {
+  std::string words;
+  for (const FormatEntry& e : format_table())
+    if (formats.*(e.flag)) words += (words.empty() ? "" : ",") + std::string(e.word);
+  return words;
 }
 
 void check_glb_options(const OutputOptions& output) {

@@ -117,6 +117,12 @@ std::deque<Model>& registry() {
           "grow a discharge by the dielectric breakdown model: growth where the field to the power eta is strong, "
           "towards a target electrode, around insulating meshes: lightning, Lichtenberg figures (docs/breakdown.md)",
           detail::prepare_breakdown),
+      make_model<AggregateRunOptions>(
+          "aggregate",
+          "grow an aggregate of clusters: soot, dust, colloids; clusters diffuse (dlca, rlca) or fly (ballistic) "
+          "until they touch, or join on a chosen fractal law (tuned); spheres for light-scattering codes "
+          "(docs/aggregate.md)",
+          detail::prepare_aggregate, aggregate_run_option_table()),
   };
   return all;
 }
@@ -196,12 +202,15 @@ std::unique_ptr<Run> prepare_run(const RunOptions& options, const MeshReader& re
   std::unique_ptr<Run> run = model.prepare(options, reader, resumed);
   run->model = model.name;
   run->leaf = std::move(leaf);
-  if (run->files.formats.solid()) {
-    const RadiusOptions& radius = run->files.look.radius;
+  const RadiusOptions& radius = run->files.look.radius;
+  if (radius.model == RadiusModel::particle && !run->sizes_particles)
+    throw InvalidInput("`radius` particle draws each particle's own radius: only `aggregate` sizes them");
+  // A model that sizes its particles forecasts their radii itself.
+  if (run->files.formats.solid() && radius.model != RadiusModel::particle) {
     run->solid_forecast.least_radius = std::min(radius.tip_radius, radius.base_radius);
     run->solid_forecast.most_radius = std::max(radius.tip_radius, radius.base_radius);
-    refuse_solid_before_growth(run->solid_forecast, run->files.solid);
   }
+  if (run->files.formats.solid()) refuse_solid_before_growth(run->solid_forecast, run->files.solid);
   detail::refuse_or_foretell(*run);
   // Refused before growing, not when the files are written.
   if (run->files.instances.exclude_paint && run->constraint)

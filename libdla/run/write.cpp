@@ -50,6 +50,8 @@ struct WriterEntry {
 
 const WriterEntry kWriters[] = {
     {&Formats::csv, ".csv", [](const WriteJob& j, const std::string& path) { write_csv(j.cluster, j.look, path); }},
+    {&Formats::spheres, "_spheres.csv",
+     [](const WriteJob& j, const std::string& path) { write_spheres_csv(j.cluster, j.look, path); }},
     {&Formats::ply, ".ply",
      [](const WriteJob& j, const std::string& path) { write_ply(j.cluster, j.look, path, j.files.ply_encoding); }},
     {&Formats::glb, ".glb",

@@ -78,6 +78,12 @@ void bind_result(py::module_& m) {
         const Look& look = r.look_for_python();
         return per_particle<float>(r, [&](std::size_t i) { return static_cast<float>(look.radius(r.cluster, i)); });
       }, "(N,) float32: the branch radius of the look, in scene units")
+      .def_property_readonly("radii", [](py::object self) {
+        const Result& r = self.cast<const Result&>();
+        const std::vector<double>& radii = r.cluster.radii;
+        return shared_array(radii.data(), {static_cast<py::ssize_t>(radii.size())}, {sizeof(double)}, self);
+      }, "(N,) float64: each particle's own radius in scene units, for a model that sizes them (an aggregate's "
+         "monomers); empty for the others")
       .def_property_readonly("strike", [](const Result& r) { return r.cluster.strike; },
                              "the breakdown model's strike: the particle that reached the target; -1: none")
       .def_property_readonly("seed_count", [](const Result& r) { return r.cluster.seed_count; })

@@ -3,7 +3,7 @@
 // reads no file (meshes, text, attractors, masks: the readers' fuzzers' and the property
 // test's) is prepared by the library's run layer, as dla3d prepares it, grown small (DLA to 16
 // particles on at most two threads, colonize to 64 nodes among 300 attractors, Eden to 200
-// sites, drop and ballistic to 64 particles) for at most a second (a stop flag, as Ctrl-C
+// sites, drop and ballistic to 64 particles, an aggregate to 64 monomers) for at most a second (a stop flag, as Ctrl-C
 // would), and given the look it asks for, and its solid (in 200 MB at most). Any words must
 // either be refused with InvalidInput, or grow a valid tree (tree_check.h) with positive radii,
 // tubes, instancing points and a solid of positive volume: never crash, hang, overflow or read
@@ -79,6 +79,10 @@ bool make_small(dla::RunOptions& run) {
     o->ballistic.particles = std::min<std::size_t>(o->ballistic.particles, 64);
     return !far_apart(o->ballistic.seeds, o->ballistic.spacing);
   }
+  if (auto* o = run.get_if<dla::AggregateRunOptions>()) {
+    o->aggregate.monomers = std::min<std::size_t>(o->aggregate.monomers, 64);
+    return true;
+  }
   // A model registered since: it must join, or the fuzzer would not grow it.
   throw std::logic_error("the CLI fuzzer cannot make a " + std::string(dla::model_of(run).name) + " run small");
 }
@@ -88,6 +92,15 @@ dla::testing::TreeRules rules_of(const dla::RunOptions& run) {
   if (const auto* o = run.get_if<dla::ColonizeRunOptions>()) {
     const double noise = std::sqrt(3.0) * o->colonization.noise_amplitude;  // one step, or as far as the noise moves it
     return {noise > 0 ? 0.0 : 1.0, 1.0 + noise, false};
+  }
+  // A monomer touches its parent at (1 - overlap)(r_i + r_j), in spacings of 2a: up to the
+  // largest radius the spread draws, in a.
+  if (const auto* o = run.get_if<dla::AggregateRunOptions>()) {
+    const dla::AggregateOptions& a = o->aggregate;
+    const double widest = a.sizes == dla::MonomerSizes::lognormal ? std::pow(a.spread, 4.0)
+                          : a.sizes == dla::MonomerSizes::normal  ? 2.0 + 4.0 * a.spread
+                                                                  : 1.0;
+    return {0.0, widest * (1.0 + 1e-9), false};
   }
   // An Eden site hangs from the nearest occupied site of its mask, up to 8 sites away each way.
   if (run.get_if<dla::EdenRunOptions>()) return {1.0, 8 * std::sqrt(3.0), true};

@@ -35,6 +35,10 @@ MODELS = [
     ("grow", {"particles": 2000, "links": (2.5, 2)}),
     ("colonize", {"max_nodes": 2000, "venation": "closed", "influence": 8.0, "dimensions": 2}),
     ("eden", {"sites": 1000, "links": "lattice", "lattice": "hex"}),
+    # Aggregates of clusters: diffusing in a box, and tuned to a law, of monomers of many sizes.
+    ("aggregate", {"monomers": 400, "rng_seed": 8}),
+    ("aggregate", {"monomers": 300, "mode": "tuned", "df": 2.0, "kf": 1.4, "sizes": "lognormal", "spread": 1.3,
+                   "overlap": 0.1}),
 ]
 COLUMNS = "id,x,y,z,parent,seed,radius,age,depth,descendants,order,tip"
 
@@ -93,6 +97,14 @@ def expect_branch_lengths(result, model, options):
             d = np.linalg.norm(positions[chunk, None, :] - positions[None, :, :], axis=2)
             d[np.arange(len(chunk)), chunk] = np.inf
             assert d.min() >= spacing - slack, d.min()
+    elif model == "aggregate":  # a monomer touches its parent, sintered by `overlap`, and overlaps no other more
+        radii, keep = result.radii, 1.0 - options.get("overlap", 0.0)
+        assert radii.shape == (n,) and (radii > 0).all()
+        np.testing.assert_allclose(length, keep * (radii[k:] + radii[parent[k:]]), rtol=1e-7)
+        d = np.linalg.norm(positions[:, None, :] - positions[None, :, :], axis=2)
+        least = keep * (radii[:, None] + radii[None, :])
+        np.fill_diagonal(d, np.inf)
+        assert (d >= least * (1 - 1e-7)).all()
     elif model == "eden":  # a site hangs from the nearest occupied site of its mask
         assert ((length >= spacing - slack) & (length <= 8 * np.sqrt(3) * spacing + slack)).all()
     elif model == "colonize" and "collide" not in options:  # a step, moved by the noise

@@ -43,6 +43,9 @@ struct Cluster {
   double spacing = 1.0;
   int dimensions = 3;
   bool complete = true;             //!< false when growth was stopped before the count
+  //! Each particle's own radius, in scene units, when the model sizes particles one by one
+  //! (an aggregate's monomers); the look's `particle` radius model draws them. Empty: none.
+  std::vector<double> radii;
   //! The breakdown model's strike (breakdown.h): the particle that came within a spacing of
   //! its target electrode, the end of the main channel; -1: none (every other model).
   std::int32_t strike = -1;
@@ -70,6 +73,8 @@ inline Cluster first_particles(const Cluster& cluster, std::size_t count) {
   part.particles.assign(cluster.particles.begin(), cluster.particles.begin() + static_cast<std::ptrdiff_t>(count));
   for (const Link& link : cluster.links)
     if (static_cast<std::size_t>(link.later) < count) part.links.push_back(link);
+  if (!cluster.radii.empty())
+    part.radii.assign(cluster.radii.begin(), cluster.radii.begin() + static_cast<std::ptrdiff_t>(count));
   part.seed_count = std::min(cluster.seed_count, count);
   part.center = cluster.center;
   part.spacing = cluster.spacing;

@@ -92,6 +92,7 @@ struct OptionDescription {
   std::string_view unit;                //!< integer, real: "spacings", "degrees"; empty: none
   std::vector<std::string_view> choices;  //!< word: the mode's words, in its table's order
   std::string_view negation;              //!< flag: the name that turns it off; empty: none
+  std::string_view short_name;            //!< the CLI's one-letter name: "n" for -n; empty: none
 };
 
 //! A value of an option, as a front end hands it over.
@@ -162,7 +163,7 @@ template <class Options>
 DescribedOption<Options> real(std::string_view name, double Options::*member, Range range, std::string_view unit,
                               std::string_view group, std::string_view help,
                               std::optional<SpecialValue> special = std::nullopt) {
-  OptionDescription about{name, OptionKind::real, group, help, range, special, unit, {}, {}};
+  OptionDescription about{name, OptionKind::real, group, help, range, special, unit, {}, {}, {}};
   return {about,
           [about, member](Options& o, const OptionValue& v) {
             const double value = detail::number_of(about.name, v);
@@ -178,7 +179,7 @@ template <class Options, class Whole, std::enable_if_t<std::is_integral_v<Whole>
 DescribedOption<Options> integer(std::string_view name, Whole Options::*member, Range range, std::string_view unit,
                                  std::string_view group, std::string_view help,
                                  std::optional<SpecialValue> special = std::nullopt) {
-  OptionDescription about{name, OptionKind::integer, group, help, range, special, unit, {}, {}};
+  OptionDescription about{name, OptionKind::integer, group, help, range, special, unit, {}, {}, {}};
   return {about,
           [about, member](Options& o, const OptionValue& v) {
             const double value = detail::number_of(about.name, v);
@@ -194,7 +195,7 @@ DescribedOption<Options> integer(std::string_view name, Whole Options::*member, 
 template <class Options, class Mode, std::enable_if_t<has_words<Mode>, int> = 0>
 DescribedOption<Options> word(std::string_view name, Mode Options::*member, std::string_view group,
                               std::string_view help) {
-  OptionDescription about{name, OptionKind::word, group, help, {}, {}, {}, words_list<Mode>(), {}};
+  OptionDescription about{name, OptionKind::word, group, help, {}, {}, {}, words_list<Mode>(), {}, {}};
   return {about,
           [about, member](Options& o, const OptionValue& v) {
             const std::string* text = std::get_if<std::string>(&v);
@@ -213,7 +214,7 @@ DescribedOption<Options> word(std::string_view name, Mode Options::*member, std:
 template <class Options>
 DescribedOption<Options> flag(std::string_view name, bool Options::*member, std::string_view group,
                               std::string_view help, std::string_view negation = {}) {
-  OptionDescription about{name, OptionKind::flag, group, help, {}, {}, {}, {}, negation};
+  OptionDescription about{name, OptionKind::flag, group, help, {}, {}, {}, {}, negation, {}};
   return {about,
           [about, member](Options& o, const OptionValue& v) {
             const bool* on = std::get_if<bool>(&v);
@@ -221,6 +222,13 @@ DescribedOption<Options> flag(std::string_view name, bool Options::*member, std:
             o.*member = *on;
           },
           [member](const Options& o) { return OptionValue(o.*member); }};
+}
+
+//! `row` with the CLI's one-letter name `letter` as well: -n for --monomers.
+template <class Options>
+DescribedOption<Options> with_short_name(DescribedOption<Options> row, std::string_view letter) {
+  row.about.short_name = letter;
+  return row;
 }
 
 //! The options of `table`, which describes a part of `Outer` (a member, or a base), as options

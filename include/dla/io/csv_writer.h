@@ -24,4 +24,9 @@ void write_csv(const Cluster& cluster, const std::string& path);
 //! The tree and the look's radius and attributes. Throws IOError.
 void write_csv(const Cluster& cluster, const Look& look, const std::string& path);
 
+//! The sphere list that light-scattering codes read (MSTM, DDSCAT's tools, T-matrix codes):
+//! `x,y,z,r`, a row a particle, in scene units; r is the particle's own radius where the model
+//! sized it (Cluster::radii, exactly), else the look's. Throws IOError.
+void write_spheres_csv(const Cluster& cluster, const Look& look, const std::string& path);
+
 }  // namespace dla

@@ -23,10 +23,12 @@ enum class PovStyle {
   blob,      //!< metaballs: a blob of one sphere per particle (the thesis' "uncanny growth")
   glow,      //!< the branches, emissive on black, as bright as the colour value (a discharge's
              //!< current unless `color_by` says otherwise)
+  spheres,   //!< a sphere of its radius at each particle: an aggregate's monomers
 };
-inline constexpr WordTable<PovStyle, 3> kPovStyleWords{
+inline constexpr WordTable<PovStyle, 4> kPovStyleWords{
     "look",
-    {{{PovStyle::branches, "branches"}, {PovStyle::blob, "blob"}, {PovStyle::glow, "glow"}}}};
+    {{{PovStyle::branches, "branches"}, {PovStyle::blob, "blob"}, {PovStyle::glow, "glow"},
+      {PovStyle::spheres, "spheres"}}}};
 constexpr const auto& words_of(PovStyle) { return kPovStyleWords; }
 
 struct PovOptions {
@@ -51,8 +53,8 @@ inline const OptionTable<PovOptions>& pov_option_table() {
   using O = PovOptions;
   static const OptionTable<O> table{
       word("look", &O::style, "Look",
-           "POV-Ray: branches (sphere sweeps), blob (metaballs) or glow (emissive branches on black, brightest "
-           "where the colour value is highest)"),
+           "POV-Ray: branches (sphere sweeps), blob (metaballs), glow (emissive branches on black, brightest "
+           "where the colour value is highest) or spheres (one a particle: an aggregate's default)"),
       word("up", &O::up, "Output",
            "POV-Ray: the axis that is up in the picture; with a mesh, default: its longest side's"),
   };

@@ -22,11 +22,14 @@ enum class RadiusModel {
   boundary,       //!< thick far from the mesh's surface, fine near it (the thesis' wire fill)
   seed_distance,  //!< thick at the seeds, finer the farther from them
   uniform,        //!< the base radius everywhere
+  particle,       //!< each particle's own radius (Cluster::radii), from a model that sizes them:
+                  //!< an aggregate's monomers
 };
-inline constexpr WordTable<RadiusModel, 5> kRadiusModelWords{
+inline constexpr WordTable<RadiusModel, 6> kRadiusModelWords{
     "radius model",
     {{{RadiusModel::taper, "taper"}, {RadiusModel::pipe, "pipe"}, {RadiusModel::boundary, "boundary"},
-      {RadiusModel::seed_distance, "seed-distance"}, {RadiusModel::uniform, "uniform"}}}};
+      {RadiusModel::seed_distance, "seed-distance"}, {RadiusModel::uniform, "uniform"},
+      {RadiusModel::particle, "particle"}}}};
 constexpr const auto& words_of(RadiusModel) { return kRadiusModelWords; }
 
 //! The range of branch radii, in spacings: beyond it a branch vanishes or swallows the scene.
@@ -45,7 +48,8 @@ inline const OptionTable<RadiusOptions>& radius_option_table() {
   using O = RadiusOptions;
   static const OptionTable<O> table{
       word("radius", &O::model, "Look",
-           "branch thickness: taper, pipe, boundary (needs a mesh), seed-distance or uniform; with a mesh, default pipe"),
+           "branch thickness: taper, pipe, boundary (needs a mesh), seed-distance, uniform or particle (each "
+           "particle's own: an aggregate's monomers, its default); with a mesh, default pipe"),
       real("base_radius", &O::base_radius, closed(kMinBranchRadius, kMaxBranchRadius), "spacings", "Look",
            "the thickest branch's radius; with a mesh, default 3"),
       real("tip_radius", &O::tip_radius, closed(kMinBranchRadius, kMaxBranchRadius), "spacings", "Look",
@@ -75,7 +79,8 @@ inline double radius_fraction(const RadiusOptions& options, const Cluster& clust
     case RadiusModel::boundary: return a.boundary_reach > 0.0 ? a.boundary_distance[i] / a.boundary_reach : 1.0;
     case RadiusModel::seed_distance:
       return a.seed_reach > 0.0 ? 1.0 - a.seed_distance(cluster.particles[i].position) / a.seed_reach : 1.0;
-    case RadiusModel::uniform: return 1.0;
+    case RadiusModel::uniform:
+    case RadiusModel::particle: return 1.0;  // particle: branch_radius() takes the particle's own
   }
   return 1.0;
 }
@@ -92,6 +97,7 @@ inline void validate(const RadiusOptions& options, const Attributes& attributes)
 //! The options must have passed validate(options, attributes).
 inline float branch_radius(const RadiusOptions& options, const Cluster& cluster, const Attributes& attributes,
                            std::size_t i) {
+  if (options.model == RadiusModel::particle) return static_cast<float>(cluster.radii[i] / cluster.spacing);
   const double f = radius_fraction(options, cluster, attributes, i);
   return static_cast<float>(options.tip_radius + (options.base_radius - options.tip_radius) * f);
 }
@@ -100,6 +106,8 @@ inline float branch_radius(const RadiusOptions& options, const Cluster& cluster,
 inline std::vector<float> branch_radii(const RadiusOptions& options, const Cluster& cluster,
                                        const Attributes& attributes) {
   validate(options, attributes);
+  if (options.model == RadiusModel::particle && cluster.radii.size() != cluster.particles.size())
+    throw InvalidInput("the particle radius model draws each particle's own radius: only `aggregate` sizes them");
   std::vector<float> radii(attributes.size());
   for (std::size_t i = 0; i < radii.size(); ++i) radii[i] = branch_radius(options, cluster, attributes, i);
   return radii;

@@ -49,13 +49,20 @@ class ModelShell {
   //! ends when `stop` is set or `progress`, called at the first look at the clock and then
   //! about every kProgressSeconds, returns false; the caller then marks it incomplete.
   bool go_on(const Cluster& so_far) {
+    return go_on_making([&]() -> const Cluster& { return so_far; });
+  }
+
+  //! As go_on(), for a model whose structure so far takes work to make (an aggregate's
+  //! clusters): `so_far()` makes it only when a progress call is due.
+  template <class SoFar>
+  bool go_on_making(SoFar&& so_far) {
     if (stop_ && stop_->load(std::memory_order_relaxed)) return stop();
     if (!progress_ || ++steps_ < steps_per_look_) return true;
     steps_ = 0;
     const Clock::time_point now = Clock::now();
     if (now < next_) return true;
     next_ = now + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(kProgressSeconds));
-    return progress_(so_far) || stop();
+    return progress_(so_far()) || stop();
   }
 
   //! At the end: the last progress call, unless growth was stopped.

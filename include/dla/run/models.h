@@ -9,6 +9,7 @@
 #include "dla/mesh/constraint.h"
 #include "dla/mesh/paint.h"
 #include "dla/mesh/text.h"
+#include "dla/models/aggregate.h"
 #include "dla/models/ballistic.h"
 #include "dla/models/breakdown.h"
 #include "dla/models/colonization.h"
@@ -140,6 +141,27 @@ struct BallisticRunOptions {
   OutputOptions files;
 };
 
+//! The files of an aggregate as no one changed them: its monomers drawn at their own radii, as
+//! spheres in POV-Ray and in the solid, and the sphere list beside the usual files.
+inline OutputOptions aggregate_files() {
+  OutputOptions files;
+  files.output = "aggregate";
+  files.formats.spheres = true;
+  files.radius = RadiusModel::particle;
+  files.pov.style = PovStyle::spheres;
+  files.solid.shape = SolidShape::spheres;
+  return files;
+}
+
+//! `dla3d aggregate`, `dla3d.aggregate()`: cluster-cluster aggregation (aggregate.h), described
+//! whole: its command line and Python keywords come from aggregate_option_table().
+struct AggregateRunOptions {
+  AggregateOptions aggregate;
+  OutputOptions files = aggregate_files();
+};
+//! Its options, described: the aggregate's and the seed.
+const OptionTable<AggregateRunOptions>& aggregate_run_option_table();
+
 //! `dla3d breakdown`, `dla3d.breakdown()`: the dielectric breakdown model, grown by DLA's walk
 //! with every option of a DLA run (the mesh as an insulator, the seeds as the source, the spawn
 //! when there is no target) but `fill`, `drift`, `rotate`, `index` and checkpoints.
@@ -215,6 +237,7 @@ void validate(const EdenRunOptions& options);
 void validate(const DropRunOptions& options);
 void validate(const BallisticRunOptions& options);
 void validate(const BreakdownRunOptions& options);
+void validate(const AggregateRunOptions& options);
 void validate(const RunOptions& options);
 
 }  // namespace dla

@@ -20,9 +20,10 @@
 namespace dla {
 
 //! The files a run writes (`formats`), each PREFIX.EXT; tips writes PREFIX_tips.ply (and with
-//! pov, PREFIX_tips.inc).
+//! pov, PREFIX_tips.inc), spheres PREFIX_spheres.csv.
 struct Formats {
   bool pov = true, csv = true, ply = true, json = true;
+  bool spheres = false;  //!< the sphere list, `x,y,z,r` (csv_writer.h): for light-scattering codes
   bool glb = false, obj = false, tips = false, svg = false, png = false, html = false;
   //! The solid (solid.h): PREFIX.stl, PREFIX.3mf, PREFIX.vdb, PREFIX_solid.glb, PREFIX_solid.obj.
   bool stl = false, threemf = false, vdb = false, solid_glb = false, solid_obj = false;
@@ -32,17 +33,19 @@ struct Formats {
   //! other file would hold the structure.
   void leave_out_solid() {
     stl = threemf = vdb = solid_glb = solid_obj = false;
-    csv = csv || !(pov || ply || glb || obj || svg || png || html);
+    csv = csv || !(pov || ply || spheres || glb || obj || svg || png || html);
   }
 };
 
 //! The formats' words, in the order file_names() lists them.
 inline constexpr const char* kFormatWords =
-    "pov, csv, ply, json, glb, obj, tips, svg, png, html, stl, 3mf, vdb, solid-glb, solid-obj";
+    "pov, csv, spheres, ply, json, glb, obj, tips, svg, png, html, stl, 3mf, vdb, solid-glb, solid-obj";
 
 //! "pov,csv,glb" as formats. Throws InvalidInput, naming `formats`, for an unknown or no word,
 //! and for html when this build has no web viewer.
 Formats parse_formats(std::string_view words);
+//! The words of `formats`, as parse_formats() reads them: "pov,csv,ply,json".
+std::string format_words(const Formats& formats);
 
 struct OutputOptions {
   std::string output = "dla";                      //!< prefix of the files written

@@ -97,6 +97,9 @@ class Run {
   //! What the model promises of the structure before growing it, for a solid that cannot fit
   //! to be refused before growth (solid.h); the radii are the look's, set by prepare_run.
   SolidForecast solid_forecast;
+  //! Whether the model gives each particle its own radius (Cluster::radii), which the `particle`
+  //! radius model draws: an aggregate's monomers.
+  bool sizes_particles = false;
   //! The hash of the mesh's file (or text), which a checkpoint keeps to know it again.
   std::uint64_t input_hash = 0;
 };
