@@ -172,13 +172,13 @@ TEST(Aggregate, BadInputIsRefusedInOneLineNamingTheOption) {
   EXPECT_NE(refusal(o).find("beyond a straight chain"), std::string::npos) << refusal(o);
   o = options(AggregateMode::dlca, 1000);
   o.volume_fraction = 0.64;
-  EXPECT_EQ(refusal(o), "`volume_fraction` 0.64 is not in (0, 0.3]");
+  EXPECT_EQ(refusal(o), "`volume_fraction` 0.64 is not in [0.0001, 0.3]");
   o = options(AggregateMode::dlca, 1000);
   o.sizes = MonomerSizes::lognormal;
   o.spread = 0.5;
   EXPECT_NE(refusal(o).find("`spread` 0.5 is below 1"), std::string::npos);
   o.spread = -1.0;
-  EXPECT_EQ(refusal(o), "`spread` -1 is not in [0, 4]");
+  EXPECT_EQ(refusal(o), "`spread` -1 is not in [0, 2]");
   o = options(AggregateMode::dlca, 1000);
   o.df = 2.0;
   EXPECT_EQ(refusal(o), "`df` and `kf` are for `mode` tuned");
@@ -233,7 +233,7 @@ TEST(Aggregate, TheCliRefusesInOneLine) {
   const std::pair<const char*, const char*> cases[] = {
       {"aggregate --df 0.5 --mode tuned", "--df 0.5 is not in [1, 3]"},
       {"aggregate -n 0", "--monomers 0 is not in [1, 1e+08]"},
-      {"aggregate --volume-fraction 0.7", "--volume-fraction 0.7 is not in (0, 0.3]"},
+      {"aggregate --volume-fraction 0.7", "--volume-fraction 0.7 is not in [0.0001, 0.3]"},
       {"aggregate --kf -1 --mode tuned", "--kf -1 is not in (0, 10]"},
       {"aggregate --sizes lognormal --spread 0.5", "--spread 0.5 is below 1"},
       {"aggregate --mode tuned -n 1000 --df 2.5 --kf 2.5", "not the law's"},
