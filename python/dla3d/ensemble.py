@@ -64,12 +64,18 @@ def grow_one(model, options, rng_seed, save=None, formats=("csv",)):
     files as SAVE_SEED.EXT, which are the CLI's for that seed."""
     options = dict(options, rng_seed=rng_seed)
     result = _core.grow_run(model, options, _command(model, options), None)
-    gyration, mass_radius = result.fractal_dimension()
-    n, rg = result.gyration(100, _GYRATION_SAMPLES)
     with tempfile.TemporaryDirectory() as folder:
         result.write(os.path.join(folder, "run"), ["json"])
         with open(os.path.join(folder, "run.json")) as record_file:
             record = json.load(record_file)
+    if "aggregate" in record.get("measures", {}):
+        # An aggregate's particles are in no attach order: its law is the one its record fits
+        # over the clusters its joins made (statistics' measures.aggregate.fractal_dimension).
+        gyration = mass_radius = None
+        n, rg = np.zeros(0), np.zeros(0)
+    else:
+        gyration, mass_radius = result.fractal_dimension()
+        n, rg = result.gyration(100, _GYRATION_SAMPLES)
     if save:
         result.write(f"{save}_{rng_seed}", list(formats))
     identity = hashlib.sha256()

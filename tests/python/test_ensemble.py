@@ -57,6 +57,11 @@ def test_every_model_runs_as_an_ensemble(client):
         summary = dla3d.ensemble(model, 3, seeds=[10, 20, 30], client=client, **options)
         assert [c["rng_seed"] for c in summary["clusters"]] == [10, 20, 30]
         assert summary["statistics"] and summary["fractal_dimension"]["gyration"]["count"] >= 0
+    # An aggregate's dimension is its record's law, fitted over the clusters its joins made.
+    summary = dla3d.ensemble("aggregate", 3, seeds=[10, 20, 30], client=client, monomers=400, mode="tuned")
+    law = summary["statistics"]["measures.aggregate.fractal_dimension"]
+    assert law["count"] == 3 and abs(law["mean"] - 1.8) < 1e-3
+    assert summary["fractal_dimension"]["gyration"]["count"] == 0
 
 
 def test_bad_ensembles_are_refused_before_any_worker_starts():
