@@ -527,6 +527,10 @@ async def serve(arguments):
     if arguments.open:
         webbrowser.open(address)
     await stop.wait()
+    # A second stop signal during the shutdown (a shell's Ctrl-C reaches the whole process group,
+    # `timeout` forwards its own as well) waits, blocked, and dies with the process: leaving,
+    # asyncio would hand SIGINT back to Python's KeyboardInterrupt, and exit 130.
+    signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM})
     for session in list(studio.sessions.values()):
         await session.ws.close()
     await runner.cleanup()
