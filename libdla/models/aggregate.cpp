@@ -324,6 +324,14 @@ double first_contact(const Vec3& gap, const Vec3& d, double contact, double limi
   return t < limit ? t : limit;
 }
 
+//! A rotation uniform over all rotations: a unit quaternion of four normal numbers, drawn one
+//! a statement (the order of a call's arguments is the compiler's, and the same seed must give
+//! the same aggregate whichever compiled it).
+Eigen::Matrix3d random_rotation(Rng& rng) {
+  const double w = standard_normal(rng), x = standard_normal(rng), y = standard_normal(rng), z = standard_normal(rng);
+  return Eigen::Quaterniond(w, x, y, z).normalized().toRotationMatrix();
+}
+
 //! A rotation taking the unit vector `from` to the unit vector `to`, then turned by `spin` about `to`.
 Eigen::Matrix3d rotation(const Vec3& from, const Vec3& to, double spin) {
   const Eigen::Matrix3d align = Eigen::Quaterniond::FromTwoVectors(from, to).toRotationMatrix();
@@ -400,7 +408,9 @@ void scatter(std::vector<Vec3>& positions, const std::vector<double>& radii, dou
       if (attempt > 100000)
         throw InvalidInput("`volume_fraction` " + detail::format_number(volume_fraction) +
                            ": a monomer found no room in the box after 100,000 tries; a lower one leaves more");
-      const Vec3 p = side * Vec3(rng.uniform(), rng.uniform(), rng.uniform());
+      // One draw a statement: the order of a call's arguments is the compiler's.
+      const double x = rng.uniform(), y = rng.uniform(), z = rng.uniform();
+      const Vec3 p = side * Vec3(x, y, z);
       bool free = true;
       grid.around(p, [&](std::int32_t q) {
         const auto qi = static_cast<std::size_t>(q);
@@ -580,8 +590,7 @@ class BoxAggregation {
     const double keep = 1.0 - o_.overlap;
     std::vector<Vec3> placed(a.size());
     for (int draw = 0; draw < kContactDraws; ++draw) {
-      const Eigen::Quaterniond q(standard_normal(rng_), standard_normal(rng_), standard_normal(rng_), standard_normal(rng_));
-      const Eigen::Matrix3d turn = q.normalized().toRotationMatrix();
+      const Eigen::Matrix3d turn = random_rotation(rng_);
       const std::int32_t i = a[static_cast<std::size_t>(rng_() % a.size())];
       const std::int32_t j = b[static_cast<std::size_t>(rng_() % b.size())];
       const auto ii = static_cast<std::size_t>(i), ji = static_cast<std::size_t>(j);
@@ -903,8 +912,7 @@ class TunedAggregation {
       xj = centre + along * toward + across * perpendicular(toward, 2.0 * M_PI * rng_.uniform());
     }
     const Vec3 from = x_[static_cast<std::size_t>(j)] - b.centroid;
-    const Eigen::Matrix3d turn = dj == 0.0 ? Eigen::Matrix3d(Eigen::AngleAxisd(2.0 * M_PI * rng_.uniform(),
-                                                                               random_direction(rng_, 3)))
+    const Eigen::Matrix3d turn = dj == 0.0 ? random_rotation(rng_)
                                            : rotation(from / dj, (xj - centre) / dj, 2.0 * M_PI * rng_.uniform());
     for (std::size_t k = 0; k < b.members.size(); ++k) {
       const std::int32_t m = b.members[k];
