@@ -392,6 +392,14 @@ class OverlapGrid {
   std::unordered_map<std::uint64_t, std::vector<std::int32_t>> cells_;
 };
 
+//! A point `radius` from `centre` and `reach` from the point `distance` from it along the unit
+//! vector `axis`, at a random angle on the circle of all such points (the distances must allow one).
+Vec3 on_two_spheres(const Vec3& centre, const Vec3& axis, double distance, double radius, double reach, Rng& rng) {
+  const double along = (distance * distance + radius * radius - reach * reach) / (2.0 * distance);
+  const double across = std::sqrt(std::max(0.0, radius * radius - along * along));
+  return centre + along * axis + across * perpendicular(axis, 2.0 * M_PI * rng.uniform());
+}
+
 //! Places the monomers at random in the box, none overlapping another (random sequential
 //! addition), largest first so that the last, small ones find room.
 void scatter(std::vector<Vec3>& positions, const std::vector<double>& radii, double side, double keep,
@@ -892,25 +900,10 @@ class TunedAggregation {
     if (lo > hi) return false;
     const double rho = lo + (hi - lo) * rng_.uniform();
     // B's centroid: gamma from A's, rho from i.
-    Vec3 centre;
-    if (di == 0.0) {
-      centre = gamma * random_direction(rng_, 3);
-    } else {
-      const Vec3 axis = xi / di;
-      const double along = (di * di + gamma * gamma - rho * rho) / (2.0 * di);
-      const double across = std::sqrt(std::max(0.0, gamma * gamma - along * along));
-      centre = along * axis + across * perpendicular(axis, 2.0 * M_PI * rng_.uniform());
-    }
+    const Vec3 centre = di == 0.0 ? Vec3(gamma * random_direction(rng_, 3))
+                                  : on_two_spheres(Vec3::Zero(), xi / di, di, gamma, rho, rng_);
     // j: d_j from B's centroid, s from i.
-    Vec3 xj;
-    if (dj == 0.0) {
-      xj = centre;
-    } else {
-      const Vec3 toward = (xi - centre) / rho;
-      const double along = (dj * dj + rho * rho - s * s) / (2.0 * rho);
-      const double across = std::sqrt(std::max(0.0, dj * dj - along * along));
-      xj = centre + along * toward + across * perpendicular(toward, 2.0 * M_PI * rng_.uniform());
-    }
+    const Vec3 xj = dj == 0.0 ? centre : on_two_spheres(centre, (xi - centre) / rho, rho, dj, s, rng_);
     const Vec3 from = x_[static_cast<std::size_t>(j)] - b.centroid;
     const Eigen::Matrix3d turn = dj == 0.0 ? random_rotation(rng_)
                                            : rotation(from / dj, (xj - centre) / dj, 2.0 * M_PI * rng_.uniform());
@@ -950,16 +943,9 @@ class TunedAggregation {
     if (attempt >= 200) best_distance = std::abs(di - s) + (di + s - std::abs(di - s)) * rng_.uniform();
     else if (attempt > 0)
       best_distance = std::clamp(best_distance + attempt / 100.0 * s * (2.0 * rng_.uniform() - 1.0), std::abs(di - s), di + s);
-    Vec3 at;
-    if (di == 0.0) {
-      at = s * random_direction(rng_, 3);
-    } else {
-      // On the sphere of `best_distance` about the centroid and of s about monomer i.
-      const Vec3 axis = xi / di;
-      const double along = (di * di + best_distance * best_distance - s * s) / (2.0 * di);
-      const double across = std::sqrt(std::max(0.0, best_distance * best_distance - along * along));
-      at = along * axis + across * perpendicular(axis, 2.0 * M_PI * rng_.uniform());
-    }
+    // On the sphere of `best_distance` about the centroid and of s about monomer i.
+    const Vec3 at = di == 0.0 ? Vec3(s * random_direction(rng_, 3))
+                              : on_two_spheres(Vec3::Zero(), xi / di, di, best_distance, s, rng_);
     placed[0] = a.centroid + at;
     if (!grid.clear(placed[0], radii_[static_cast<std::size_t>(m)], best)) return false;
     touch_ = {best, m};
