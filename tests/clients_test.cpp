@@ -330,6 +330,18 @@ TEST(GltfValidator, FindsNoErrorInTheGlbWithLinks) {
   }
 }
 
+// An aggregate's glb (the contact tree, as tubes of each monomer's own radius) and its solid
+// (the union of its spheres) pass the validator, written by the command line.
+TEST(GltfValidator, FindsNoErrorInAnAggregatesGlbs) {
+  DLA_NEED_GLTF_VALIDATOR();
+  ScratchDir dir;
+  const testing::CliRun run = testing::dla3d(
+      dir, "aggregate -n 200 --sizes lognormal --spread 1.3 --overlap 0.1 -o soot --formats glb,solid-glb");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(testing::validate_glb(dir / "soot.glb"), "");
+  EXPECT_EQ(testing::validate_glb(dir / "soot_solid.glb"), "");
+}
+
 //! Pixels of a screenshot that differ from the viewer's background (#0a0d12) by more than
 //! antialiasing's faint edge; with `glass` (a mesh in the page), only the bright ones: the
 //! structure uncoloured, not the dim glass.

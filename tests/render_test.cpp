@@ -1,6 +1,7 @@
 // POV-Ray renders the emitted scene as it is: the image is not blank and the structure is
 // framed, in 3D and in the plane.
 
+#include "dla/models/aggregate.h"
 #include "dla/models/ballistic.h"
 #include "dla/models/breakdown.h"
 #include "dla/models/drop.h"
@@ -223,6 +224,26 @@ TEST(Render, PovRayShowsTheStructure3D) {
   DlaOptions o;
   o.particles = 1500;
   expect_framed_render(grow(o), dir);
+}
+
+// An aggregate, a sphere of each monomer's own radius: framed, and no bigger than its
+// spheres, drawn with the radius model that reads each particle's radius.
+TEST(Render, PovRayShowsAnAggregatesSpheres) {
+  AggregateOptions o;
+  o.mode = AggregateMode::tuned;
+  o.monomers = 400;
+  o.sizes = MonomerSizes::lognormal;
+  o.spread = 1.4;
+  const Cluster aggregate = dla::aggregate(o);
+  LookOptions particle;
+  particle.radius.model = RadiusModel::particle;
+  const Look look = make_look(aggregate, particle);
+  PovOptions spheres;
+  spheres.style = PovStyle::spheres;
+  ScratchDir dir;
+  expect_framed_render(aggregate, dir, nullptr, spheres, &look);
+  const std::string scene = read_file(dir / "scene.inc") + read_file(dir / "scene_growth.inc");
+  EXPECT_NE(scene.find("sphere {"), std::string::npos);
 }
 
 // DLA_Show renders the structure as it was part way: at a quarter, fewer pixels of structure,
