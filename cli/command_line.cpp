@@ -171,8 +171,10 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   convert->add_option("in", line.convert_in, "the mesh to read")->required();
   convert->add_option("out", line.convert_out, "the .stl to write")->required();
   CLI::App* analyze = app.add_subcommand(
-      "analyze", "print the fractal dimension of a grown structure (by gyration and by mass-radius) as JSON");
-  analyze->add_option("csv", line.analyze_csv, "a CSV that dla3d wrote")->required();
+      "analyze", "print as JSON the fractal dimension of a grown structure (by gyration and by mass-radius), or "
+                 "D_f and k_f of aggregates' sphere lists (by pair correlation, and by gyration over them)");
+  analyze->add_option("csv", line.analyze_files, "a CSV that dla3d wrote (PREFIX.csv), or sphere lists "
+                                                 "(PREFIX_spheres.csv: x,y,z,r), one an aggregate")->required();
   const Subcommand frames = add_frames_command(app);
   CLI::App* options = app.add_subcommand("options", "print every growth model's options as JSON (names, defaults, "
                                                     "kinds, ranges, choices, groups, help), as --help shows them, "

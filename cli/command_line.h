@@ -37,7 +37,7 @@ struct CommandLine {
     run,      //!< a growth run of any model: `run` holds its options
     resume,   //!< --resume FILE, with only -q and --threads beside it
     convert,  //!< dla3d convert IN OUT.stl
-    analyze,  //!< dla3d analyze PREFIX.csv
+    analyze,  //!< dla3d analyze PREFIX.csv, or sphere lists
     frames,   //!< dla3d frames PREFIX.csv: `frames` holds the options
     studio,   //!< dla3d studio: `studio` holds the options
     print,    //!< --help, --version or `options`: `text` goes to stdout, exit 0
@@ -54,7 +54,7 @@ struct CommandLine {
   std::string resume_path;
   std::optional<int> threads;        //!< with --resume: replaces the checkpoint's thread count
   std::string convert_in, convert_out;
-  std::string analyze_csv;
+  std::vector<std::string> analyze_files;
   FramesCommand frames;
   StudioCommand studio;
   std::string text;

@@ -37,8 +37,9 @@ int convert(const std::string& in, const std::string& out, bool quiet);
 //! before it are whole, and none of the frame under way is left.
 int frames(const FramesCommand& command, bool quiet, const StopSignals& stop);
 
-//! `dla3d analyze PREFIX.csv`: the fractal dimension of a grown structure, as JSON on stdout.
-int analyze(const std::string& path);
+//! `dla3d analyze PREFIX.csv`: the fractal dimension of a grown structure, as JSON on stdout;
+//! `dla3d analyze A_spheres.csv B_spheres.csv ...`: D_f and k_f of aggregates' sphere lists.
+int analyze(const std::vector<std::string>& paths);
 
 //! `dla3d studio`: runs the studio's server (studio/server.py, installed beside dla3d) in
 //! Python in place of this process, so that Ctrl-C and SIGTERM reach it. Returns only on

@@ -44,7 +44,7 @@ int run(const std::vector<std::string>& args) {
   switch (line.kind) {
     case Kind::print: std::fputs(line.text.c_str(), stdout); return 0;
     case Kind::convert: return dla::cli::convert(line.convert_in, line.convert_out, line.quiet);
-    case Kind::analyze: return dla::cli::analyze(line.analyze_csv);
+    case Kind::analyze: return dla::cli::analyze(line.analyze_files);
     case Kind::studio: return dla::cli::studio(line.studio);
     case Kind::frames:
       catch_stop_signals();

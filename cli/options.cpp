@@ -49,7 +49,8 @@ OutputWords::OutputWords(CLI::App& app, OutputOptions& f, bool& quiet, std::stri
   const char* outputs = "Output";
   app.add_option("-o,--output", f.output, "prefix of the files written")->capture_default_str()->group(outputs);
   app.add_option("--formats", formats_, "files to write, a comma list of pov, csv, spheres (PREFIX_spheres.csv: "
-                                        "x,y,z,r), ply, json, glb, obj, tips "
+                                        "x,y,z,r), mstm (MSTM's PREFIX_mstm.pos), ddscat (DDSCAT's "
+                                        "PREFIX_ddscat.dat), ply, json, glb, obj, tips "
                                         "(PREFIX_tips.ply, and with pov PREFIX_tips.inc), svg and png (2D), html (the web viewer), "
                                         "and the watertight solid: stl, 3mf, vdb, solid-glb, solid-obj")->capture_default_str()->group(outputs);
   // Binary became the default on 2026-11-24; the old flag still runs the scripts and resumes

@@ -154,7 +154,7 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--ply-format", {"binary", "ascii", "text"}},
       {"--binary", {}},
       {"--formats", {"pov,csv,ply,json", "glb,obj,tips,json", "csv,svg,json", "png,csv,json", "html,json", "json", "''",
-                     "spheres,csv,json",
+                     "spheres,csv,json", "mstm,ddscat,json",
                      "pov,jpg", "glb,,obj", "stl,json", "3mf,vdb,json", "solid-glb,solid-obj,csv,json", "stl,3mf"}},
       {"--solid-shape", {"branches", "spheres", "cubes", "blobs"}},
       {"--solid-voxel", {"0", "0.2", "0.05", "0.001", "100", "-1", "nan"}},
@@ -177,6 +177,8 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--tube-min-branch", {"1", "16", "1000", "0", "1001", "x"}},
       {"--uv-scale", {"0", "2.5", "1e-9", "-1", "1e10", "nan"}},
       {"--lod", {"0", "2", "8", "-1", "9", "x"}},
+      // Up to 3: the shape file of a few thousand particles at 50 would take gigabytes.
+      {"--ddscat-resolution", {"1", "3", "0", "51", "x"}},
       {"--leaf", {"leaf.glb", "leaf.glb", "nested/leaf.glb", "noise.stl", "missing.glb", "''", "folder.stl", "pipe.stl", "zero.stl", "empty.stl", "cut.glb"}},
       {"--instances", {"tips", "all", "some"}},
       {"--tips-within", {"2", "0", "1e300", "-1", "nan"}},
@@ -769,6 +771,35 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
     if (counted && rows != particles) return prefix + "_spheres.csv has another count than the JSON";
   }
 
+  if (wants("mstm")) {
+    // MSTM's positions: radius x y z, a line a particle, every radius positive.
+    std::istringstream positions(read_file(dir / (prefix + "_mstm.pos")));
+    std::size_t rows = 0;
+    for (std::string line; std::getline(positions, line); ++rows) {
+      double r, x, y, z;
+      std::istringstream row(line);
+      if (!(row >> r >> x >> y >> z) || !(r > 0.0) || !std::isfinite(x + y + z + r))
+        return prefix + "_mstm.pos line " + line + " is not a sphere";
+    }
+    if (counted && rows != particles) return prefix + "_mstm.pos has another count than the JSON";
+  }
+
+  if (wants("ddscat")) {
+    // DDSCAT's shape: NAT on its second line, then six lines of header and NAT dipoles
+    // numbered in order.
+    std::istringstream shape(read_file(dir / (prefix + "_ddscat.dat")));
+    std::string line;
+    std::size_t nat = 0;
+    std::getline(shape, line);
+    if (!(shape >> nat)) return prefix + "_ddscat.dat has no NAT";
+    for (int i = 0; i < 6; ++i) std::getline(shape, line);
+    if (line != "JA IX IY IZ ICOMP(x,y,z)") return prefix + "_ddscat.dat has no header";
+    std::size_t rows = 0;
+    for (long ja, ix, iy, iz, c1, c2, c3; shape >> ja >> ix >> iy >> iz >> c1 >> c2 >> c3;)
+      if (static_cast<std::size_t>(ja) != ++rows) return prefix + "_ddscat.dat's dipoles are not numbered in order";
+    if (!shape.eof() || rows != nat) return prefix + "_ddscat.dat does not hold its NAT dipoles";
+  }
+
   if (wants("csv")) {
     std::istringstream csv(read_file(dir / (prefix + ".csv")));
     std::string line;
@@ -1059,7 +1090,7 @@ TEST(CliProperty, RandomCommandLinesNeverCrashHangOrLeaveBadFiles) {
   const std::vector<const char*> shared = {
       "--output", "--ply-format", "--formats", "--png-scale", "--png-bands", "--radius", "--base-radius",
       "--tip-radius", "--pipe-exponent", "--color-by", "--look", "--tube-sides", "--tube-tolerance",
-      "--tube-min-branch", "--uv-scale", "--lod", "--leaf", "--instances", "--tips-within", "--tips-every",
+      "--tube-min-branch", "--uv-scale", "--lod", "--ddscat-resolution", "--leaf", "--instances", "--tips-within", "--tips-every",
       "--tips-exclude-paint", "--up", "--quiet", "--stream", "--help"};
   const auto flags_of = [&](const Table& table) {
     std::vector<std::string> model_flags(shared.begin(), shared.end());

@@ -104,6 +104,25 @@ void parse_links_csv(std::string_view text, const std::string& name, Cluster& cl
   std::stable_sort(cluster.links.begin(), cluster.links.end(), [](const Link& a, const Link& b) { return a.later < b.later; });
 }
 
+bool is_sphere_list(std::string_view text) { return next_line(text) == "x,y,z,r"; }
+
+SphereList parse_sphere_list(std::string_view text, const std::string& name) {
+  if (!is_sphere_list(text)) throw InvalidInput(name + ": is not a sphere list (no 'x,y,z,r' header)");
+  next_line(text);
+  SphereList spheres;
+  for (std::size_t row = 2; !text.empty(); ++row) {
+    const std::string_view line = next_line(text);
+    if (line.empty()) continue;
+    std::array<double, 6> v{};
+    if (!parse_row(line, v, 4) || !Vec3(v[0], v[1], v[2]).allFinite() || !(v[3] > 0.0 && std::isfinite(v[3])))
+      throw InvalidInput(name + ": line " + std::to_string(row) + " is not a sphere x,y,z,r with r above 0");
+    spheres.centres.emplace_back(v[0], v[1], v[2]);
+    spheres.radii.push_back(v[3]);
+  }
+  if (spheres.centres.empty()) throw InvalidInput(name + ": has no spheres");
+  return spheres;
+}
+
 Cluster read_csv(const std::string& path) {
   Cluster cluster = parse_csv(read_input_file(path, ""), path);
   const std::string links = links_csv_path(path);

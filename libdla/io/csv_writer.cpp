@@ -1,5 +1,6 @@
 #include "dla/io/csv_writer.h"
 
+#include "dla/io/scattering_writers.h"
 #include "output_file.h"
 
 #include <cstdio>
@@ -67,14 +68,13 @@ void write_csv(const Cluster& cluster, const Look& look, const std::string& path
 void write_spheres_csv(const Cluster& cluster, const Look& look, const std::string& path) {
   detail::OutputFile out(path);
   out << "x,y,z,r\n";
-  const bool own = cluster.radii.size() == cluster.particles.size();
   write_in_order(out, cluster.particles.size(), 1 << 12, detail::format_threads(), [&](detail::Text& text, std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
       const Vec3& p = cluster.particles[i].position;
       text.number(p.x()) << ',';
       text.number(p.y()) << ',';
       text.number(p.z()) << ',';
-      text.number(own ? cluster.radii[i] : look.radius(cluster, i)) << '\n';
+      text.number(sphere_radius(cluster, look, i)) << '\n';
     }
   });
   out.commit();

@@ -4,6 +4,7 @@
 #include "model_runs.h"
 
 #include "dla/core/memory.h"
+#include "dla/io/scattering_writers.h"
 #include "dla/look/tubes.h"
 
 #include <cmath>
@@ -66,6 +67,17 @@ void refuse_tubes(const Run& run) {
                        format_count(static_cast<std::size_t>(particles * disk / bytes)) + " particles fit");
 }
 
+//! Refuses a DDSCAT shape file past kMaxDipoles before growth, from the least it holds: each
+//! sphere at least the least radius over the most of the mean radius, at `ddscat_resolution`
+//! dipoles a mean radius. Only for a run that promises its count and its radii.
+void refuse_dipoles_before_growth(const Run& run) {
+  const SolidForecast& forecast = run.solid_forecast;
+  if (!run.files.formats.ddscat || forecast.particles == 0 || !(forecast.least_radius > 0.0)) return;
+  const double r = run.files.ddscat_resolution * forecast.least_radius / forecast.most_radius;
+  refuse_dipoles({0.0, static_cast<double>(forecast.particles) * 4.0 / 3.0 * M_PI * r * r * r},
+                 run.files.ddscat_resolution);
+}
+
 }  // namespace
 
 std::string time_for_pairs(double pairs) {
@@ -78,6 +90,7 @@ std::string time_for_pairs(double pairs) {
 void refuse_or_foretell(Run& run) {
   refuse_links(run);
   refuse_tubes(run);
+  refuse_dipoles_before_growth(run);
   // The links look at each particle's neighbours within their distance.
   const LinkOptions& links = run.links;
   if (links.any() && !links.lattice) {

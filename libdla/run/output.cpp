@@ -26,6 +26,8 @@ const std::vector<FormatEntry>& format_table() {
       {"pov", &Formats::pov, {".pov", ".inc", "_growth.inc"}},
       {"csv", &Formats::csv, {".csv"}},
       {"spheres", &Formats::spheres, {"_spheres.csv"}},
+      {"mstm", &Formats::mstm, {"_mstm.pos"}},
+      {"ddscat", &Formats::ddscat, {"_ddscat.dat"}},
       {"ply", &Formats::ply, {".ply"}},
       {"glb", &Formats::glb, {".glb"}},
       {"obj", &Formats::obj, {".obj"}},
@@ -113,6 +115,9 @@ const OptionTable<OutputOptions>& output_option_table() {
       else add(nested(OptionTable<LookOptions>{row}, &O::look));
       if (name == "color_by") add(nested(OptionTable<PovOptions>{*find_option(pov_option_table(), "look")}, &O::pov));
     }
+    rows.push_back(integer("ddscat_resolution", &O::ddscat_resolution, closed(1, 50), "dipoles", "Output",
+                           "ddscat: dipoles along a mean sphere radius; the shape file's lattice spacing is the "
+                           "spheres' mean radius over this, and its dipoles go as its cube"));
     rows.push_back(integer("lod", &O::lods, closed(0, kMaxLods), "", "Look",
                            "glb: levels of detail beside it, PREFIX_lod1.glb on, each with about half the triangles "
                            "of the one before"));

@@ -206,7 +206,7 @@ std::unique_ptr<Run> prepare_run(const RunOptions& options, const MeshReader& re
   if (radius.model == RadiusModel::particle && !run->sizes_particles)
     throw InvalidInput("`radius` particle draws each particle's own radius: only `aggregate` sizes them");
   // A model that sizes its particles forecasts their radii itself.
-  if (run->files.formats.solid() && radius.model != RadiusModel::particle) {
+  if ((run->files.formats.solid() || run->files.formats.ddscat) && radius.model != RadiusModel::particle) {
     run->solid_forecast.least_radius = std::min(radius.tip_radius, radius.base_radius);
     run->solid_forecast.most_radius = std::max(radius.tip_radius, radius.base_radius);
   }

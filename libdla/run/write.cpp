@@ -10,6 +10,7 @@
 #include "dla/io/png_writer.h"
 #include "dla/io/solid_writers.h"
 #include "dla/io/pov_writer.h"
+#include "dla/io/scattering_writers.h"
 #include "dla/io/svg_writer.h"
 #include "dla/mesh/surface_distance.h"
 #include "io/output_file.h"
@@ -52,6 +53,12 @@ const WriterEntry kWriters[] = {
     {&Formats::csv, ".csv", [](const WriteJob& j, const std::string& path) { write_csv(j.cluster, j.look, path); }},
     {&Formats::spheres, "_spheres.csv",
      [](const WriteJob& j, const std::string& path) { write_spheres_csv(j.cluster, j.look, path); }},
+    {&Formats::mstm, "_mstm.pos",
+     [](const WriteJob& j, const std::string& path) { write_mstm_positions(j.cluster, j.look, path); }},
+    {&Formats::ddscat, "_ddscat.dat",
+     [](const WriteJob& j, const std::string& path) {
+       write_ddscat_shape(j.cluster, j.look, j.files.ddscat_resolution, path);
+     }},
     {&Formats::ply, ".ply",
      [](const WriteJob& j, const std::string& path) { write_ply(j.cluster, j.look, path, j.files.ply_encoding); }},
     {&Formats::glb, ".glb",
@@ -139,6 +146,8 @@ FilesWritten write_files(const Cluster& cluster, const OutputOptions& files, con
                                context.constraint ? &context.constraint->mesh() : nullptr, context.measured});
   // The solid's plan first: a solid that would not fit is refused before any file is written.
   const SolidPlan plan = files.formats.solid() ? plan_solid(cluster, look.radii, files.solid) : SolidPlan{};
+  if (files.formats.ddscat)  // and DDSCAT's dipoles
+    refuse_dipoles(dipole_lattice(cluster, look, files.ddscat_resolution), files.ddscat_resolution);
   FilesWritten written;
   std::optional<Leaf> leaf_read_here;
   const Leaf* leaf = context.leaf;

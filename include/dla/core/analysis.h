@@ -109,4 +109,43 @@ inline FractalFit fractal_dimension_by_mass_radius(const Cluster& cluster, doubl
   return fit;
 }
 
+//! Fractal dimension D of points (an aggregate's monomer centres) from their pair correlation:
+//! a least-squares fit of log C(r) = D log r + c, where C(r) counts the points within r of a
+//! point, averaged over up to 4,000 points spread evenly through the list, for 16 radii spaced
+//! evenly in log r from 4 mean radii `a` to the points' radius of gyration `gyration`. Below 4a
+//! the monomers' own packing counts; beyond R_g, the aggregate's edge. No fit (0 samples) when
+//! R_g is under 8a. On tuned aggregates of 3,000 monomers whose R_g scales at D_f 1.5, 1.8, 2.1
+//! and 2.5 it reads 1.45, 1.77, 2.12 and 2.57 (docs/aggregate.md).
+inline FractalFit fractal_dimension_by_pair_correlation(const std::vector<Vec3>& points, double a, double gyration) {
+  FractalFit fit;
+  const double r_min = 4.0 * a;
+  constexpr int radii = 16;
+  if (points.size() < 2 || !(a > 0.0) || !(gyration >= 2.0 * r_min)) return fit;
+  const double step = std::log(gyration / r_min) / (radii - 1);
+  // Pairs counted by the first radius they lie within: C(r_k) sums the counts up to k.
+  std::vector<double> within(radii, 0.0);
+  const std::size_t stride = (points.size() + 3999) / 4000;
+  double references = 0.0;
+  for (std::size_t i = 0; i < points.size(); i += stride) {
+    references += 1.0;
+    for (std::size_t j = 0; j < points.size(); ++j) {
+      const double d = (points[j] - points[i]).norm();
+      if (j == i || d > gyration) continue;
+      const double k = d <= r_min ? 0.0 : std::ceil(std::log(d / r_min) / step);
+      if (k < radii) within[static_cast<std::size_t>(k)] += 1.0;
+    }
+  }
+  std::vector<double> log_r, log_c;
+  double pairs = 0.0;
+  for (int k = 0; k < radii; ++k) {
+    pairs += within[static_cast<std::size_t>(k)];
+    if (pairs == 0.0) continue;
+    log_r.push_back(std::log(r_min) + step * k);
+    log_c.push_back(std::log(pairs / references));
+  }
+  fit.samples = log_r.size();
+  if (fit.samples >= 2) fit.dimension = detail::slope(log_r, log_c);
+  return fit;
+}
+
 }  // namespace dla

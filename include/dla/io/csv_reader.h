@@ -7,6 +7,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace dla {
 
@@ -22,5 +23,17 @@ void parse_links_csv(std::string_view text, const std::string& name, Cluster& cl
 //! Reads and parses the CSV at `path`, with the links of PREFIX_links.csv beside it if there is
 //! one; throws IOError if one cannot be read.
 Cluster read_csv(const std::string& path);
+
+//! Spheres read back from a sphere list (PREFIX_spheres.csv, csv_writer.h), in its order.
+struct SphereList {
+  std::vector<Vec3> centres;
+  std::vector<double> radii;
+};
+//! Whether `text` begins with a sphere list's header, `x,y,z,r`.
+bool is_sphere_list(std::string_view text);
+//! Parses a sphere list held in `text`; `name` names it in errors. Throws InvalidInput, one
+//! line naming `name` and the row, for a row that is not four finite numbers with a positive
+//! radius, or for no sphere.
+SphereList parse_sphere_list(std::string_view text, const std::string& name);
 
 }  // namespace dla

@@ -20,10 +20,12 @@
 namespace dla {
 
 //! The files a run writes (`formats`), each PREFIX.EXT; tips writes PREFIX_tips.ply (and with
-//! pov, PREFIX_tips.inc), spheres PREFIX_spheres.csv.
+//! pov, PREFIX_tips.inc), spheres PREFIX_spheres.csv, mstm PREFIX_mstm.pos, ddscat
+//! PREFIX_ddscat.dat.
 struct Formats {
   bool pov = true, csv = true, ply = true, json = true;
   bool spheres = false;  //!< the sphere list, `x,y,z,r` (csv_writer.h): for light-scattering codes
+  bool mstm = false, ddscat = false;  //!< the spheres as MSTM and DDSCAT read them (scattering_writers.h)
   bool glb = false, obj = false, tips = false, svg = false, png = false, html = false;
   //! The solid (solid.h): PREFIX.stl, PREFIX.3mf, PREFIX.vdb, PREFIX_solid.glb, PREFIX_solid.obj.
   bool stl = false, threemf = false, vdb = false, solid_glb = false, solid_obj = false;
@@ -33,13 +35,13 @@ struct Formats {
   //! other file would hold the structure.
   void leave_out_solid() {
     stl = threemf = vdb = solid_glb = solid_obj = false;
-    csv = csv || !(pov || ply || spheres || glb || obj || svg || png || html);
+    csv = csv || !(pov || ply || spheres || mstm || glb || obj || svg || png || html);
   }
 };
 
 //! The formats' words, in the order file_names() lists them.
 inline constexpr const char* kFormatWords =
-    "pov, csv, spheres, ply, json, glb, obj, tips, svg, png, html, stl, 3mf, vdb, solid-glb, solid-obj";
+    "pov, csv, spheres, mstm, ddscat, ply, json, glb, obj, tips, svg, png, html, stl, 3mf, vdb, solid-glb, solid-obj";
 
 //! "pov,csv,glb" as formats. Throws InvalidInput, naming `formats`, for an unknown or no word,
 //! and for html when this build has no web viewer.
@@ -56,6 +58,7 @@ struct OutputOptions {
   InstanceOptions instances;                       //!< tips: which particles, how near the mesh
   PovOptions pov;                                  //!< the scene: style, up axis
   SolidOptions solid;                              //!< the solid's files: voxel, smoothing, print size
+  int ddscat_resolution = 5;  //!< ddscat: dipoles along a mean sphere radius, in [1, 50]
   int lods = 0;  //!< glb: levels of detail beside it, PREFIX_lod1.glb on, in [0, kMaxLods] (mesh_writers.h)
   //! glb: a binary glTF whose leaf (leaf.h) goes at each instancing point `instances` picks;
   //! empty for none.
