@@ -75,7 +75,7 @@ void refuse_dipoles_before_growth(const Run& run) {
   if (!run.files.formats.ddscat || forecast.particles == 0 || !(forecast.least_radius > 0.0)) return;
   const double r = run.files.ddscat_resolution * forecast.least_radius / forecast.most_radius;
   refuse_dipoles({0.0, static_cast<double>(forecast.particles) * 4.0 / 3.0 * M_PI * r * r * r},
-                 run.files.ddscat_resolution);
+                 run.files.ddscat_resolution, run.files.output + "_ddscat.dat");
 }
 
 }  // namespace

@@ -147,7 +147,8 @@ FilesWritten write_files(const Cluster& cluster, const OutputOptions& files, con
   // The solid's plan first: a solid that would not fit is refused before any file is written.
   const SolidPlan plan = files.formats.solid() ? plan_solid(cluster, look.radii, files.solid) : SolidPlan{};
   if (files.formats.ddscat)  // and DDSCAT's dipoles
-    refuse_dipoles(dipole_lattice(cluster, look, files.ddscat_resolution), files.ddscat_resolution);
+    refuse_dipoles(dipole_lattice(cluster, look, files.ddscat_resolution), files.ddscat_resolution,
+                   files.output + "_ddscat.dat");
   FilesWritten written;
   std::optional<Leaf> leaf_read_here;
   const Leaf* leaf = context.leaf;

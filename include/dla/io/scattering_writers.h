@@ -36,13 +36,14 @@ struct DipoleLattice {
 DipoleLattice dipole_lattice(const Cluster& cluster, const Look& look, int resolution);
 
 //! Throws InvalidInput, naming `ddscat_resolution` and the resolution that fits, when the shape
-//! file at `resolution` would hold more than kMaxDipoles dipoles.
-void refuse_dipoles(const DipoleLattice& lattice, int resolution);
+//! file at `resolution`, written at `path`, would hold more than kMaxDipoles dipoles, or more
+//! than the free memory or the disk of `path` hold.
+void refuse_dipoles(const DipoleLattice& lattice, int resolution, const std::string& path);
 
 //! DDSCAT's shape file (TARGET = FROM_FILE, DDSCAT 7.3's layout): the points of a cubic lattice
 //! of dipole_lattice()'s spacing inside any sphere, each listed once as `JA IX IY IZ 1 1 1`, in
 //! order of IZ, then IY, then IX. IX d is the point's x in scene units (the lattice offset is
-//! 0); the first line gives d. Throws InvalidInput past kMaxDipoles, IOError.
+//! 0); the first line gives d. Throws InvalidInput as refuse_dipoles does, IOError.
 void write_ddscat_shape(const Cluster& cluster, const Look& look, int resolution, const std::string& path);
 
 }  // namespace dla
