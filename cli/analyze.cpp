@@ -60,10 +60,11 @@ AggregateMeasure measure(const SphereList& spheres) {
   return m;
 }
 
-int analyze_spheres(const std::vector<std::string>& paths) {
+//! The sphere lists at `paths`, the first of which holds `first`.
+int analyze_spheres(const std::vector<std::string>& paths, const std::string& first) {
   std::vector<AggregateMeasure> measures;
   for (const std::string& path : paths) {
-    const std::string text = read_input_file(path, "");
+    const std::string text = &path == &paths.front() ? first : read_input_file(path, "");
     if (!is_sphere_list(text))
       throw InvalidInput(path + ": is not a sphere list (no 'x,y,z,r' header): analyze reads one structure CSV, "
                                 "or sphere lists");
@@ -83,8 +84,8 @@ int analyze_spheres(const std::vector<std::string>& paths) {
     pair_dimension += m.pairs.dimension;
     pair_prefactor += m.prefactor();
   }
-  const bool by_gyration = most >= 2 * least;
-  const FractalLaw law = by_gyration ? fit_fractal_law(sizes_and_radii) : FractalLaw{};
+  const FractalLaw law = most >= 2 * least ? fit_fractal_law(sizes_and_radii) : FractalLaw{};
+  const bool by_gyration = law.dimension > 0.0;  // no fit of fewer than two sizes with an extent
   std::printf("{\n  \"aggregates\": [\n");
   for (std::size_t i = 0; i < measures.size(); ++i) {
     const AggregateMeasure& m = measures[i];
@@ -108,7 +109,7 @@ int analyze_spheres(const std::vector<std::string>& paths) {
 
 int analyze(const std::vector<std::string>& paths) {
   const std::string first = read_input_file(paths.front(), "");
-  if (is_sphere_list(first)) return analyze_spheres(paths);
+  if (is_sphere_list(first)) return analyze_spheres(paths, first);
   if (paths.size() > 1)
     throw InvalidInput(paths.front() + ": analyze measures one structure CSV at a time (sphere lists, many)");
   return analyze_structure(paths.front(), first);
