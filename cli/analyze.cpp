@@ -46,16 +46,9 @@ struct AggregateMeasure {
 AggregateMeasure measure(const SphereList& spheres) {
   AggregateMeasure m;
   m.monomers = spheres.centres.size();
-  const double n = static_cast<double>(m.monomers);
-  Vec3 sum = Vec3::Zero();
-  double sum2 = 0.0;
-  for (const Vec3& c : spheres.centres) {
-    sum += c;
-    sum2 += c.squaredNorm();
-  }
   for (const double r : spheres.radii) m.a += r;
-  m.a /= n;
-  m.gyration = std::sqrt(std::max(0.0, sum2 / n - (sum / n).squaredNorm()));
+  m.a /= static_cast<double>(m.monomers);
+  m.gyration = radius_of_gyration(spheres.centres);
   m.pairs = fractal_dimension_by_pair_correlation(spheres.centres, m.a, m.gyration);
   return m;
 }

@@ -187,12 +187,8 @@ TEST(ScatteringWriters, TheCliWritesTheSameSpheresToEachFile) {
 // a plane of them, a ball of them.
 TEST(ScatteringWriters, PairCorrelationReadsTheDimensionOfLinesPlanesAndBalls) {
   const auto dimension = [](const std::vector<dla::Vec3>& points) {
-    dla::Vec3 sum = dla::Vec3::Zero();
-    for (const dla::Vec3& p : points) sum += p;
-    double sum2 = 0.0;
-    for (const dla::Vec3& p : points) sum2 += (p - sum / static_cast<double>(points.size())).squaredNorm();
-    const double gyration = std::sqrt(sum2 / static_cast<double>(points.size()));
-    const dla::FractalFit fit = dla::fractal_dimension_by_pair_correlation(points, 1.0, gyration);
+    const dla::FractalFit fit =
+        dla::fractal_dimension_by_pair_correlation(points, 1.0, dla::radius_of_gyration(points));
     EXPECT_EQ(fit.samples, 16u);
     std::printf("pair correlation of %zu points: %.3f\n", points.size(), fit.dimension);
     return fit.dimension;

@@ -114,6 +114,19 @@ inline double bounding_radius(const Cluster& cluster) {
 
 //! Radius of gyration about their centre of mass of all particles, or with `seed` >= 0 of
 //! that seed's tree only.
+//! Radius of gyration of `points` about their centroid (0 for none).
+inline double radius_of_gyration(const std::vector<Vec3>& points) {
+  if (points.empty()) return 0.0;
+  Vec3 sum = Vec3::Zero();
+  double sum2 = 0.0;
+  for (const Vec3& p : points) {
+    sum += p;
+    sum2 += p.squaredNorm();
+  }
+  const double n = static_cast<double>(points.size());
+  return std::sqrt(std::max(0.0, sum2 / n - (sum / n).squaredNorm()));
+}
+
 inline double radius_of_gyration(const Cluster& cluster, std::int32_t seed = -1) {
   Vec3 sum = Vec3::Zero();
   double sum2 = 0.0;
