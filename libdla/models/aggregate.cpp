@@ -1,6 +1,7 @@
 // Cluster-cluster aggregation (aggregate.h): monomers in a periodic box that join as their
-// clusters diffuse or fly into one another (dlca, rlca, ballistic), or clusters joined two at a
-// time on a fractal law (tuned).
+// clusters diffuse or fly into one another (dlca, rlca, ballistic), clusters that join as often
+// as the bonds they offer (rlca's reaction-limited limit), or clusters joined two at a time on a
+// fractal law (tuned).
 
 #include "dla/models/aggregate.h"
 
@@ -17,6 +18,7 @@
 #include <deque>
 #include <limits>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <optional>
 #include <string>
@@ -36,9 +38,9 @@ const OptionTable<AggregateOptions>& aggregate_option_table() {
   using O = AggregateOptions;
   static const OptionTable<O> table{
       word("mode", &O::mode, "Aggregate",
-           "how clusters meet: dlca (they diffuse and stick at first contact), rlca (they diffuse and join at a "
-           "contact drawn at random: the reaction-limited limit), ballistic (they fly straight) or tuned (joined two at a time on the law "
-           "N = kf (Rg/a)^df)"),
+           "how clusters meet: dlca (they diffuse and stick at first contact), rlca (reaction-limited: two join as "
+           "often as the bonds they offer, at a contact drawn at random), ballistic (they fly straight) or tuned "
+           "(joined two at a time on the law N = kf (Rg/a)^df)"),
       with_short_name(integer("monomers", &O::monomers, closed(1, kMaxMonomers), "monomers", "Aggregate",
                               "N, the monomers of the aggregate"),
                       "n"),
@@ -54,12 +56,16 @@ const OptionTable<AggregateOptions>& aggregate_option_table() {
            "how far touching monomers sinter into one another: their centres are (1 - overlap)(r_i + r_j) apart; "
            "0: point contacts"),
       real("volume_fraction", &O::volume_fraction, closed(kLeastVolumeFraction, kMaxVolumeFraction), "", "Box",
-           "dlca, rlca, ballistic: the monomers' share of the periodic box's volume"),
+           "dlca, ballistic, and rlca with a stick probability above 0: the monomers' share of the periodic box's "
+           "volume"),
       real("stick_probability", &O::stick_probability, closed(0, 1), "", "Box",
-           "rlca: the chance that a contact sticks where it is made; else the clusters join at a contact drawn at "
-           "random over all the ways they can touch (0: the reaction-limited limit; 1: dlca)"),
+           "rlca: 0, the reaction-limited limit: no box, and two clusters join as often as the monomers they offer "
+           "to bond (N_i + N_j), at a contact drawn at random over all the ways they can touch; above 0: they "
+           "diffuse in the box, and a contact sticks where it is made with this chance, else at a random contact "
+           "(1: dlca)"),
       real("mobility_exponent", &O::mobility_exponent, closed(-3, 0), "", "Box",
-           "dlca, rlca, ballistic: a cluster of N monomers moves as often as N to this power (-1/2: Stokes-Einstein "
+           "dlca, ballistic, and rlca above stick probability 0: a cluster of N monomers moves as often as N to "
+           "this power (-1/2: Stokes-Einstein "
            "with a radius that grows as N^(1/2), and the speed of a gas's clusters of equal energy)"),
       real("df", &O::df, closed(1, 3), "", "Tuned", "tuned: the fractal dimension D_f of N = kf (Rg/a)^df"),
       real("kf", &O::kf, open_closed(0, 10), "", "Tuned", "tuned: the prefactor k_f of N = kf (Rg/a)^df"),
@@ -73,6 +79,11 @@ namespace {
 //! apart), and the smallest (a ball of them packed at random close packing, 0.64).
 double chain_radius(double n) { return 2.0 * std::sqrt((n * n - 1.0) / 12.0); }
 double packed_radius(double n) { return std::sqrt(3.0 / 5.0) * std::cbrt(n / 0.64); }
+
+//! rlca's reaction-limited limit: clusters that meet without a box (KineticAggregation).
+bool reaction_limited(const AggregateOptions& o) {
+  return o.mode == AggregateMode::rlca && o.stick_probability == 0.0;
+}
 
 //! R_g / a of the tuned law at N monomers.
 double law_radius(const AggregateOptions& o, double n) { return std::pow(n / o.kf, 1.0 / o.df); }
@@ -92,8 +103,10 @@ void validate(const AggregateOptions& o) {
   const bool tuned = o.mode == AggregateMode::tuned;
   const AggregateOptions unset;
   if (!tuned && (o.df != unset.df || o.kf != unset.kf)) throw InvalidInput("`df` and `kf` are for `mode` tuned");
-  if (tuned && (o.volume_fraction != unset.volume_fraction || o.mobility_exponent != unset.mobility_exponent))
-    throw InvalidInput("`volume_fraction` and `mobility_exponent` are for the box's modes: dlca, rlca, ballistic");
+  if ((tuned || reaction_limited(o)) &&
+      (o.volume_fraction != unset.volume_fraction || o.mobility_exponent != unset.mobility_exponent))
+    throw InvalidInput(std::string("`volume_fraction` and `mobility_exponent` are for the box: dlca, ballistic, and rlca with ") +
+                       "a `stick_probability` above 0" + (tuned ? "" : " (at 0, rlca's clusters meet without a box)"));
   if (tuned && o.monomers >= 16 && o.sizes == MonomerSizes::one && o.overlap == 0.0) {
     // The law at N must lie between a straight chain and a packed ball of N monomers.
     const double n = static_cast<double>(o.monomers), rg = law_radius(o, n);
@@ -973,6 +986,221 @@ class TunedAggregation {
   Cluster stopped_;  //!< what grew, when growth was stopped
 };
 
+// ---------------------------------------------------------------------------------------------
+// rlca at stick_probability 0, the reaction-limited limit: no box. A contact sticks so rarely
+// that clusters meet every other cluster many times before one sticks, so which two join is set
+// by how many ways they can bond, not by how fast they meet: a pair joins as often as N_i + N_j
+// (the sum kernel; a random monomer's cluster, then any other), at a contact drawn at random over
+// all the ways the two can touch.
+
+//! The monomers of one cluster of the kinetic limit, in its own frame.
+struct Flock {
+  std::vector<std::int32_t> members;
+  Vec3 sum = Vec3::Zero();  //!< of the members' positions: the centroid and R_g as it grows
+  double sum2 = 0.0;        //!< of their squared norms
+  std::unique_ptr<OverlapGrid> grid;  //!< the members binned, once the flock is large
+
+  Vec3 centroid() const { return sum / static_cast<double>(members.size()); }
+  double gyration() const {
+    const double n = static_cast<double>(members.size());
+    return std::sqrt(std::max(0.0, sum2 / n - (sum / n).squaredNorm()));
+  }
+};
+
+class KineticAggregation {
+ public:
+  KineticAggregation(const AggregateOptions& o, std::vector<double> radii, Rng& rng, AggregateStats& stats)
+      : o_(o), rng_(rng), stats_(stats), radii_(std::move(radii)), keep_(1.0 - o.overlap),
+        largest_radius_(*std::max_element(radii_.begin(), radii_.end())), x_(radii_.size(), Vec3::Zero()),
+        owner_(radii_.size()), flocks_(radii_.size()), alive_(radii_.size()), place_of_(radii_.size()) {
+    for (std::size_t m = 0; m < radii_.size(); ++m) {
+      const auto id = static_cast<std::int32_t>(m);
+      owner_[m] = alive_[m] = place_of_[m] = id;
+      flocks_[m].members = {id};
+    }
+  }
+
+  Cluster grow(const ProgressFn& progress, const StopFlag* stop) {
+    detail::ModelShell shell(progress, stop, 64);
+    bool stopped = false;
+    while (alive_.size() > 1) {
+      if (!shell.go_on_making([&] { return largest_so_far(); })) {
+        stopped = true;
+        break;
+      }
+      // A monomer at random picks its flock as often as its size; any other flock joins it.
+      const std::int32_t a = owner_[static_cast<std::size_t>(rng_() % radii_.size())];
+      std::int32_t b = a;
+      while (b == a) b = alive_[static_cast<std::size_t>(rng_() % alive_.size())];
+      join(a, b);
+    }
+    Cluster out = largest_so_far();
+    out.complete = !stopped;
+    if (!stopped) shell.finish(out);
+    return out;
+  }
+
+ private:
+  //! Flocks this large keep their monomers binned; smaller ones are looked through whole.
+  static constexpr std::size_t kBinnedFrom = 48;
+  //! Random contacts drawn before two flocks are brought together along a random line instead:
+  //! two large, open flocks rarely find room at a random contact.
+  static constexpr int kContactDraws = 500;
+
+  Cluster largest_so_far() const {
+    return assemble(flocks_[static_cast<std::size_t>(largest_)].members, x_, radii_, contacts_, o_.monomer_radius);
+  }
+
+  double contact(std::size_t p, std::size_t q) const { return keep_ * (radii_[p] + radii_[q]); }
+
+  //! Whether a monomer of radius r at p overlaps none of `flock`'s monomers but `touching`.
+  bool clear_of(const Flock& flock, const Vec3& p, double r, std::int32_t touching) const {
+    if (flock.grid) return flock.grid->clear(p, r, touching);
+    for (const std::int32_t q : flock.members) {
+      if (q == touching) continue;
+      const double c = keep_ * (r + radii_[static_cast<std::size_t>(q)]) * (1.0 - 1e-9);
+      if ((x_[static_cast<std::size_t>(q)] - p).squaredNorm() < c * c) return false;
+    }
+    return true;
+  }
+
+  //! The smaller of flocks a and b placed touching the larger, its monomers moved into the
+  //! larger's frame, and the two made one.
+  void join(std::int32_t a, std::int32_t b) {
+    if (flocks_[static_cast<std::size_t>(a)].members.size() < flocks_[static_cast<std::size_t>(b)].members.size())
+      std::swap(a, b);
+    const Flock& big = flocks_[static_cast<std::size_t>(a)];
+    const Flock& small = flocks_[static_cast<std::size_t>(b)];
+    placed_.resize(small.members.size());
+    if (!at_random_contact(big, small)) along_a_line(big, small);
+    merge(a, b);
+  }
+
+  //! One of kContactDraws draws: a monomer i of the small flock touching a monomer j of the big
+  //! one from a random direction, the small flock turned at random about i. Fills placed_ and
+  //! touch_ when one overlaps nothing.
+  bool at_random_contact(const Flock& big, const Flock& small) {
+    for (int draw = 0; draw < kContactDraws; ++draw) {
+      ++stats_.tries;
+      const Eigen::Matrix3d turn = random_rotation(rng_);
+      const std::int32_t i = small.members[static_cast<std::size_t>(rng_() % small.members.size())];
+      const std::int32_t j = big.members[static_cast<std::size_t>(rng_() % big.members.size())];
+      const auto ii = static_cast<std::size_t>(i), ji = static_cast<std::size_t>(j);
+      const Vec3 at = x_[ji] + contact(ii, ji) * random_direction(rng_, 3);
+      bool clear = clear_of(big, at, radii_[ii], j);
+      for (std::size_t k = 0; k < small.members.size() && clear; ++k) {
+        const auto m = static_cast<std::size_t>(small.members[k]);
+        placed_[k] = at + turn * (x_[m] - x_[ii]);
+        clear = m == ii || clear_of(big, placed_[k], radii_[m], -1);
+      }
+      if (!clear) continue;
+      touch_ = {i, j};
+      return true;
+    }
+    return false;
+  }
+
+  //! The small flock, turned at random, brought from afar along a random line at a random offset
+  //! until it first touches the big one: the contact is exact, found through the big flock's
+  //! monomers binned across the line.
+  void along_a_line(const Flock& big, const Flock& small) {
+    const Vec3 big_centre = big.centroid(), small_centre = small.centroid();
+    double big_reach = 0.0, small_reach = 0.0;
+    for (const std::int32_t q : big.members)
+      big_reach = std::max(big_reach, (x_[static_cast<std::size_t>(q)] - big_centre).norm() + largest_radius_);
+    for (const std::int32_t p : small.members)
+      small_reach = std::max(small_reach, (x_[static_cast<std::size_t>(p)] - small_centre).norm() + largest_radius_);
+    const double width = 2.0 * keep_ * largest_radius_;
+    ++stats_.approaches;
+    while (true) {
+      ++stats_.tries;
+      const Eigen::Matrix3d turn = random_rotation(rng_);
+      const Vec3 u = random_direction(rng_, 3);
+      const Vec3 e1 = perpendicular(u, 0.0), e2 = u.cross(e1);
+      const double offset = (big_reach + small_reach) * std::sqrt(rng_.uniform());
+      const Vec3 start = big_centre - 2.0 * (big_reach + small_reach) * u + offset * perpendicular(u, 2.0 * M_PI * rng_.uniform());
+      // The big flock's monomers binned by where they lie across the line.
+      std::unordered_map<std::uint64_t, std::vector<std::int32_t>> across;
+      const auto cell = [&](const Vec3& p) {
+        return std::array<std::int64_t, 2>{static_cast<std::int64_t>(std::floor(p.dot(e1) / width)),
+                                           static_cast<std::int64_t>(std::floor(p.dot(e2) / width))};
+      };
+      const auto key = [](std::int64_t s, std::int64_t t) {
+        return static_cast<std::uint64_t>(s + (1LL << 31)) << 32 | static_cast<std::uint64_t>(t + (1LL << 31));
+      };
+      for (const std::int32_t q : big.members) {
+        const auto c = cell(x_[static_cast<std::size_t>(q)]);
+        across[key(c[0], c[1])].push_back(q);
+      }
+      double first = std::numeric_limits<double>::infinity();
+      for (std::size_t k = 0; k < small.members.size(); ++k) {
+        const auto p = static_cast<std::size_t>(small.members[k]);
+        placed_[k] = start + turn * (x_[p] - small_centre);
+        const auto c = cell(placed_[k]);
+        for (std::int64_t s = c[0] - 1; s <= c[0] + 1; ++s)
+          for (std::int64_t t = c[1] - 1; t <= c[1] + 1; ++t) {
+            const auto found = across.find(key(s, t));
+            if (found == across.end()) continue;
+            for (const std::int32_t q : found->second) {
+              const Vec3 gap = x_[static_cast<std::size_t>(q)] - placed_[k];
+              const double along = gap.dot(u), reach2 = contact(p, static_cast<std::size_t>(q)) * contact(p, static_cast<std::size_t>(q));
+              const double off2 = gap.squaredNorm() - along * along;
+              if (off2 >= reach2) continue;
+              const double at = along - std::sqrt(reach2 - off2);
+              if (at < first) {
+                first = at;
+                touch_ = {small.members[k], q};
+              }
+            }
+          }
+      }
+      if (first == std::numeric_limits<double>::infinity()) continue;  // the line missed
+      for (Vec3& p : placed_) p += first * u;
+      return;
+    }
+  }
+
+  //! Flock b, at placed_, made part of flock a, touching it at touch_.
+  void merge(std::int32_t a, std::int32_t b) {
+    Flock& big = flocks_[static_cast<std::size_t>(a)];
+    Flock& small = flocks_[static_cast<std::size_t>(b)];
+    for (std::size_t k = 0; k < small.members.size(); ++k) {
+      const auto m = static_cast<std::size_t>(small.members[k]);
+      x_[m] = placed_[k];
+      owner_[m] = a;
+      big.sum += x_[m];
+      big.sum2 += x_[m].squaredNorm();
+      if (big.grid) big.grid->add(small.members[k]);
+    }
+    big.members.insert(big.members.end(), small.members.begin(), small.members.end());
+    if (!big.grid && big.members.size() >= kBinnedFrom)
+      big.grid = std::make_unique<OverlapGrid>(big.members, x_, radii_, o_.overlap, largest_radius_);
+    small = Flock{};
+    if (big.members.size() > flocks_[static_cast<std::size_t>(largest_)].members.size()) largest_ = a;
+    contacts_.push_back(touch_);
+    stats_.joins.emplace_back(static_cast<double>(big.members.size()), big.gyration() / o_.monomer_radius);
+    const std::int32_t place = place_of_[static_cast<std::size_t>(b)];
+    alive_[static_cast<std::size_t>(place)] = alive_.back();
+    place_of_[static_cast<std::size_t>(alive_.back())] = place;
+    alive_.pop_back();
+  }
+
+  const AggregateOptions& o_;
+  Rng& rng_;
+  AggregateStats& stats_;
+  std::vector<double> radii_;
+  double keep_;
+  double largest_radius_;
+  std::vector<Vec3> x_;  //!< each monomer in its flock's frame
+  std::vector<std::int32_t> owner_;
+  std::vector<Flock> flocks_;
+  std::vector<std::int32_t> alive_, place_of_;  //!< the flocks left, and each one's place there
+  std::int32_t largest_ = 0;
+  std::vector<Vec3> placed_;  //!< the small flock's monomers where a join puts them
+  std::pair<std::int32_t, std::int32_t> touch_{-1, -1};
+  std::vector<std::pair<std::int32_t, std::int32_t>> contacts_;
+};
+
 }  // namespace
 
 Cluster aggregate(const AggregateOptions& options, const ProgressFn& progress, const StopFlag* stop,
@@ -983,6 +1211,7 @@ Cluster aggregate(const AggregateOptions& options, const ProgressFn& progress, c
   Rng rng(options.rng_seed);
   std::vector<double> radii = monomer_radii(options, rng);
   if (options.mode == AggregateMode::tuned) return TunedAggregation(options, std::move(radii), rng, s).grow(progress, stop);
+  if (reaction_limited(options)) return KineticAggregation(options, std::move(radii), rng, s).grow(progress, stop);
   BoxAggregation box(options, std::move(radii), rng, s);
   return box.grow(progress, stop);
 }

@@ -5,9 +5,10 @@
 //! lognormal or normal spread) start at random in a periodic box and join as they touch:
 //! - dlca: clusters diffuse, a cluster of N monomers as often as N^mobility_exponent, and stick
 //!   at first contact (diffusion-limited cluster-cluster aggregation);
-//! - rlca: as dlca, but a contact sticks where it was made only with a small probability; else
-//!   the clusters roll over each other until they stick, which in the reaction-limited limit is
-//!   at a contact drawn at random over every way they can touch (Jullien and Kolb 1984);
+//! - rlca: at stick_probability 0, the reaction-limited limit: no box; two clusters join as
+//!   often as the monomers they offer to bond (the sum kernel N_i + N_j), at a contact drawn at
+//!   random over every way they can touch (Jullien and Kolb 1984). Above 0, as dlca, but a
+//!   contact sticks where it was made only with that chance, else at a random contact;
 //! - ballistic: clusters fly straight, as fast as N^mobility_exponent, turning after a box length;
 //! - tuned: no box; clusters are joined two at a time so that every one of them has
 //!   N = k_f (R_g / a)^D_f exactly (Filippov et al. 2000; FracVAL, Morán et al. 2019).
@@ -61,9 +62,10 @@ struct AggregateOptions {
   double spread = 1.0;                //!< lognormal: the geometric standard deviation (1: none);
                                       //!< normal: the standard deviation over the mean
   double overlap = 0.0;               //!< touching monomers' centres (1 - overlap)(r_i + r_j) apart
-  double volume_fraction = 0.01;      //!< dlca, rlca, ballistic: the monomers' share of the box
-  double stick_probability = 0.0;     //!< rlca: the chance that a contact sticks where it is made;
-                                      //!< else at a contact drawn at random (0: the reaction-limited limit)
+  double volume_fraction = 0.01;      //!< the box's modes: the monomers' share of the box
+  double stick_probability = 0.0;     //!< rlca: 0, the reaction-limited limit (no box); above, in the
+                                      //!< box, the chance that a contact sticks where it is made, else
+                                      //!< at a contact drawn at random
   double mobility_exponent = -0.5;    //!< a cluster of N moves as often as N^this
   double df = 1.8;                    //!< tuned: the fractal dimension D_f
   double kf = 1.3;                    //!< tuned: the prefactor k_f
@@ -79,10 +81,12 @@ void validate(const AggregateOptions& options);
 
 //! What growing the aggregate counted.
 struct AggregateStats {
-  std::uint64_t moves = 0;     //!< clusters moved (dlca, rlca, ballistic)
+  std::uint64_t moves = 0;     //!< clusters moved (the box)
   std::uint64_t contacts = 0;  //!< contacts met, stuck or not
-  std::uint64_t tries = 0;     //!< tuned: placements tried
-  double box = 0.0;            //!< the box's side, scene units (0: tuned)
+  std::uint64_t tries = 0;     //!< tuned and rlca without a box: placements tried
+  std::uint64_t approaches = 0;  //!< rlca without a box: joins made along a line, as no random
+                                 //!< contact drawn fitted
+  double box = 0.0;            //!< the box's side, scene units (0: none)
   //! R_g / a beyond which a cluster feels the box's other clusters crowd it (a quarter of the
   //! box's side): fit_joins leaves such clusters out. Infinite without a box.
   double crowded = std::numeric_limits<double>::infinity();
