@@ -45,7 +45,8 @@ TEST(Golden, EveryModelFromTheCommandLine) {
   EXPECT_EQ(cli_checksum("ballistic -n 2000 --rng-seed 7"), 0x11a93258db23b599ULL);
   EXPECT_EQ(cli_checksum("aggregate -n 1000 --rng-seed 12"), 0x717958eab309a3ffULL);
   EXPECT_EQ(cli_checksum("aggregate --mode tuned --sizes lognormal --spread 1.3 -n 1000 --rng-seed 13"), 0x19d19d6500548cbcULL);
-  EXPECT_EQ(cli_checksum("aggregate --mode rlca -n 500 --rng-seed 14"), 0xe125f41b44d80c18ULL);
+  EXPECT_EQ(cli_checksum("aggregate --mode rlca -n 500 --rng-seed 14"), 0x95967e28be9d114aULL);
+  EXPECT_EQ(cli_checksum("aggregate --mode rlca --stick-probability 0.1 -n 500 --rng-seed 14"), 0xae2899417872c5daULL);
 }
 
 // With a mesh: the spacing, seeds, spawn and radii a mesh gives (an open box from tests/data).
