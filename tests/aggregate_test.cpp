@@ -117,6 +117,26 @@ TEST(Aggregate, TheSameSeedGivesTheSameAggregate) {
   }
 }
 
+// The box's threads split the contact test of clusters of 512 monomers or more: 3,000 monomers
+// grow such clusters, and two threads must give the aggregate one does, monomer for monomer.
+TEST(Aggregate, TheSameAggregateOnAnyThreadCount) {
+  for (const AggregateMode mode : {AggregateMode::dlca, AggregateMode::ballistic}) {
+    SCOPED_TRACE(std::string(to_string(mode)));
+    AggregateOptions o = options(mode, 3000);
+    o.volume_fraction = 0.03;
+    dla::AggregateStats one_stats, two_stats;
+    const Cluster one = dla::aggregate(o, {}, nullptr, &one_stats);
+    o.threads = 2;
+    const Cluster two = dla::aggregate(o, {}, nullptr, &two_stats);
+    EXPECT_EQ(one_stats.moves, two_stats.moves);
+    ASSERT_EQ(one.particles.size(), two.particles.size());
+    for (std::size_t i = 0; i < one.particles.size(); ++i) {
+      ASSERT_EQ(one.particles[i].position, two.particles[i].position) << "monomer " << i;
+      ASSERT_EQ(one.particles[i].parent, two.particles[i].parent) << "monomer " << i;
+    }
+  }
+}
+
 TEST(Aggregate, TunedClustersLieOnTheirLaw) {
   // Every join of whole pieces places its clusters so that N = kf (Rg/a)^df holds exactly.
   // 2.5 and 1 leaves two pieces no room to interlock: that aggregate grows a monomer at a time.

@@ -8,6 +8,7 @@
 #include "dla/core/errors.h"
 #include "dla/core/random.h"
 #include "dla/models/model_shell.h"
+#include "crew.h"
 
 #include <Eigen/Geometry>
 
@@ -69,6 +70,9 @@ const OptionTable<AggregateOptions>& aggregate_option_table() {
            "with a radius that grows as N^(1/2), and the speed of a gas's clusters of equal energy)"),
       real("df", &O::df, closed(1, 3), "", "Tuned", "tuned: the fractal dimension D_f of N = kf (Rg/a)^df"),
       real("kf", &O::kf, open_closed(0, 10), "", "Tuned", "tuned: the prefactor k_f of N = kf (Rg/a)^df"),
+      integer("threads", &O::threads, closed(1, 256), "", "Aggregate",
+              "the box: threads that test the moves of clusters of 512 monomers or more; the aggregate does not "
+              "depend on it"),
   };
   return table;
 }
@@ -460,7 +464,7 @@ class BoxAggregation {
   BoxAggregation(const AggregateOptions& o, std::vector<double> radii, Rng& rng, AggregateStats& stats)
       : o_(o), rng_(rng), stats_(stats), radii_(std::move(radii)), step_(o.monomer_radius),
         largest_radius_(*std::max_element(radii_.begin(), radii_.end())),
-        grid_(box_side(o, radii_), reach(o, radii_), radii_.size()) {
+        grid_(box_side(o, radii_), reach(o, radii_), radii_.size()), crew_(o.threads) {
     stats_.box = grid_.side();
     stats_.crowded = 0.25 * grid_.side() / o.monomer_radius;
     const std::size_t n = radii_.size();
@@ -555,10 +559,45 @@ class BoxAggregation {
     } else {
       d = step_ * random_direction(rng_, 3);
     }
-    double t = 1.0;
-    std::int32_t hit_p = -1, hit_q = -1;
-    const double keep = 1.0 - o_.overlap;
+    // The first contact of the step. A large cluster's monomers are split among the crew in
+    // runs, each keeping its first; the earliest run's wins a tie, so the contact is the one a
+    // single thread finds.
+    const std::size_t members = group.members.size();
+    const std::size_t runs = crew_.size() > 1 && members >= kSplitFrom ? std::min(members / 128, 8 * crew_.size()) : 1;
+    firsts_.assign(runs, Contact{});
+    const auto scan = [&](std::size_t run) {
+      first_contact_of(group.members, members * run / runs, members * (run + 1) / runs, c, d, firsts_[run]);
+    };
+    if (runs == 1) scan(0);
+    else crew_.run(runs, scan);
+    Contact first;
+    for (const Contact& f : firsts_)
+      if (f.t < first.t) first = f;
+    const double t = first.t;
+    const std::int32_t hit_p = first.p, hit_q = first.q;
+    if (hit_p >= 0) ++stats_.contacts;
+    if (hit_p >= 0 && o_.mode == AggregateMode::rlca && rng_.uniform() >= o_.stick_probability &&
+        join_at_random_contact(c, owner_[static_cast<std::size_t>(hit_q)]))
+      return;
     for (const std::int32_t p : group.members) {
+      positions_[static_cast<std::size_t>(p)] += t * d;
+      place(p);
+    }
+    if (hit_p >= 0) join(c, hit_p, hit_q);
+  }
+
+  //! Where a step d of cluster c first brings one of its monomers members[begin, end) into
+  //! contact with another cluster's, as a fraction of the step.
+  struct Contact {
+    double t = 1.0;  //!< 1: none within the step
+    std::int32_t p = -1, q = -1;
+  };
+  static constexpr std::size_t kSplitFrom = 512;
+  void first_contact_of(const std::vector<std::int32_t>& members, std::size_t begin, std::size_t end, std::int32_t c,
+                        const Vec3& d, Contact& first) const {
+    const double keep = 1.0 - o_.overlap;
+    for (std::size_t k = begin; k < end; ++k) {
+      const std::int32_t p = members[k];
       const auto pi = static_cast<std::size_t>(p);
       const Vec3& wp = wrapped_[pi];
       grid_.around(wp, [&](std::int32_t q) {
@@ -569,12 +608,8 @@ class BoxAggregation {
         const auto test = [&](const Vec3& g) {
           const double reach2 = (contact + step_) * (contact + step_);
           if (g.squaredNorm() > reach2) return;
-          const double at = first_contact(g, d, contact, t);
-          if (at < t) {
-            t = at;
-            hit_p = p;
-            hit_q = q;
-          }
+          const double at = first_contact(g, d, contact, first.t);
+          if (at < first.t) first = {at, p, q};
         };
         if (grid_.one_image()) {
           test(gap);
@@ -586,15 +621,6 @@ class BoxAggregation {
         }
       });
     }
-    if (hit_p >= 0) ++stats_.contacts;
-    if (hit_p >= 0 && o_.mode == AggregateMode::rlca && rng_.uniform() >= o_.stick_probability &&
-        join_at_random_contact(c, owner_[static_cast<std::size_t>(hit_q)]))
-      return;
-    for (const std::int32_t p : group.members) {
-      positions_[static_cast<std::size_t>(p)] += t * d;
-      place(p);
-    }
-    if (hit_p >= 0) join(c, hit_p, hit_q);
   }
 
   //! rlca, a contact that does not stick where it was made: the two clusters roll over each
@@ -713,6 +739,8 @@ class BoxAggregation {
   std::int32_t largest_ = 0;                    //!< the largest cluster (the first of the largest)
   std::map<std::size_t, std::size_t> sizes_;    //!< how many clusters there are of each size
   std::vector<std::pair<std::int32_t, std::int32_t>> contacts_;
+  detail::Crew crew_;
+  std::vector<Contact> firsts_;  //!< each run's first contact in a step
 };
 
 // ---------------------------------------------------------------------------------------------

@@ -97,8 +97,9 @@ class AggregateRun : public Run {
   ModelRecord record() const override {
     ModelRecord out{model, options_.rng_seed};
     out.options = [this](RecordWriter& w) {
-      write_described(w, aggregate_option_table(), options_);
+      write_described(w, aggregate_option_table(), options_, {"threads"});
     };
+    out.timings = [this](RecordWriter& w) { w.integer("threads", options_.threads); };
     out.statistics = [this](RecordWriter& w) {
       w.open("aggregation")
           .counts({{"moves", stats_.moves}, {"contacts", stats_.contacts}, {"tries", stats_.tries},

@@ -70,6 +70,8 @@ struct AggregateOptions {
   double df = 1.8;                    //!< tuned: the fractal dimension D_f
   double kf = 1.3;                    //!< tuned: the prefactor k_f
   std::uint64_t rng_seed = 1;         //!< seeds every random choice
+  int threads = 1;                    //!< the box: threads that test a large cluster's moves; the
+                                      //!< aggregate does not depend on it
 };
 
 //! The aggregate's options, described once (option_description.h).

@@ -21,9 +21,11 @@
 #include "dla/mesh/constraint.h"
 #include "dla/run/models.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -173,10 +175,14 @@ const Model& model_of(const RunOptions& options);
 const Model* find_model(std::string_view name);
 
 //! Writes each described option's value in `options` as a field of the JSON record: the
-//! record's "options" of a model described whole.
+//! record's "options" of a model described whole. Options named in `timing_only` (threads)
+//! change how long a run takes, never what it grows: they belong in the record's timings, so
+//! that the same options give the same record.
 template <class Options>
-void write_described(RecordWriter& out, const OptionTable<Options>& table, const Options& options) {
+void write_described(RecordWriter& out, const OptionTable<Options>& table, const Options& options,
+                     std::initializer_list<std::string_view> timing_only = {}) {
   for (const DescribedOption<Options>& row : table) {
+    if (std::find(timing_only.begin(), timing_only.end(), row.about.name) != timing_only.end()) continue;
     const OptionValue value = row.get(options);
     if (const bool* b = std::get_if<bool>(&value)) out.flag(row.about.name, *b);
     else if (const std::int64_t* i = std::get_if<std::int64_t>(&value)) out.integer(row.about.name, *i);
