@@ -45,7 +45,7 @@ Subcommand add_breakdown_command(CLI::App& app, const Model& model) {
                            ->type_name("AXIS=VALUE")->group(discharge)->excludes(point);
   command->add_option("--target-mesh", b->target_mesh, "the other electrode: a mesh's surface (STL, OBJ, PLY, OFF; "
                                                        "repaired as --stl is), a lightning rod; 3D only")
-      ->type_name("FILE")->group(discharge)->excludes(point)->excludes(plane);
+      ->type_name(kMeshFile)->group(discharge)->excludes(point)->excludes(plane);
   w->walk = add_walk_options(*command, *b, *quiet, described);
   command->add_option_function<std::string>(
              "--fill", [](const std::string&) { refuse_for("breakdown", "fill"); },

@@ -103,10 +103,10 @@ Subcommand add_colonize_command(CLI::App& app, const Model& model) {
   const char* colliding = "Vessel and collision";
   command->add_option("--stl", c->stl, "a vessel (STL, OFF, OBJ or PLY) that growth stays inside: a "
                                        "step that would cross its surface is refused")
-      ->type_name("FILE")->group(colliding);
+      ->type_name(kMeshFile)->group(colliding);
   command->add_option("--collide", c->collide, "a collision mesh (STL, OFF, OBJ or PLY) that new nodes "
                                                "are pushed out of or stuck to")
-      ->type_name("FILE")->group(colliding);
+      ->type_name(kMeshFile)->group(colliding);
   w->seeds = std::make_unique<SeedWords>(
       *command, c->seeds, colliding, root_at_option,
       "roots on the mesh (the vessel, else the collision mesh): K far apart, or all: the surface, the paint or the "

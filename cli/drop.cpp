@@ -55,7 +55,7 @@ Subcommand add_drop_command(CLI::App& app, const Model& model) {
       ->capture_default_str()->group(dropping);
   const char* meshes = "Mesh constraint";
   command->add_option("--stl,--mesh", d->stl, "grow constrained by this mesh: STL, OFF, OBJ or PLY")
-      ->type_name("FILE")->group(meshes);
+      ->type_name(kMeshFile)->group(meshes);
   command->add_option("--side", w->side, "inside, outside or both (the mesh is only a wall)")
       ->capture_default_str()->group(meshes);
   command->add_option("--constraint", w->constraint, "a branch crossing the mesh: reject (drop again) or clip (end at it)")

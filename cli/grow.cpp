@@ -63,7 +63,7 @@ void add_options(CLI::App& app, DlaRunOptions& g, CommandLine& line, GrowWords& 
 
   const char* meshes = "Mesh constraint";
   CLI::Option* stl_option = app.add_option("--stl,--mesh", g.stl, "grow constrained by this mesh: STL, OFF, OBJ or PLY")
-                                ->type_name("FILE")->group(meshes);
+                                ->type_name(kMeshFile)->group(meshes);
   w.text_option =
       app.add_option("--text", w.text, "grow in this text, extruded a quarter of its size (lines split at \\n): "
                                        "a mesh, as --stl's; one seed in each letter")

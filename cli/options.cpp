@@ -91,7 +91,7 @@ SeedWords::SeedWords(CLI::App& app, MeshSeeds& seeds, const char* group, CLI::Op
                       ->type_name("COLOR[,TOLERANCE]")->group(group)->excludes(placed_by);
   app.add_option("--seed-mesh", seeds.meshes, "seeds where this mesh's surface meets the mesh (repeat for "
                                               "several): growth from where objects enter")
-      ->type_name("FILE")->allow_extra_args(false)->group(group)->excludes(placed_by)
+      ->type_name(kMeshFile)->allow_extra_args(false)->group(group)->excludes(placed_by)
       ->excludes(paint_option_)->excludes(surface);
 }
 

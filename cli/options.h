@@ -17,6 +17,11 @@
 
 namespace dla::cli {
 
+//! The type a file option that reads a mesh shows (`--stl MESH_FILE`): `dla3d options` gives it
+//! as the option's `type`, so that a front end can offer a mesh of its own (the Blender add-on
+//! an object); its kind stays `file`.
+inline constexpr const char* kMeshFile = "MESH_FILE";
+
 //! "x,y,z" (or more numbers for a box) as doubles; throws InvalidInput naming the flag.
 std::vector<double> parse_numbers(const std::string& flag, const std::string& text, std::size_t count);
 Vec3 parse_vec3(const std::string& flag, const std::string& text);

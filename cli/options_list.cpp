@@ -83,7 +83,9 @@ std::string options_json(const std::vector<Subcommand>& models) {
   for (std::size_t m = 0; m < models.size(); ++m) {
     const Model& model = dla::models()[m];
     const CLI::App& app = *models[m].app;
-    text += std::string(m ? "," : "") + "\n {\"name\": " + json::string(model.name) +
+    // The words that run it: none for the top-level command, else the subcommand's name.
+    const std::string command = app.get_parent() ? "[" + json::string(app.get_name()) + "]" : "[]";
+    text += std::string(m ? "," : "") + "\n {\"name\": " + json::string(model.name) + ", \"command\": " + command +
             ", \"summary\": " + json::string(model.summary) + ", \"options\": [";
     bool first = true;
     for (const CLI::Option* option : shown_options(app)) {

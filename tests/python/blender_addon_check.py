@@ -1,169 +1,204 @@
-"""Run inside Blender (test_blender.py): install and enable the add-on, grow in an icosphere
-with its operator, and check the curves (with links too), the tube mesh, the solid and the
-leaves it makes.
+"""The add-on inside Debian's Blender, headless (test_blender.py runs it):
 
-    blender -b --factory-startup --python blender_addon_check.py -- ADDON PYTHONPATH [RENDER.png]
+    blender -b --factory-startup --python blender_addon_check.py -- ZIP DLA3D BUST.stl WORK [RENDER.png]
+
+It installs ZIP with Blender's own installer, with dla3d's compiled module out of reach and
+DLA3D's folder on the PATH, grows in the bust through the operator (pumping the timer by hand:
+headless Blender runs none), and checks what it made against the CLI's own files. It prints
+"dla3d add-on: ..." lines and exits non-zero on the first failed check.
 """
 
+import json
+import os
+import subprocess
 import sys
+import time
 
-import bpy
-import mathutils
-import numpy as np
+# The compiled module must not be what the add-on runs on: a None entry makes `import dla3d` fail.
+sys.modules["dla3d"] = None
 
-addon, module_path = sys.argv[sys.argv.index("--") + 1:][:2]
-render = sys.argv[sys.argv.index("--") + 3:][:1]
-sys.path.insert(0, module_path)
-import dla3d  # noqa: E402
+import bpy  # noqa: E402
+import numpy as np  # noqa: E402
 
-bpy.ops.wm.read_factory_settings(use_empty=True)
-bpy.ops.preferences.addon_install(filepath=addon)
+ZIP, DLA3D, BUST, WORK = sys.argv[sys.argv.index("--") + 1:][:4]
+RENDER = (sys.argv[sys.argv.index("--") + 1:] + [None] * 5)[4]
+os.environ["PATH"] = os.path.dirname(DLA3D) + os.pathsep + os.environ.get("PATH", "")
+
+
+def check(condition, message):
+    if not condition:
+        print("dla3d add-on: FAILED:", message, flush=True)
+        sys.exit(1)
+
+
+bpy.ops.preferences.addon_install(filepath=ZIP)
 bpy.ops.preferences.addon_enable(module="dla3d_blender")
+import dla3d_blender  # noqa: E402
+from dla3d_blender import core  # noqa: E402
 
-RADIUS = 10.0
-bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=3, radius=RADIUS, location=(0, 0, 0))
-sphere = bpy.context.active_object
-settings = bpy.context.scene.dla3d
-settings.model, settings.count, settings.rng_seed, settings.seeds = "grow", 3000, 4, 2
-settings.output = 'CURVES'
-assert bpy.ops.dla3d.grow() == {'FINISHED'}
-curves = [o for o in bpy.context.scene.objects if o.type == 'CURVES']
-assert len(curves) == 1, curves
-data = curves[0].data
+check(dla3d_blender.__file__.startswith(bpy.utils.user_resource("SCRIPTS")), "installed where Blender installs add-ons")
+check(dla3d_blender._state["description"] is not None, f"the options were read: {dla3d_blender._state['error']}")
 
-# The structure the module grows for the same options: what the operator should have made.
-from dla3d_blender import grow_options  # noqa: E402
-bpy.context.view_layer.objects.active = sphere
-options = grow_options(settings, sphere, bpy.context.evaluated_depsgraph_get())
-expected = dla3d.grow(**options)
-ids, starts = expected.strands()
-assert len(data.curves) == len(starts) - 1, (len(data.curves), len(starts) - 1)
-assert len(data.points) == len(ids), (len(data.points), len(ids))
-positions = np.empty(len(data.points) * 3)
-data.points.foreach_get("position", positions)
-positions = positions.reshape(-1, 3)
-np.testing.assert_allclose(positions, expected.positions[ids], atol=1e-4)
-# Every point inside the sphere (the icosphere's faces lie within RADIUS of its centre).
-assert np.linalg.norm(positions, axis=1).max() < RADIUS, np.linalg.norm(positions, axis=1).max()
-radius = np.empty(len(data.points))
-data.points.foreach_get("radius", radius)
-look = expected.radius
-assert look.min() > 0 and abs(radius.min() - look.min()) < 1e-5 and abs(radius.max() - look.max()) < 1e-5
-# With a mesh the taper runs from 3 spacings at the seed to 0.05 at the tips.
-assert look.max() <= 3.0 * expected.spacing + 1e-6 and look.min() >= 0.05 * expected.spacing - 1e-6
-age = np.empty(len(data.points))
-data.attributes["age"].data.foreach_get("value", age)
-np.testing.assert_allclose(age, expected.age[ids], atol=1e-6)
-assert age.min() == 0.0 and age.max() == 1.0
+# Every model, every option the panel shows, as a property.
+scene = bpy.context.scene
+for model in dla3d_blender._state["description"]["models"]:
+    options = getattr(scene.dla3d, core.identifier(model["name"]))
+    for option in core.panel_options(model):
+        check(hasattr(options, core.identifier(option["name"])), f"{model['name']} {option['name']} in the panel")
+breakdown = scene.dla3d.breakdown
+check(breakdown.bl_rna.properties["field"].type == "ENUM", "a word from a list is an enum")
+eta = breakdown.bl_rna.properties["eta"]
+check(eta.type == "FLOAT" and eta.hard_min == 0 and eta.hard_max == 10 and eta.default == 1.0,
+      "a number keeps its range and the library's default")
 
-# The tube mesh, with the age per vertex.
-settings.output, settings.sides = 'MESH', 6
-bpy.context.view_layer.objects.active = sphere
-assert bpy.ops.dla3d.grow() == {'FINISHED'}
-tubes = [o for o in bpy.context.scene.objects if o.type == 'MESH' and o is not sphere]
-assert len(tubes) == 1
-vertices, _normals, faces = expected.tubes(sides=6)
-assert len(tubes[0].data.vertices) == len(vertices) and len(tubes[0].data.polygons) == len(faces)
-assert "age" in tubes[0].data.attributes
-# Its UV map: each face corner has its vertex's texture coordinates, v turned up as Blender's.
-expected_tubes = expected.tubes(sides=6)
-uv_layer = tubes[0].data.uv_layers.active
-assert uv_layer is not None and uv_layer.name == "UVMap"
-corner_uv = np.empty(2 * len(tubes[0].data.loops))
-uv_layer.data.foreach_get("uv", corner_uv)
-want = expected_tubes.uv[expected_tubes.faces.ravel()].astype(np.float64)
-want[:, 1] = 1.0 - want[:, 1]
-assert np.isfinite(corner_uv).all() and np.allclose(corner_uv.reshape(-1, 2), want, atol=1e-5)
-# The solid: one closed mesh, with the age per vertex.
-settings.output, settings.voxel = 'SOLID', 0.1  # the tips (0.05 spacings) drawn 0.15 across
-bpy.context.view_layer.objects.active = sphere
-assert bpy.ops.dla3d.grow() == {'FINISHED'}
-solids = [o for o in bpy.context.scene.objects if o.type == 'MESH' and o not in (sphere, tubes[0])]
-assert len(solids) == 1
-solid = expected.solid(solid_voxel=0.1)
-# Grown in Blender's own copy of the sphere, the structure matches to 1e-4 (above), and its solid
-# to within a few vertices of the thousands.
-made = np.array([len(solids[0].data.vertices), len(solids[0].data.polygons)])
-assert (np.abs(made - [len(solid.vertices), len(solid.faces)]) <= 1e-3 * made).all(), (made, len(solid.faces))
-assert "age" in solids[0].data.attributes
-import bmesh  # noqa: E402
-closed = bmesh.new()
-closed.from_mesh(solids[0].data)
-assert all(edge.is_manifold for edge in closed.edges), "the solid has an open or non-manifold edge"
-closed.free()
-solids[0].hide_render = True
+# A preset sets its options.
+scene.dla3d.model = "breakdown"
+scene.dla3d.preset = "lightning"
+check(dla3d_blender.apply_preset(scene.dla3d) is None, "the lightning preset applies")
+check(breakdown.eta != 1.0, f"the lightning preset set eta ({breakdown.eta})")
+print(f"dla3d add-on: the lightning preset sets eta {breakdown.eta:g}", flush=True)
+for name in [o["name"] for o in core.panel_options(dla3d_blender._model("breakdown")) if o["type"] != core.MESH_FILE]:
+    scene.dla3d.breakdown.property_unset(core.identifier(name))
 
-# Leaves: linked duplicates of a leaf object at every second tip, along the branch, as large as
-# the room around it.
-bpy.ops.mesh.primitive_plane_add(size=0.5, location=(30, 0, 0))
-leaf = bpy.context.active_object
-settings.output, settings.leaf, settings.leaf_every = 'CURVES', leaf, 2
-bpy.context.view_layer.objects.active = sphere
-assert bpy.ops.dla3d.grow() == {'FINISHED'}
-bpy.context.view_layer.objects.active = sphere
-leafy = dla3d.grow(**grow_options(settings, sphere, bpy.context.evaluated_depsgraph_get()))
-points = leafy.instances()
-assert len(points.positions) > 20 and len(points.positions) == len(points.particle)
-assert len(points.positions) < (leafy.tip.sum() + 1) // 2 + 1
-copies = [o for o in bpy.context.scene.objects if o.data is leaf.data and o is not leaf]
-assert len(copies) == len(points.positions), (len(copies), len(points.positions))
-assert all(copy.parent is not None and copy.parent.name.endswith("leaves") for copy in copies)
-by_place = sorted(copies, key=lambda o: tuple(o.matrix_world.translation))
-order = np.lexsort(points.positions.T[::-1])
-for copy, k in zip(by_place, order):
-    matrix = copy.matrix_world
-    np.testing.assert_allclose(matrix.translation, points.positions[k], atol=1e-4)
-    stem = matrix.to_3x3() @ mathutils.Vector((0, 0, 1))
-    assert abs(stem.length - points.scale[k]) < 1e-4 * points.scale[k] + 1e-6, (stem.length, points.scale[k])
-    assert stem.normalized().dot(mathutils.Vector(points.directions[k])) > 1 - 1e-5
-settings.leaf = None
-for placed in copies + [leaf] + [o for o in bpy.context.scene.objects if o.name.endswith("leaves")]:
-    placed.hide_render = True
-[o for o in bpy.context.scene.objects if o.type == 'CURVES' and o is not curves[0]][0].hide_render = True
+# The bust, selected; the run grows in it.
+bpy.ops.object.select_all(action="SELECT")
+bpy.ops.object.delete()
+bpy.ops.import_mesh.stl(filepath=BUST)
+bust = bpy.context.selected_objects[0]
+bpy.context.view_layer.objects.active = bust
+scene.dla3d.model = "grow"
+scene.dla3d.grow.particles = 30000
+scene.dla3d.grow.rng_seed = 5
+bpy.ops.dla3d.grow()
+run = dla3d_blender._state["run"]
+check(run is not None, "the operator started a run")
+seen = []
+while dla3d_blender.pump() is not None:
+    live = bpy.data.objects.get(dla3d_blender.LIVE_NAME)
+    if live is not None and len(live.data.vertices):
+        seen.append(len(live.data.vertices))
+    time.sleep(0.02)
+grown = bpy.data.objects.get("dla3d grow")
+check(grown is not None, f"the structure was imported ({dla3d_blender._state['error']})")
+count = len(grown.data.vertices)
+partial = [n for n in seen if n < count]
+check(partial, f"partial states before the end (seen {seen[:5]}, then {count})")
+print(f"dla3d add-on: {len(seen)} live updates, {len(partial)} partial (first {partial[0]}), {count} at the end",
+      flush=True)
 
-# Links: a curve of two points each after the strands.
-settings.output, settings.links = 'CURVES', 2.0
-bpy.context.view_layer.objects.active = sphere
-assert bpy.ops.dla3d.grow() == {'FINISHED'}
-looped = [o for o in bpy.context.scene.objects if o.type == 'CURVES' and o is not curves[0] and not o.hide_render]
-assert len(looped) == 1
-bpy.context.view_layer.objects.active = sphere
-linked = dla3d.grow(**grow_options(settings, sphere, bpy.context.evaluated_depsgraph_get()))
-assert len(linked.links) > 0
-assert len(looped[0].data.curves) == len(linked.strands()[1]) - 1 + len(linked.links), len(looped[0].data.curves)
-looped[0].hide_render = True
+# The same options on the CLI give the same CSV, and the object holds its points and links.
+reference = os.path.join(WORK, "cli")
+argv = [DLA3D, f"--stl={os.path.join(run.folder, 'stl.ply')}", "--particles=30000", "--rng-seed=5", "-q",
+        "--formats", "csv", "-o", reference]
+subprocess.run(argv, check=True)
+with open(reference + ".csv", "rb") as a, open(run.prefix + ".csv", "rb") as b:
+    check(a.read() == b.read(), "the add-on's run wrote the CLI's CSV, byte for byte")
+columns = core.read_csv(reference + ".csv")
+points = np.empty(count * 3, np.float32)
+grown.data.vertices.foreach_get("co", points)
+expected = np.column_stack([columns["x"], columns["y"], columns["z"]]).astype(np.float32)
+check(count == len(expected) and np.array_equal(points.reshape(-1, 3), expected), "the object's points are the CSV's")
+edges = np.empty(len(grown.data.edges) * 2, np.int32)
+grown.data.edges.foreach_get("vertices", edges)
+links = {(int(p), int(c)) for p, c in edges.reshape(-1, 2)}
+check(links == {(int(p), i) for i, p in enumerate(columns["parent"]) if p >= 0}, "an edge from each particle's parent")
+for name in ("id", "age", "radius", "depth", "seed", "order"):
+    attribute = grown.data.attributes.get(name)
+    check(attribute is not None and attribute.domain == "POINT", f"the {name} attribute")
+    values = np.empty(count, np.float32 if attribute.data_type == "FLOAT" else np.int32)
+    attribute.data.foreach_get("value", values)
+    check(np.allclose(values, columns[name], rtol=1e-6, atol=1e-6), f"the {name} attribute is the CSV's")
+print("dla3d add-on: the CSV, points, links and attributes match the CLI's", flush=True)
 
-print(f"dla3d add-on: {len(data.curves)} curves, {len(data.points)} points, radii "
-      f"{radius.min():.4f}-{radius.max():.4f}; {len(vertices)} tube vertices")
+# Grow over time: fewer points at a middle frame than at the last.
+modifier = grown.modifiers.get("Grow over time")
+check(modifier is not None and modifier.node_group is not None, "the Grow over time modifier")
 
-if render:
-    # The picture of docs/python.md: the curves in a glass sphere, by Cycles.
-    tubes[0].hide_render = True
-    glass = bpy.data.materials.new("glass")
-    glass.use_nodes = True
-    bsdf = glass.node_tree.nodes["Principled BSDF"]
-    bsdf.inputs["Alpha"].default_value = 0.12  # a faint skin, so the branches show through
-    bsdf.inputs["Roughness"].default_value = 0.1
-    sphere.data.materials.append(glass)
-    sphere.data.polygons.foreach_set("use_smooth", [True] * len(sphere.data.polygons))
-    wood = bpy.data.materials.new("branches")
-    wood.use_nodes = True
-    wood.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (0.8, 0.35, 0.1, 1)
-    curves[0].data.materials.append(wood)
-    bpy.ops.object.camera_add(location=(0, -40, 0), rotation=(1.5708, 0, 0))
-    bpy.context.scene.camera = bpy.context.active_object
-    bpy.ops.object.light_add(type='SUN', rotation=(0.6, 0.3, 0.8))
-    bpy.context.active_object.data.energy = 4
-    world = bpy.data.worlds.new("world")
-    world.use_nodes = True
-    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.6, 0.65, 0.7, 1)
-    bpy.context.scene.world = world
+
+def shown_at(frame):
+    scene.frame_set(frame)
+    evaluated = grown.evaluated_get(bpy.context.evaluated_depsgraph_get())
+    return len(evaluated.to_mesh().vertices)
+
+
+middle, last = shown_at((scene.frame_start + scene.frame_end) // 2), shown_at(scene.frame_end)
+check(0 < middle < last, f"the middle frame shows fewer tube vertices ({middle}) than the last ({last})")
+print(f"dla3d add-on: Grow over time shows {middle} tube vertices at the middle frame, {last} at the last", flush=True)
+
+# A run stopped keeps what grew.
+scene.dla3d.grow.property_unset("particles")
+scene.dla3d.grow.particles = 3000000
+bpy.context.view_layer.objects.active = None
+bpy.ops.dla3d.grow()
+run = dla3d_blender._state["run"]
+while run.arrived() < 20000 and dla3d_blender.pump() is not None:
+    time.sleep(0.02)
+dla3d_blender.stop()
+while dla3d_blender.pump() is not None:
+    time.sleep(0.02)
+stopped = bpy.data.objects.get(dla3d_blender._state["last"])
+with open(run.prefix + ".json") as f:
+    record = json.load(f)
+check(stopped is not None and 20000 <= len(stopped.data.vertices) < 3000001, "a stopped run's structure is kept")
+check(record.get("complete") is False, "the record says the structure is incomplete")
+print(f"dla3d add-on: stopped with {len(stopped.data.vertices)} particles kept", flush=True)
+
+# A missing dla3d: one line, from the preferences and from the operator.
+preferences = bpy.context.preferences.addons["dla3d_blender"].preferences
+preferences.dla3d_path = "/nonexistent/dla3d"
+error = dla3d_blender._state["error"]
+check(error and "\n" not in error and "not an executable" in error, f"a missing dla3d refused in one line: {error}")
+try:
+    bpy.ops.dla3d.grow()
+    check(False, "the operator grew without dla3d")
+except RuntimeError as refused:
+    check("not an executable" in str(refused), f"the operator says why: {refused}")
+print(f"dla3d add-on: refused: {error}", flush=True)
+preferences.dla3d_path = DLA3D
+check(dla3d_blender._state["description"] is not None, "found again")
+
+if RENDER:
+    # One frame of the growth animation in Cycles, framed on the structure.
     scene = bpy.context.scene
-    scene.render.engine = 'CYCLES'
-    scene.cycles.device = 'CPU'
-    scene.cycles.samples = 64
-    scene.cycles.use_denoising = False  # Debian's Blender has no OpenImageDenoise
-    scene.view_layers[0].cycles.denoising_store_passes = False
+    grown = bpy.data.objects.get("dla3d grow")
+    for other in scene.objects:  # the bust and the stopped run's structure
+        other.hide_render = other is not grown
+    material = bpy.data.materials.new("dla3d glow")
+    material.use_nodes = True
+    principled = material.node_tree.nodes.get("Principled BSDF")
+    principled.inputs["Base Color"].default_value = (0.9, 0.55, 0.2, 1.0)
+    modifier = grown.modifiers["Grow over time"]
+    modifier[dla3d_blender.nodes.input_identifier(modifier.node_group, "Material")] = material
+    scene.frame_set(int(scene.frame_start + 0.7 * (scene.frame_end - scene.frame_start)))
+    corners = np.array([grown.matrix_world @ v.co for v in grown.data.vertices])
+    centre, size = (corners.min(0) + corners.max(0)) / 2, float(np.max(corners.max(0) - corners.min(0)))
+    camera = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
+    scene.collection.objects.link(camera)
+    camera.location = (centre[0], centre[1] - 2.2 * size, centre[2] + 0.3 * size)
+    direction = camera.location - type(camera.location)(centre)
+    camera.rotation_euler = direction.to_track_quat("Z", "Y").to_euler()
+    scene.camera = camera
+    light = bpy.data.objects.new("light", bpy.data.lights.new("light", "SUN"))
+    light.data.energy = 4.0
+    light.rotation_euler = (0.6, 0.2, 0.8)
+    scene.collection.objects.link(light)
+    scene.world = scene.world or bpy.data.worlds.new("world")
+    scene.world.use_nodes = True
+    scene.world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.02, 0.02, 0.03, 1.0)
+    scene.render.engine = "CYCLES"
+    scene.cycles.samples = 32
+    scene.cycles.use_denoising = False  # Debian's Blender is built without OpenImageDenoise
+    scene.cycles.device = "CPU"
     scene.render.resolution_x, scene.render.resolution_y = 640, 480
-    scene.render.filepath = render[0]
+    scene.render.filepath = RENDER
     bpy.ops.render.render(write_still=True)
+    image = bpy.data.images.load(RENDER)
+    pixels = np.array(image.pixels[:], np.float32).reshape(image.size[1], image.size[0], 4)[:, :, :3].sum(axis=2)
+    lit = np.argwhere(np.abs(pixels - pixels[0, 0]) > 0.1)  # unlike the world's colour in the corner
+    check(len(lit) > 0.01 * pixels.size, f"the render shows the structure ({len(lit)} lit pixels)")
+    rows, cols = lit[:, 0], lit[:, 1]
+    check(rows.min() > 0 and cols.min() > 0 and rows.max() < pixels.shape[0] - 1 and cols.max() < pixels.shape[1] - 1,
+          "the structure is framed: no lit pixel on the border")
+    print(f"dla3d add-on: rendered frame {scene.frame_current} to {RENDER}, {len(lit)} lit pixels", flush=True)
+
+print("dla3d add-on: every check passed", flush=True)
