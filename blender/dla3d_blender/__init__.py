@@ -137,6 +137,11 @@ def _settings_class(description):
         "model": bpy.props.EnumProperty(name="Model", items=_model_items, description="What grows"),
         "preset": bpy.props.EnumProperty(name="Preset", items=_preset_items,
                                          description="A named set of options for the model (dla3d MODEL --preset)"),
+        "result": bpy.props.EnumProperty(
+            name="Result", default="MESH", description="What the structure is imported as",
+            items=[("MESH", "Mesh", "a vertex a particle and an edge to its parent, the CSV's columns as attributes"),
+                   ("CURVES", "Curves", "the same mesh shown as curves by a Mesh to Curve modifier, the attributes "
+                                        "on their points")]),
         "animate": bpy.props.BoolProperty(name="Grow over time", default=True,
                                           description="Add the Grow over time node group: the structure appears "
                                                       "in its attach order from the scene's first frame to its last"),
@@ -322,7 +327,8 @@ def start(context):
         _state["run"] = core.Run(_state["path"], model, run_words, folder)
     except OSError as error:
         return f"dla3d: {_state['path']} does not run ({error.strerror})"
-    _state.update(live=_live_object(context).name, shown=-1, settings=(settings.model, settings.animate), error=None)
+    _state.update(live=_live_object(context).name, shown=-1, settings=(settings.model, settings.result, settings.animate),
+                  error=None)
     if not bpy.app.timers.is_registered(pump):  # persistent: a run outlives a file opened meanwhile
         bpy.app.timers.register(pump, first_interval=PUMP_SECONDS, persistent=True)
     return None
@@ -371,7 +377,7 @@ def _finish(run):
     if not os.path.exists(csv):
         _state["error"] = run.error() or f"dla3d ended with code {code} and wrote no structure"
         return
-    model, animate = _state["settings"]
+    model, result, animate = _state["settings"]
     columns = core.read_csv(csv)
     scene = bpy.context.scene
     live = bpy.data.objects.get(_state["live"] or "")
@@ -382,6 +388,8 @@ def _finish(run):
             bpy.data.meshes.remove(mesh)
     obj = structure_object(f"dla3d {model}", columns, scene.collection)
     obj["dla3d_record"] = run.prefix + ".json"
+    if result == "CURVES":
+        nodes.add_to_curves(obj)
     if animate:
         nodes.add_grow_over_time(obj, scene.frame_start, scene.frame_end)
     _state["error"] = run.error() if code != 0 else None
@@ -527,6 +535,7 @@ class DLA3D_PT_panel(bpy.types.Panel):
                 for option in core.panel_options(model):
                     if option["group"] == group and option["type"] != core.MESH_FILE:
                         box.prop(options, core.identifier(option["name"]))
+        layout.prop(settings, "result")
         layout.prop(settings, "animate")
         if _state["run"] is None:
             layout.operator("dla3d.grow", icon="PLAY")

@@ -12,6 +12,7 @@ that name from 4.0.
 import bpy
 
 GROUP_NAME = "Grow over time"
+CURVES_NAME = "dla3d curves"
 
 
 def _new_socket(group, in_out, socket_type, name):
@@ -75,12 +76,18 @@ def grow_over_time():
     hide.domain = "POINT"
     links.new(_socket(given.outputs, "Geometry"), _socket(hide.inputs, "Geometry"))
     links.new(later.outputs[0], _socket(hide.inputs, "Selection"))
-    # Tubes of the particles' radii along the links to their parents.
+    # Tubes of the particles' radii along the links to their parents: a mesh's edges made
+    # curves, joined to the curves of a result imported as curves.
+    parts = nodes.new("GeometryNodeSeparateComponents")
+    links.new(_socket(hide.outputs, "Geometry"), _socket(parts.inputs, "Geometry"))
     curves = nodes.new("GeometryNodeMeshToCurve")
-    links.new(_socket(hide.outputs, "Geometry"), _socket(curves.inputs, "Mesh"))
+    links.new(_socket(parts.outputs, "Mesh"), _socket(curves.inputs, "Mesh"))
+    joined = nodes.new("GeometryNodeJoinGeometry")
+    links.new(_socket(parts.outputs, "Curve"), _socket(joined.inputs, "Geometry"))
+    links.new(_socket(curves.outputs, "Curve"), _socket(joined.inputs, "Geometry"))
     radius = _math(group, "MULTIPLY", _named_attribute(group, "radius"), _socket(given.outputs, "Radius scale"))
     set_radius = nodes.new("GeometryNodeSetCurveRadius")
-    links.new(_socket(curves.outputs, "Curve"), _socket(set_radius.inputs, "Curve"))
+    links.new(_socket(joined.outputs, "Geometry"), _socket(set_radius.inputs, "Curve"))
     links.new(radius.outputs[0], _socket(set_radius.inputs, "Radius"))
     profile = nodes.new("GeometryNodeCurvePrimitiveCircle")
     links.new(_socket(given.outputs, "Resolution"), _socket(profile.inputs, "Resolution"))
@@ -95,6 +102,32 @@ def grow_over_time():
     for k, node in enumerate(nodes):
         node.location = (200 * (k % 8), -200 * (k // 8))
     return group
+
+
+def to_curves():
+    """The node group that shows a mesh of points and parent edges as curves, attributes kept."""
+    group = bpy.data.node_groups.get(CURVES_NAME)
+    if group is not None:
+        return group
+    group = bpy.data.node_groups.new(CURVES_NAME, "GeometryNodeTree")
+    if hasattr(group, "is_modifier"):
+        group.is_modifier = True
+    _new_socket(group, "INPUT", "NodeSocketGeometry", "Geometry")
+    _new_socket(group, "OUTPUT", "NodeSocketGeometry", "Geometry")
+    given, result = group.nodes.new("NodeGroupInput"), group.nodes.new("NodeGroupOutput")
+    curves = group.nodes.new("GeometryNodeMeshToCurve")
+    group.links.new(_socket(given.outputs, "Geometry"), _socket(curves.inputs, "Mesh"))
+    group.links.new(_socket(curves.outputs, "Curve"), _socket(result.inputs, "Geometry"))
+    result.location = (400, 0)
+    curves.location = (200, 0)
+    return group
+
+
+def add_to_curves(obj):
+    """`obj`'s points and edges as curves, by a modifier."""
+    modifier = obj.modifiers.new(CURVES_NAME, "NODES")
+    modifier.node_group = to_curves()
+    return modifier
 
 
 def input_identifier(group, name):

@@ -125,6 +125,21 @@ middle, last = shown_at((scene.frame_start + scene.frame_end) // 2), shown_at(sc
 check(0 < middle < last, f"the middle frame shows fewer tube vertices ({middle}) than the last ({last})")
 print(f"dla3d add-on: Grow over time shows {middle} tube vertices at the middle frame, {last} at the last", flush=True)
 
+# Imported as curves, with Grow over time after it: the same reveal.
+scene.dla3d.result = "CURVES"
+scene.dla3d.grow.particles = 3000
+bpy.ops.dla3d.grow()
+while dla3d_blender.pump() is not None:
+    time.sleep(0.02)
+curved = bpy.data.objects.get(dla3d_blender._state["last"])
+check([m.name for m in curved.modifiers] == ["dla3d curves", "Grow over time"], "curves, then Grow over time")
+grown, kept = curved, grown  # shown_at() looks at `grown`
+middle, last = shown_at((scene.frame_start + scene.frame_end) // 2), shown_at(scene.frame_end)
+check(0 < middle < last, f"as curves too, the middle frame shows fewer ({middle}) than the last ({last})")
+grown = kept
+scene.dla3d.result = "MESH"
+print(f"dla3d add-on: as curves, Grow over time shows {middle} and {last} tube vertices", flush=True)
+
 # A run stopped keeps what grew.
 scene.dla3d.grow.property_unset("particles")
 scene.dla3d.grow.particles = 3000000
