@@ -38,7 +38,8 @@ set(plain_only "^(consumer_example|gallery_small|Blender\\..*|PrusaSlicer\\..*|A
 step("the tests under ASan and UBSan" ${CMAKE_CTEST_COMMAND} --test-dir ${WORK_DIR} --output-on-failure -j2 -E ${plain_only} -LE full)
 
 # Walkers on several threads share the index while one of them attaches, a spare core measures
-# the distances to the mesh as they attach, and the look shares out the rest: TSan checks that
+# the distances to the mesh as they attach, the look shares out the rest, and an aggregate's
+# large clusters test their steps on a crew: TSan checks that
 # every word they share is read and written atomically. The TSan build compiles only the files
 # these tests are in (tests/CMakeLists.txt, DLA_TSAN): a test named here must be in one of them.
 set(tsan_dir ${WORK_DIR}-thread)
@@ -46,7 +47,7 @@ step("configuring TSan" ${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${tsan_dir} -DCMAKE
      -DDLA_FUZZ=OFF -DDLA_TSAN=ON -DDLA_BUILD_BENCH=OFF -DDLA_BUILD_EXAMPLES=OFF -DDLA_BUILD_PYTHON=OFF)
 step("building with TSan" ${CMAKE_COMMAND} --build ${tsan_dir} -j2 --target dla_tests)
 step("the threaded tests under TSan" ${CMAKE_COMMAND} -E env TSAN_OPTIONS=halt_on_error=1
-     ${tsan_dir}/tests/dla_tests --gtest_filter=Threads.*:Constraint.SameResultOnEveryThreadCount:ParticleFeed.*:GrowRecorded.*:Attributes.BoundaryDistance*:Attributes.ClosestTriangles*)
+     ${tsan_dir}/tests/dla_tests --gtest_filter=Threads.*:Constraint.SameResultOnEveryThreadCount:ParticleFeed.*:GrowRecorded.*:Attributes.BoundaryDistance*:Attributes.ClosestTriangles*:Aggregate.TheSameAggregateOnAnyThreadCount)
 
 if(CLANGXX)
   foreach(format stl off obj ply points cli csv leaf)
