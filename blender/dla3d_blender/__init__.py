@@ -306,15 +306,13 @@ def start(context):
     settings = context.scene.dla3d
     model = _model(settings.model)
     options = getattr(settings, core.identifier(model["name"]))
-    main = core.main_mesh_option(model)
+    meshes = meshes_of_the_run(context, model, options)
     run_words = []
     folder = None
     for option in core.panel_options(model):
         value = getattr(options, core.identifier(option["name"]))
         if option["type"] == core.MESH_FILE:
-            if value is None and main is option and context.active_object is not None and \
-                    context.active_object.type == "MESH":
-                value = context.active_object
+            value = meshes.get(option["name"])
             if value is None:
                 continue
             folder = folder or _new_folder()
@@ -332,6 +330,24 @@ def start(context):
     if not bpy.app.timers.is_registered(pump):  # persistent: a run outlives a file opened meanwhile
         bpy.app.timers.register(pump, first_interval=PUMP_SECONDS, persistent=True)
     return None
+
+
+def meshes_of_the_run(context, model, options):
+    """Each mesh option's object: its picker's; else the active object for the main option
+    (`--stl`), and a second selected mesh object for the first other option left empty (a
+    discharge's target electrode, DLA's seed mesh)."""
+    chosen = {o["name"]: getattr(options, core.identifier(o["name"])) for o in core.mesh_options(model)}
+    main = core.main_mesh_option(model)
+    active = context.active_object
+    if main is not None and chosen[main["name"]] is None and active is not None and active.type == "MESH":
+        chosen[main["name"]] = active
+    used = {obj.name for obj in chosen.values() if obj is not None}
+    others = [obj for obj in context.selected_objects
+              if obj.type == "MESH" and obj.name not in used and "dla3d_record" not in obj and obj.name != LIVE_NAME]
+    empty = [name for name, obj in chosen.items() if obj is None]
+    if others and empty:
+        chosen[empty[0]] = others[0]
+    return {name: obj for name, obj in chosen.items() if obj is not None}
 
 
 def _new_folder():
@@ -520,12 +536,12 @@ class DLA3D_PT_panel(bpy.types.Panel):
             row = layout.row(align=True)
             row.prop(settings, "preset")
             row.operator("dla3d.apply_preset")
-        main = core.main_mesh_option(model)
+        picked = meshes_of_the_run(context, model, options)
         for option in core.mesh_options(model):
             row = layout.row()
             row.prop(options, core.identifier(option["name"]))
-            if option is main and getattr(options, core.identifier(option["name"])) is None:
-                row.label(text="the selected object")
+            if getattr(options, core.identifier(option["name"])) is None and option["name"] in picked:
+                row.label(text=picked[option["name"]].name)
         for k, group in enumerate(_groups(model)):
             box = layout.box()
             shown = getattr(options, f"show_group_{k}")

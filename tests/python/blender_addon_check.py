@@ -140,6 +140,21 @@ grown = kept
 scene.dla3d.result = "MESH"
 print(f"dla3d add-on: as curves, Grow over time shows {middle} and {last} tube vertices", flush=True)
 
+# A second selected object is the discharge's target electrode: a plane under the bust.
+bpy.ops.object.select_all(action="DESELECT")
+bpy.ops.mesh.primitive_plane_add(size=4.0 * max(bust.dimensions), location=(0, 0, bust.location.z - bust.dimensions.z))
+plane = bpy.context.active_object
+bust.select_set(True)
+bpy.context.view_layer.objects.active = bust
+scene.dla3d.model = "breakdown"
+picked = dla3d_blender.meshes_of_the_run(bpy.context, dla3d_blender._model("breakdown"), scene.dla3d.breakdown)
+check(picked.get("--stl") == bust and picked.get("--target-mesh") == plane, f"the bust and the target: {picked}")
+scene.dla3d.model = "grow"
+picked = dla3d_blender.meshes_of_the_run(bpy.context, dla3d_blender._model("grow"), scene.dla3d.grow)
+check(picked.get("--stl") == bust and picked.get("--seed-mesh") == plane, f"the bust and the seed mesh: {picked}")
+bpy.data.objects.remove(plane)
+print("dla3d add-on: a second selected object is the target electrode, or the seed mesh", flush=True)
+
 # A run stopped keeps what grew.
 scene.dla3d.grow.property_unset("particles")
 scene.dla3d.grow.particles = 3000000
