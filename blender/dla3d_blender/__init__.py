@@ -406,8 +406,8 @@ def _finish(run):
     obj["dla3d_record"] = run.prefix + ".json"
     if result == "CURVES":
         nodes.add_to_curves(obj)
-    if animate:
-        nodes.add_grow_over_time(obj, scene.frame_start, scene.frame_end)
+    if animate:  # a discharge that struck lights up as its leader steps down
+        nodes.add_grow_over_time(obj, scene.frame_start, scene.frame_end, "light" if "light" in columns else "age")
     _state["error"] = run.error() if code != 0 else None
     _state["last"] = obj.name
 

@@ -1,6 +1,6 @@
 """The bundled node group, "Grow over time": the structure revealed in its attach order (its
-`age` attribute) as the frame advances, as tubes of its own radii. One modifier makes a growth
-animation.
+`age` attribute; a discharge's `light`, its stepped leader) as the frame advances, as tubes of
+its own radii. One modifier makes a growth animation.
 
 Blender 3.4 to 5.x build node groups alike but for their sockets: 4.0 replaced
 `NodeTree.inputs`/`outputs` with `NodeTree.interface.new_socket()` (Blender 4.0's Python API
@@ -55,6 +55,7 @@ def grow_over_time():
     _new_socket(group, "INPUT", "NodeSocketGeometry", "Geometry")
     for name, value in (("Start frame", 1.0), ("End frame", 250.0), ("Radius scale", 1.0)):
         _new_socket(group, "INPUT", "NodeSocketFloat", name).default_value = value
+    _new_socket(group, "INPUT", "NodeSocketString", "Reveal by").default_value = "age"
     resolution = _new_socket(group, "INPUT", "NodeSocketInt", "Resolution")
     resolution.default_value = 8
     resolution.min_value = 3
@@ -70,8 +71,12 @@ def grow_over_time():
     span = _math(group, "SUBTRACT", _socket(given.outputs, "End frame"), _socket(given.outputs, "Start frame"))
     share = _math(group, "DIVIDE", elapsed.outputs[0], span.outputs[0])
     share.use_clamp = True
-    # Hidden: the particles attached later, by their age (attach order scaled to [0, 1]).
-    later = _math(group, "GREATER_THAN", _named_attribute(group, "age"), share.outputs[0])
+    # Hidden: the particles past that share by the attribute revealed by: their age (attach
+    # order scaled to [0, 1]), or a discharge's light (when the leader reaches them, 1 at the strike).
+    reveal = group.nodes.new("GeometryNodeInputNamedAttribute")
+    reveal.data_type = "FLOAT"
+    links.new(_socket(given.outputs, "Reveal by"), _socket(reveal.inputs, "Name"))
+    later = _math(group, "GREATER_THAN", _socket(reveal.outputs, "Attribute"), share.outputs[0])
     hide = nodes.new("GeometryNodeDeleteGeometry")
     hide.domain = "POINT"
     links.new(_socket(given.outputs, "Geometry"), _socket(hide.inputs, "Geometry"))
@@ -137,13 +142,15 @@ def input_identifier(group, name):
     return next(s.identifier for s in sockets if s.name == name)
 
 
-def add_grow_over_time(obj, start, end, material=None):
-    """The node group as a modifier of `obj`, revealing it from frame `start` to `end`."""
+def add_grow_over_time(obj, start, end, reveal_by="age", material=None):
+    """The node group as a modifier of `obj`, revealing it by the attribute `reveal_by` from
+    frame `start` to `end`."""
     group = grow_over_time()
     modifier = obj.modifiers.new(GROUP_NAME, "NODES")
     modifier.node_group = group
     modifier[input_identifier(group, "Start frame")] = float(start)
     modifier[input_identifier(group, "End frame")] = float(end)
+    modifier[input_identifier(group, "Reveal by")] = reveal_by
     if material is not None:
         modifier[input_identifier(group, "Material")] = material
     return modifier

@@ -155,6 +155,26 @@ check(picked.get("--stl") == bust and picked.get("--seed-mesh") == plane, f"the 
 bpy.data.objects.remove(plane)
 print("dla3d add-on: a second selected object is the target electrode, or the seed mesh", flush=True)
 
+# A spark that strikes: its channel, current and light, and Grow over time follows the leader.
+bpy.context.view_layer.objects.active = None
+bpy.ops.object.select_all(action="DESELECT")
+scene.dla3d.model = "breakdown"
+scene.dla3d.preset = "spark"
+check(dla3d_blender.apply_preset(scene.dla3d) is None, "the spark preset applies")
+bpy.ops.dla3d.grow()
+while dla3d_blender.pump() is not None:
+    time.sleep(0.02)
+spark = bpy.data.objects.get(dla3d_blender._state["last"])
+check(spark is not None and spark.name.startswith("dla3d breakdown"), f"the spark grew ({dla3d_blender._state['error']})")
+check(all(spark.data.attributes.get(a) is not None for a in ("channel", "current", "light")), "a discharge's attributes")
+spark_modifier = spark.modifiers["Grow over time"]
+reveal = spark_modifier[dla3d_blender.nodes.input_identifier(spark_modifier.node_group, "Reveal by")]
+check(reveal == "light", f"a discharge is revealed by its light ({reveal})")
+print(f"dla3d add-on: the spark struck with {len(spark.data.vertices)} particles, revealed by {reveal}", flush=True)
+for name in [o["name"] for o in core.panel_options(dla3d_blender._model("breakdown")) if o["type"] != core.MESH_FILE]:
+    scene.dla3d.breakdown.property_unset(core.identifier(name))
+scene.dla3d.model = "grow"
+
 # A run stopped keeps what grew.
 scene.dla3d.grow.property_unset("particles")
 scene.dla3d.grow.particles = 3000000
