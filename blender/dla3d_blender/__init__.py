@@ -253,26 +253,30 @@ def _vertex_colours(mesh):
     return np.clip(np.round(values * 255.0), 0, 255).astype(np.uint8)
 
 
-def _fill_mesh(mesh, positions, parents):
-    """Points and the links to their parents, as a mesh of vertices and edges."""
+def _fill_mesh(mesh, positions, parents, links=None):
+    """Points and the links to their parents, then any other links (loops), as a mesh of
+    vertices and edges."""
     mesh.clear_geometry()
     count = len(positions)
     mesh.vertices.add(count)
     mesh.vertices.foreach_set("co", np.ascontiguousarray(positions, np.float32).ravel())
     children = np.nonzero((parents >= 0) & (parents < count))[0]
-    mesh.edges.add(len(children))
-    mesh.edges.foreach_set("vertices", np.column_stack([parents[children], children]).astype(np.int32).ravel())
+    edges = np.column_stack([parents[children], children])
+    if links is not None and len(links):
+        edges = np.concatenate([edges, links])
+    mesh.edges.add(len(edges))
+    mesh.edges.foreach_set("vertices", edges.astype(np.int32).ravel())
     mesh.update()
 
 
-def structure_object(name, columns, collection):
-    """The CSV's structure as a mesh object: a vertex a particle, an edge to its parent, and
-    each other column as a point attribute of its name: id (the attach order), age (the same
-    scaled to [0, 1]), radius, depth, seed, Strahler order, and a discharge's channel, current
-    and light."""
+def structure_object(name, columns, collection, links=None):
+    """The CSV's structure as a mesh object: a vertex a particle, an edge to its parent, an
+    edge for each of `links` (the loops of PREFIX_links.csv, rows a, b), and each other column
+    as a point attribute of its name: id (the attach order), age (the same scaled to [0, 1]),
+    radius, depth, seed, Strahler order, and a discharge's channel, current and light."""
     mesh = bpy.data.meshes.new(name)
     positions = np.column_stack([columns["x"], columns["y"], columns["z"]])
-    _fill_mesh(mesh, positions, np.asarray(columns["parent"], np.int64))
+    _fill_mesh(mesh, positions, np.asarray(columns["parent"], np.int64), links)
     for column, values in columns.items():
         if column in ("x", "y", "z", "parent"):
             continue
@@ -395,6 +399,11 @@ def _finish(run):
         return
     model, result, animate = _state["settings"]
     columns = core.read_csv(csv)
+    links_csv = run.prefix + "_links.csv"
+    links = None
+    if os.path.exists(links_csv):
+        table = core.read_csv(links_csv)
+        links = np.column_stack([table["a"], table["b"]]) if len(table["a"]) else None
     scene = bpy.context.scene
     live = bpy.data.objects.get(_state["live"] or "")
     if live is not None:
@@ -402,7 +411,7 @@ def _finish(run):
         bpy.data.objects.remove(live)
         if mesh.users == 0:
             bpy.data.meshes.remove(mesh)
-    obj = structure_object(f"dla3d {model}", columns, scene.collection)
+    obj = structure_object(f"dla3d {model}", columns, scene.collection, links)
     obj["dla3d_record"] = run.prefix + ".json"
     if result == "CURVES":
         nodes.add_to_curves(obj)

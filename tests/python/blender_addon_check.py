@@ -175,6 +175,20 @@ for name in [o["name"] for o in core.panel_options(dla3d_blender._model("breakdo
     scene.dla3d.breakdown.property_unset(core.identifier(name))
 scene.dla3d.model = "grow"
 
+# Loops: the links beyond the tree are edges too.
+scene.dla3d.grow.particles = 2000
+scene.dla3d.grow.links = "2"
+bpy.context.view_layer.objects.active = None
+bpy.ops.dla3d.grow()
+while dla3d_blender.pump() is not None:
+    time.sleep(0.02)
+looped = bpy.data.objects.get(dla3d_blender._state["last"])
+check(looped is not None and len(looped.data.edges) > len(looped.data.vertices) - 1,
+      f"links beyond the tree are edges ({len(looped.data.edges)} edges, {len(looped.data.vertices)} points)")
+print(f"dla3d add-on: with --links 2, {len(looped.data.edges)} edges over {len(looped.data.vertices)} points",
+      flush=True)
+scene.dla3d.grow.property_unset("links")
+
 # A run stopped keeps what grew.
 scene.dla3d.grow.property_unset("particles")
 scene.dla3d.grow.particles = 3000000
