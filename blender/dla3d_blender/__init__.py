@@ -29,16 +29,18 @@ import numpy as np
 
 from . import core, nodes
 
-#: The live object's name while a run grows.
+#: The live objects' name while a run grows ("dla3d growth", "dla3d growth 2"...), and the
+#: particles each shows.
 LIVE_NAME = "dla3d growth"
+LIVE_CHUNK = 50000
 #: Seconds between two looks at the stream: more than ten updates a second, while the live
 #: object takes little time to update.
-PUMP_SECONDS = 0.08
+PUMP_SECONDS = 0.06
 
 # What the add-on knows between calls: the option description, the classes made from it, the
 # run that grows, and the last message.
 _state = {"description": None, "path": None, "warning": None, "error": None, "classes": [], "run": None,
-          "live": None, "shown": -1, "settings": None, "presets": {}}
+          "shown": 0, "settings": None, "presets": {}}
 
 
 # ------------------------------------------------------------------------------------------
@@ -292,12 +294,43 @@ def structure_object(name, columns, collection, links=None):
 # Runs
 
 
-def _live_object(context):
-    obj = bpy.data.objects.get(LIVE_NAME)
-    if obj is None:
-        obj = bpy.data.objects.new(LIVE_NAME, bpy.data.meshes.new(LIVE_NAME))
-        context.scene.collection.objects.link(obj)
+def _live_chunk(k):
+    """The live object that shows particles [k, k + 1) * LIVE_CHUNK, made when first needed:
+    only the last one changes as a run grows, so a look costs the same at any size. Looked up
+    by name each time, as undo may have replaced it."""
+    name = LIVE_NAME if k == 0 else f"{LIVE_NAME} {k + 1}"
+    obj = bpy.data.objects.get(name)
+    if obj is None or obj.type != "MESH":
+        obj = bpy.data.objects.new(name, bpy.data.meshes.new(name))
+        bpy.context.scene.collection.objects.link(obj)
     return obj
+
+
+def _show_live(run, shown, arrived):
+    """The live objects updated from particle `shown` on to `arrived`."""
+    first = max(shown, 0) // LIVE_CHUNK
+    positions, parents = run.snapshot(first * LIVE_CHUNK)
+    for k in range(first, (arrived - 1) // LIVE_CHUNK + 1):
+        begin = k * LIVE_CHUNK - first * LIVE_CHUNK
+        end = min(begin + LIVE_CHUNK, len(positions))
+        own, up = positions[begin:end], parents[begin:end].astype(np.int64) - k * LIVE_CHUNK
+        # A parent in an earlier chunk is shown again here, so that its edge can be drawn.
+        earlier = np.unique(up[(up < 0) & (up + k * LIVE_CHUNK >= 0)])
+        extra = run.positions_of(earlier + k * LIVE_CHUNK)
+        local = up.copy()
+        outside = (up < 0) & (up + k * LIVE_CHUNK >= 0)
+        local[outside] = len(own) + np.searchsorted(earlier, up[outside])
+        local[up + k * LIVE_CHUNK < 0] = -1  # a seed
+        _fill_mesh(_live_chunk(k).data, np.concatenate([own, extra]),
+                   np.concatenate([local, np.full(len(extra), -1, np.int64)]))
+
+
+def _remove_live():
+    for obj in [o for o in bpy.data.objects if o.name == LIVE_NAME or o.name.startswith(LIVE_NAME + " ")]:
+        mesh = obj.data
+        bpy.data.objects.remove(obj)
+        if mesh is not None and mesh.users == 0:
+            bpy.data.meshes.remove(mesh)
 
 
 def start(context):
@@ -329,8 +362,8 @@ def start(context):
         _state["run"] = core.Run(_state["path"], model, run_words, folder)
     except OSError as error:
         return f"dla3d: {_state['path']} does not run ({error.strerror})"
-    _state.update(live=_live_object(context).name, shown=-1, settings=(settings.model, settings.result, settings.animate),
-                  error=None)
+    _remove_live()
+    _state.update(shown=0, settings=(settings.model, settings.result, settings.animate), error=None)
     if not bpy.app.timers.is_registered(pump):  # persistent: a run outlives a file opened meanwhile
         bpy.app.timers.register(pump, first_interval=PUMP_SECONDS, persistent=True)
     return None
@@ -345,12 +378,13 @@ def meshes_of_the_run(context, model, options):
     active = context.active_object
     if main is not None and chosen[main["name"]] is None and active is not None and active.type == "MESH":
         chosen[main["name"]] = active
-    used = {obj.name for obj in chosen.values() if obj is not None}
-    others = [obj for obj in context.selected_objects
-              if obj.type == "MESH" and obj.name not in used and "dla3d_record" not in obj and obj.name != LIVE_NAME]
-    empty = [name for name, obj in chosen.items() if obj is None]
-    if others and empty:
-        chosen[empty[0]] = others[0]
+    if main is not None and chosen[main["name"]] is not None:  # a second object beside the main one
+        used = {obj.name for obj in chosen.values() if obj is not None}
+        others = [obj for obj in context.selected_objects
+                  if obj.type == "MESH" and obj.name not in used and "dla3d_record" not in obj and obj.name != LIVE_NAME]
+        empty = [name for name, obj in chosen.items() if obj is None]
+        if others and empty:
+            chosen[empty[0]] = others[0]
     return {name: obj for name, obj in chosen.items() if obj is not None}
 
 
@@ -373,18 +407,16 @@ def pump():
         return None
     finished = run.finished
     arrived = run.arrived()
-    live = bpy.data.objects.get(_state["live"] or "")
     took = 0.0
-    if arrived != _state["shown"] and live is not None and live.type == "MESH":  # looked up again: undo may replace it
+    if arrived > _state["shown"]:
         began = time.perf_counter()
-        positions, parents = run.snapshot()
-        _fill_mesh(live.data, positions, parents)
+        _show_live(run, _state["shown"], arrived)
         _state["shown"] = arrived
         took = time.perf_counter() - began
     if not finished:
         _status(run.status())
         # A large structure takes a while to show: look less often, so Blender stays responsive.
-        return max(PUMP_SECONDS, 4.0 * took)
+        return max(PUMP_SECONDS, 2.0 * took)
     _finish(run)
     return None
 
@@ -405,12 +437,7 @@ def _finish(run):
         table = core.read_csv(links_csv)
         links = np.column_stack([table["a"], table["b"]]) if len(table["a"]) else None
     scene = bpy.context.scene
-    live = bpy.data.objects.get(_state["live"] or "")
-    if live is not None:
-        mesh = live.data
-        bpy.data.objects.remove(live)
-        if mesh.users == 0:
-            bpy.data.meshes.remove(mesh)
+    _remove_live()
     obj = structure_object(f"dla3d {model}", columns, scene.collection, links)
     obj["dla3d_record"] = run.prefix + ".json"
     if result == "CURVES":

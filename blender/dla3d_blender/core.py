@@ -188,7 +188,6 @@ class Run:
         self._positions = np.zeros((0, 3), np.float32)
         self._parents = np.zeros(0, np.int32)
         self._count = 0
-        self._taken = 0
         self.done = 0
         self.total = 0
         self.started = time.monotonic()
@@ -233,15 +232,18 @@ class Run:
                     self._positions[first:first + count] = xyz
                     self._parents[first:first + count] = parents
                     self._count = max(self._count, first + count)
-                    if first < self._taken:  # a resumed run starts again at 0
-                        self._taken = first
                     self.done, self.total = done, total
 
-    def snapshot(self):
-        """Every particle that arrived so far: positions (n x 3 float32) and parents."""
+    def snapshot(self, begin=0):
+        """The particles that arrived so far from `begin` on: positions (float32, 3 a row) and
+        parents."""
         with self._lock:
-            self._taken = self._count
-            return self._positions[:self._count].copy(), self._parents[:self._count].copy()
+            return self._positions[begin:self._count].copy(), self._parents[begin:self._count].copy()
+
+    def positions_of(self, indices):
+        """The positions of the particles `indices` (all arrived)."""
+        with self._lock:
+            return self._positions[np.asarray(indices, np.int64)].copy()
 
     def arrived(self):
         """How many particles the stream has brought."""

@@ -195,15 +195,22 @@ scene.dla3d.grow.particles = 3000000
 bpy.context.view_layer.objects.active = None
 bpy.ops.dla3d.grow()
 run = dla3d_blender._state["run"]
-while run.arrived() < 20000 and dla3d_blender.pump() is not None:
+while dla3d_blender._state["shown"] < dla3d_blender.LIVE_CHUNK + 10000 and dla3d_blender.pump() is not None:
     time.sleep(0.02)
+# The live view in chunks: the first full, the second its part, with the parents it hangs from.
+shown = dla3d_blender._state["shown"]
+first, second = bpy.data.objects.get(dla3d_blender.LIVE_NAME), bpy.data.objects.get(dla3d_blender.LIVE_NAME + " 2")
+check(first is not None and len(first.data.vertices) == dla3d_blender.LIVE_CHUNK, "the first live chunk is full")
+check(second is not None and len(second.data.vertices) >= shown - dla3d_blender.LIVE_CHUNK and
+      len(second.data.edges) == shown - dla3d_blender.LIVE_CHUNK, f"the second chunk shows the rest of {shown}")
 dla3d_blender.stop()
 while dla3d_blender.pump() is not None:
     time.sleep(0.02)
 stopped = bpy.data.objects.get(dla3d_blender._state["last"])
 with open(run.prefix + ".json") as f:
     record = json.load(f)
-check(stopped is not None and 20000 <= len(stopped.data.vertices) < 3000001, "a stopped run's structure is kept")
+check(stopped is not None and shown <= len(stopped.data.vertices) < 3000001, "a stopped run's structure is kept")
+check(bpy.data.objects.get(dla3d_blender.LIVE_NAME) is None, "the live view gives way to the result")
 check(record.get("complete") is False, "the record says the structure is incomplete")
 print(f"dla3d add-on: stopped with {len(stopped.data.vertices)} particles kept", flush=True)
 
