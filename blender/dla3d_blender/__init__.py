@@ -40,7 +40,7 @@ PUMP_SECONDS = 0.06
 # What the add-on knows between calls: the option description, the classes made from it, the
 # run that grows, and the last message.
 _state = {"description": None, "path": None, "warning": None, "error": None, "classes": [], "run": None,
-          "shown": 0, "settings": None, "presets": {}}
+          "live": [], "shown": 0, "settings": None, "presets": {}}
 
 
 # ------------------------------------------------------------------------------------------
@@ -296,37 +296,38 @@ def structure_object(name, columns, collection, links=None):
 
 def _live_chunk(k):
     """The live object that shows particles [k, k + 1) * LIVE_CHUNK, made when first needed:
-    only the last one changes as a run grows, so a look costs the same at any size. Looked up
-    by name each time, as undo may have replaced it."""
-    name = LIVE_NAME if k == 0 else f"{LIVE_NAME} {k + 1}"
-    obj = bpy.data.objects.get(name)
-    if obj is None or obj.type != "MESH":
+    only the last one changes as a run grows, so a look costs the same at any size. Found again
+    by the name Blender gave it, and made afresh if undo took it away."""
+    names = _state["live"]
+    obj = bpy.data.objects.get(names[k]) if k < len(names) else None
+    if obj is None or obj.type != "MESH" or not obj.get("dla3d_live"):
+        name = LIVE_NAME if k == 0 else f"{LIVE_NAME} {k + 1}"
         obj = bpy.data.objects.new(name, bpy.data.meshes.new(name))
+        obj["dla3d_live"] = True  # what _remove_live() takes away, and nothing of the user's
         bpy.context.scene.collection.objects.link(obj)
+        names[k:k + 1] = [obj.name] if k < len(names) else [None] * (k - len(names)) + [obj.name]
     return obj
 
 
 def _show_live(run, shown, arrived):
     """The live objects updated from particle `shown` on to `arrived`."""
-    first = max(shown, 0) // LIVE_CHUNK
-    positions, parents = run.snapshot(first * LIVE_CHUNK)
-    for k in range(first, (arrived - 1) // LIVE_CHUNK + 1):
-        begin = k * LIVE_CHUNK - first * LIVE_CHUNK
-        end = min(begin + LIVE_CHUNK, len(positions))
-        own, up = positions[begin:end], parents[begin:end].astype(np.int64) - k * LIVE_CHUNK
+    offset = max(shown, 0) // LIVE_CHUNK * LIVE_CHUNK
+    positions, parents = run.snapshot(offset)
+    for base in range(offset, arrived, LIVE_CHUNK):
+        own = positions[base - offset:base - offset + LIVE_CHUNK]
+        parent = parents[base - offset:base - offset + LIVE_CHUNK].astype(np.int64)
         # A parent in an earlier chunk is shown again here, so that its edge can be drawn.
-        earlier = np.unique(up[(up < 0) & (up + k * LIVE_CHUNK >= 0)])
-        extra = run.positions_of(earlier + k * LIVE_CHUNK)
-        local = up.copy()
-        outside = (up < 0) & (up + k * LIVE_CHUNK >= 0)
-        local[outside] = len(own) + np.searchsorted(earlier, up[outside])
-        local[up + k * LIVE_CHUNK < 0] = -1  # a seed
-        _fill_mesh(_live_chunk(k).data, np.concatenate([own, extra]),
-                   np.concatenate([local, np.full(len(extra), -1, np.int64)]))
+        outside = (parent >= 0) & (parent < base)
+        earlier = np.unique(parent[outside])
+        local = parent - base
+        local[outside] = len(own) + np.searchsorted(earlier, parent[outside])
+        local[parent < 0] = -1  # a seed
+        _fill_mesh(_live_chunk(base // LIVE_CHUNK).data, np.concatenate([own, run.positions_of(earlier)]),
+                   np.concatenate([local, np.full(len(earlier), -1, np.int64)]))
 
 
 def _remove_live():
-    for obj in [o for o in bpy.data.objects if o.name == LIVE_NAME or o.name.startswith(LIVE_NAME + " ")]:
+    for obj in [o for o in bpy.data.objects if o.get("dla3d_live")]:
         mesh = obj.data
         bpy.data.objects.remove(obj)
         if mesh is not None and mesh.users == 0:
@@ -363,7 +364,7 @@ def start(context):
     except OSError as error:
         return f"dla3d: {_state['path']} does not run ({error.strerror})"
     _remove_live()
-    _state.update(shown=0, settings=(settings.model, settings.result, settings.animate), error=None)
+    _state.update(shown=0, live=[], settings=(settings.model, settings.result, settings.animate), error=None)
     if not bpy.app.timers.is_registered(pump):  # persistent: a run outlives a file opened meanwhile
         bpy.app.timers.register(pump, first_interval=PUMP_SECONDS, persistent=True)
     return None
@@ -381,7 +382,7 @@ def meshes_of_the_run(context, model, options):
     if main is not None and chosen[main["name"]] is not None:  # a second object beside the main one
         used = {obj.name for obj in chosen.values() if obj is not None}
         others = [obj for obj in context.selected_objects
-                  if obj.type == "MESH" and obj.name not in used and "dla3d_record" not in obj and obj.name != LIVE_NAME]
+                  if obj.type == "MESH" and obj.name not in used and "dla3d_record" not in obj and "dla3d_live" not in obj]
         empty = [name for name, obj in chosen.items() if obj is None]
         if others and empty:
             chosen[empty[0]] = others[0]

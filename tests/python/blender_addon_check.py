@@ -66,6 +66,9 @@ bpy.ops.object.delete()
 bpy.ops.import_mesh.stl(filepath=BUST)
 bust = bpy.context.selected_objects[0]
 bpy.context.view_layer.objects.active = bust
+# An object of the user's that happens to bear the live view's name is left alone.
+bystander = bpy.data.objects.new(dla3d_blender.LIVE_NAME, bpy.data.meshes.new("bystander"))
+scene.collection.objects.link(bystander)
 scene.dla3d.model = "grow"
 scene.dla3d.grow.particles = 30000
 scene.dla3d.grow.rng_seed = 5
@@ -74,7 +77,7 @@ run = dla3d_blender._state["run"]
 check(run is not None, "the operator started a run")
 seen = []
 while dla3d_blender.pump() is not None:
-    live = bpy.data.objects.get(dla3d_blender.LIVE_NAME)
+    live = bpy.data.objects.get(dla3d_blender._state["live"][0]) if dla3d_blender._state["live"] else None
     if live is not None and len(live.data.vertices):
         seen.append(len(live.data.vertices))
     time.sleep(0.02)
@@ -83,6 +86,8 @@ check(grown is not None, f"the structure was imported ({dla3d_blender._state['er
 count = len(grown.data.vertices)
 partial = [n for n in seen if n < count]
 check(partial, f"partial states before the end (seen {seen[:5]}, then {count})")
+check(bpy.data.objects.get(dla3d_blender.LIVE_NAME) == bystander and not bystander.data.vertices,
+      "the user's object of the live view's name is untouched")
 print(f"dla3d add-on: {len(seen)} live updates, {len(partial)} partial (first {partial[0]}), {count} at the end",
       flush=True)
 
@@ -199,7 +204,7 @@ while dla3d_blender._state["shown"] < dla3d_blender.LIVE_CHUNK + 10000 and dla3d
     time.sleep(0.02)
 # The live view in chunks: the first full, the second its part, with the parents it hangs from.
 shown = dla3d_blender._state["shown"]
-first, second = bpy.data.objects.get(dla3d_blender.LIVE_NAME), bpy.data.objects.get(dla3d_blender.LIVE_NAME + " 2")
+first, second = (bpy.data.objects.get(name) for name in dla3d_blender._state["live"][:2])
 check(first is not None and len(first.data.vertices) == dla3d_blender.LIVE_CHUNK, "the first live chunk is full")
 check(second is not None and len(second.data.vertices) >= shown - dla3d_blender.LIVE_CHUNK and
       len(second.data.edges) == shown - dla3d_blender.LIVE_CHUNK, f"the second chunk shows the rest of {shown}")
@@ -210,7 +215,7 @@ stopped = bpy.data.objects.get(dla3d_blender._state["last"])
 with open(run.prefix + ".json") as f:
     record = json.load(f)
 check(stopped is not None and shown <= len(stopped.data.vertices) < 3000001, "a stopped run's structure is kept")
-check(bpy.data.objects.get(dla3d_blender.LIVE_NAME) is None, "the live view gives way to the result")
+check(not [o for o in bpy.data.objects if o.get("dla3d_live")], "the live view gives way to the result")
 check(record.get("complete") is False, "the record says the structure is incomplete")
 print(f"dla3d add-on: stopped with {len(stopped.data.vertices)} particles kept", flush=True)
 
