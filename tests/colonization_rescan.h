@@ -6,6 +6,7 @@
 // iteration, every live source finds its relative neighbourhood among all nodes.
 
 #include "dla/models/colonization.h"
+#include "models/colonization_step.h"
 
 #include <algorithm>
 #include <array>
