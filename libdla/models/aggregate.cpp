@@ -242,6 +242,49 @@ Cluster assemble(const std::vector<std::int32_t>& members, const std::vector<Vec
   return out;
 }
 
+//! The clusters left, by id, in no order: each taken out in O(1), the last put in its place.
+class ClustersLeft {
+ public:
+  //! Clusters 0 to n - 1: every monomer its own.
+  explicit ClustersLeft(std::size_t n) : ids_(n), place_of_(n) {
+    std::iota(ids_.begin(), ids_.end(), 0);
+    std::iota(place_of_.begin(), place_of_.end(), 0);
+  }
+  std::size_t size() const { return ids_.size(); }
+  //! One drawn uniformly.
+  std::int32_t draw(Rng& rng) const { return ids_[static_cast<std::size_t>(rng() % ids_.size())]; }
+  void take_out(std::int32_t id) {
+    const std::int32_t place = place_of_[static_cast<std::size_t>(id)];
+    ids_[static_cast<std::size_t>(place)] = ids_.back();
+    place_of_[static_cast<std::size_t>(ids_.back())] = place;
+    ids_.pop_back();
+  }
+
+ private:
+  std::vector<std::int32_t> ids_, place_of_;
+};
+
+//! The growth loop of the cluster modes: `step()` until one cluster is left or growth is
+//! stopped, with progress every `steps_per_look` steps; `largest()` is the largest cluster so
+//! far, what progress sees and a stop keeps (marked incomplete).
+template <class Step, class Largest>
+Cluster join_until_one(const ClustersLeft& left, const ProgressFn& progress, const StopFlag* stop,
+                       std::uint32_t steps_per_look, Step&& step, Largest&& largest) {
+  detail::ModelShell shell(progress, stop, steps_per_look);
+  bool stopped = false;
+  while (left.size() > 1) {
+    if (!shell.go_on_making(largest)) {
+      stopped = true;
+      break;
+    }
+    step();
+  }
+  Cluster out = largest();
+  out.complete = !stopped;
+  if (!stopped) shell.finish(out);
+  return out;
+}
+
 // ---------------------------------------------------------------------------------------------
 // The box: dlca, rlca, ballistic.
 
@@ -464,7 +507,7 @@ class BoxAggregation {
   BoxAggregation(const AggregateOptions& o, std::vector<double> radii, Rng& rng, AggregateStats& stats)
       : o_(o), rng_(rng), stats_(stats), radii_(std::move(radii)), step_(o.monomer_radius),
         largest_radius_(*std::max_element(radii_.begin(), radii_.end())),
-        grid_(box_side(o, radii_), reach(o, radii_), radii_.size()), crew_(o.threads) {
+        grid_(box_side(o, radii_), reach(o, radii_), radii_.size()), left_(radii_.size()), crew_(o.threads) {
     stats_.box = grid_.side();
     stats_.crowded = 0.25 * grid_.side() / o.monomer_radius;
     const std::size_t n = radii_.size();
@@ -473,15 +516,11 @@ class BoxAggregation {
     wrapped_.resize(n);
     owner_.resize(n);
     clusters_.resize(n);
-    alive_.resize(n);
-    place_of_.resize(n);
     for (std::size_t m = 0; m < n; ++m) {
       const auto id = static_cast<std::int32_t>(m);
       owner_[m] = id;
       clusters_[m].members = {id};
       clusters_[m].heading = random_direction(rng_, 3);
-      alive_[m] = id;
-      place_of_[m] = id;
       place(id);
     }
     sizes_[1] = n;
@@ -489,19 +528,7 @@ class BoxAggregation {
 
   //! Joins every monomer into one cluster, or stops early; returns the largest cluster.
   Cluster grow(const ProgressFn& progress, const StopFlag* stop) {
-    detail::ModelShell shell(progress, stop, 1024);
-    bool stopped = false;
-    while (alive_.size() > 1) {
-      if (!shell.go_on_making([&] { return largest_so_far(); })) {
-        stopped = true;
-        break;
-      }
-      move(pick());
-    }
-    Cluster out = largest_so_far();
-    out.complete = !stopped;
-    if (!stopped) shell.finish(out);
-    return out;
+    return join_until_one(left_, progress, stop, 1024, [&] { move(pick()); }, [&] { return largest_so_far(); });
   }
 
  private:
@@ -537,7 +564,7 @@ class BoxAggregation {
   std::int32_t pick() {
     const double smallest = static_cast<double>(sizes_.begin()->first);
     while (true) {
-      const std::int32_t c = alive_[static_cast<std::size_t>(rng_() % alive_.size())];
+      const std::int32_t c = left_.draw(rng_);
       if (o_.mobility_exponent == 0.0) return c;
       const double size = static_cast<double>(clusters_[static_cast<std::size_t>(c)].members.size());
       if (size == smallest || rng_.uniform() < std::pow(size / smallest, o_.mobility_exponent)) return c;
@@ -712,11 +739,7 @@ class BoxAggregation {
     kept.flown = 0.0;
     contacts_.emplace_back(p, q);
     stats_.joins.emplace_back(static_cast<double>(kept.members.size()), gyration_of(kept.members, positions_) / o_.monomer_radius);
-    // Out of the list of clusters that move.
-    const std::int32_t place = place_of_[static_cast<std::size_t>(gone_id)];
-    alive_[static_cast<std::size_t>(place)] = alive_.back();
-    place_of_[static_cast<std::size_t>(alive_.back())] = place;
-    alive_.pop_back();
+    left_.take_out(gone_id);
   }
 
   void forget_size(std::size_t size) {
@@ -735,7 +758,7 @@ class BoxAggregation {
   std::vector<Vec3> wrapped_;    //!< the same, in the box
   std::vector<std::int32_t> owner_;
   std::vector<Group> clusters_;
-  std::vector<std::int32_t> alive_, place_of_;  //!< the clusters left, and each one's place there
+  ClustersLeft left_;                           //!< the clusters that move
   std::int32_t largest_ = 0;                    //!< the largest cluster (the first of the largest)
   std::map<std::size_t, std::size_t> sizes_;    //!< how many clusters there are of each size
   std::vector<std::pair<std::int32_t, std::int32_t>> contacts_;
@@ -1040,32 +1063,23 @@ class KineticAggregation {
   KineticAggregation(const AggregateOptions& o, std::vector<double> radii, Rng& rng, AggregateStats& stats)
       : o_(o), rng_(rng), stats_(stats), radii_(std::move(radii)), keep_(1.0 - o.overlap),
         largest_radius_(*std::max_element(radii_.begin(), radii_.end())), x_(radii_.size(), Vec3::Zero()),
-        owner_(radii_.size()), flocks_(radii_.size()), alive_(radii_.size()), place_of_(radii_.size()) {
+        owner_(radii_.size()), flocks_(radii_.size()), left_(radii_.size()) {
     for (std::size_t m = 0; m < radii_.size(); ++m) {
       const auto id = static_cast<std::int32_t>(m);
-      owner_[m] = alive_[m] = place_of_[m] = id;
+      owner_[m] = id;
       flocks_[m].members = {id};
     }
   }
 
   Cluster grow(const ProgressFn& progress, const StopFlag* stop) {
-    detail::ModelShell shell(progress, stop, 64);
-    bool stopped = false;
-    while (alive_.size() > 1) {
-      if (!shell.go_on_making([&] { return largest_so_far(); })) {
-        stopped = true;
-        break;
-      }
+    const auto step = [&] {
       // A monomer at random picks its flock as often as its size; any other flock joins it.
       const std::int32_t a = owner_[static_cast<std::size_t>(rng_() % radii_.size())];
       std::int32_t b = a;
-      while (b == a) b = alive_[static_cast<std::size_t>(rng_() % alive_.size())];
+      while (b == a) b = left_.draw(rng_);
       join(a, b);
-    }
-    Cluster out = largest_so_far();
-    out.complete = !stopped;
-    if (!stopped) shell.finish(out);
-    return out;
+    };
+    return join_until_one(left_, progress, stop, 64, step, [&] { return largest_so_far(); });
   }
 
  private:
@@ -1207,10 +1221,7 @@ class KineticAggregation {
     if (big.members.size() > flocks_[static_cast<std::size_t>(largest_)].members.size()) largest_ = a;
     contacts_.push_back(touch_);
     stats_.joins.emplace_back(static_cast<double>(big.members.size()), big.gyration() / o_.monomer_radius);
-    const std::int32_t place = place_of_[static_cast<std::size_t>(b)];
-    alive_[static_cast<std::size_t>(place)] = alive_.back();
-    place_of_[static_cast<std::size_t>(alive_.back())] = place;
-    alive_.pop_back();
+    left_.take_out(b);
   }
 
   const AggregateOptions& o_;
@@ -1222,7 +1233,7 @@ class KineticAggregation {
   std::vector<Vec3> x_;  //!< each monomer in its flock's frame
   std::vector<std::int32_t> owner_;
   std::vector<Flock> flocks_;
-  std::vector<std::int32_t> alive_, place_of_;  //!< the flocks left, and each one's place there
+  ClustersLeft left_;  //!< the flocks left
   std::int32_t largest_ = 0;
   std::vector<Vec3> placed_;  //!< the small flock's monomers where a join puts them
   std::pair<std::int32_t, std::int32_t> touch_{-1, -1};
