@@ -508,6 +508,15 @@ class DLA3D_OT_apply_preset(bpy.types.Operator):
         return {"FINISHED"}
 
 
+def reset_options(settings, model_name):
+    """The model's options back to their defaults, but its mesh pickers."""
+    model = _model(model_name)
+    options = getattr(settings, core.identifier(model_name))
+    for option in core.panel_options(model):
+        if option["type"] != core.MESH_FILE:
+            options.property_unset(core.identifier(option["name"]))
+
+
 def apply_preset(settings):
     """The preset's options set in the panel; the rest back to their defaults. A one-line error, or None."""
     model = _model(settings.model)
@@ -515,9 +524,7 @@ def apply_preset(settings):
     preset = next((p for p in model["presets"] if p["name"] == settings.preset), None)
     if preset is None:
         return None
-    for option in core.panel_options(model):
-        if option["type"] != core.MESH_FILE:
-            options.property_unset(core.identifier(option["name"]))
+    reset_options(settings, model["name"])
     by_name = {o["name"]: o for o in core.panel_options(model)}
     for name, value in preset["options"]:
         option = by_name.get(name)

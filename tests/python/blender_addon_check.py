@@ -57,8 +57,7 @@ scene.dla3d.preset = "lightning"
 check(dla3d_blender.apply_preset(scene.dla3d) is None, "the lightning preset applies")
 check(breakdown.eta != 1.0, f"the lightning preset set eta ({breakdown.eta})")
 print(f"dla3d add-on: the lightning preset sets eta {breakdown.eta:g}", flush=True)
-for name in [o["name"] for o in core.panel_options(dla3d_blender._model("breakdown")) if o["type"] != core.MESH_FILE]:
-    scene.dla3d.breakdown.property_unset(core.identifier(name))
+dla3d_blender.reset_options(scene.dla3d, "breakdown")
 
 # The bust, selected; the run grows in it.
 bpy.ops.object.select_all(action="SELECT")
@@ -176,8 +175,7 @@ spark_modifier = spark.modifiers["Grow over time"]
 reveal = spark_modifier[dla3d_blender.nodes.input_identifier(spark_modifier.node_group, "Reveal by")]
 check(reveal == "light", f"a discharge is revealed by its light ({reveal})")
 print(f"dla3d add-on: the spark struck with {len(spark.data.vertices)} particles, revealed by {reveal}", flush=True)
-for name in [o["name"] for o in core.panel_options(dla3d_blender._model("breakdown")) if o["type"] != core.MESH_FILE]:
-    scene.dla3d.breakdown.property_unset(core.identifier(name))
+dla3d_blender.reset_options(scene.dla3d, "breakdown")
 scene.dla3d.model = "grow"
 
 # Loops: the links beyond the tree are edges too.
