@@ -591,15 +591,17 @@ class BoxAggregation {
     // single thread finds.
     const std::size_t members = group.members.size();
     const std::size_t runs = crew_.size() > 1 && members >= kSplitFrom ? std::min(members / 128, 8 * crew_.size()) : 1;
-    firsts_.assign(runs, Contact{});
-    const auto scan = [&](std::size_t run) {
-      first_contact_of(group.members, members * run / runs, members * (run + 1) / runs, c, d, firsts_[run]);
-    };
-    if (runs == 1) scan(0);
-    else crew_.run(runs, scan);
     Contact first;
-    for (const Contact& f : firsts_)
-      if (f.t < first.t) first = f;
+    if (runs == 1) {
+      first = first_contact_of(group.members, 0, members, c, d);
+    } else {
+      firsts_.resize(runs);
+      crew_.run(runs, [&](std::size_t run) {
+        firsts_[run] = first_contact_of(group.members, members * run / runs, members * (run + 1) / runs, c, d);
+      });
+      for (const Contact& f : firsts_)
+        if (f.t < first.t) first = f;
+    }
     const double t = first.t;
     const std::int32_t hit_p = first.p, hit_q = first.q;
     if (hit_p >= 0) ++stats_.contacts;
@@ -614,14 +616,17 @@ class BoxAggregation {
   }
 
   //! Where a step d of cluster c first brings one of its monomers members[begin, end) into
-  //! contact with another cluster's, as a fraction of the step.
+  //! contact with another cluster's, as a fraction of the step (first_contact_of()).
   struct Contact {
     double t = 1.0;  //!< 1: none within the step
     std::int32_t p = -1, q = -1;
   };
   static constexpr std::size_t kSplitFrom = 512;
-  void first_contact_of(const std::vector<std::int32_t>& members, std::size_t begin, std::size_t end, std::int32_t c,
-                        const Vec3& d, Contact& first) const {
+  Contact first_contact_of(const std::vector<std::int32_t>& members, std::size_t begin, std::size_t end, std::int32_t c,
+                           const Vec3& d) const {
+    // In locals, not the struct: the lambdas below keep them in registers.
+    double t = 1.0;
+    std::int32_t hit_p = -1, hit_q = -1;
     const double keep = 1.0 - o_.overlap;
     for (std::size_t k = begin; k < end; ++k) {
       const std::int32_t p = members[k];
@@ -635,8 +640,12 @@ class BoxAggregation {
         const auto test = [&](const Vec3& g) {
           const double reach2 = (contact + step_) * (contact + step_);
           if (g.squaredNorm() > reach2) return;
-          const double at = first_contact(g, d, contact, first.t);
-          if (at < first.t) first = {at, p, q};
+          const double at = first_contact(g, d, contact, t);
+          if (at < t) {
+            t = at;
+            hit_p = p;
+            hit_q = q;
+          }
         };
         if (grid_.one_image()) {
           test(gap);
@@ -648,6 +657,7 @@ class BoxAggregation {
         }
       });
     }
+    return {t, hit_p, hit_q};
   }
 
   //! rlca, a contact that does not stick where it was made: the two clusters roll over each
