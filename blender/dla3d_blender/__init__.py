@@ -344,21 +344,15 @@ def start(context):
     settings = context.scene.dla3d
     model = _model(settings.model)
     options = getattr(settings, core.identifier(model["name"]))
-    meshes = meshes_of_the_run(context, model, options)
+    folder = tempfile.mkdtemp(prefix="dla3d_blender_")
     run_words = []
-    folder = None
+    for name, obj in meshes_of_the_run(context, model, options).items():
+        path = os.path.join(folder, f"{core.identifier(name)}.ply")
+        write_ply(obj, path, context.evaluated_depsgraph_get())
+        run_words.append(f"{name}={path}")
     for option in core.panel_options(model):
-        value = getattr(options, core.identifier(option["name"]))
-        if option["type"] == core.MESH_FILE:
-            value = meshes.get(option["name"])
-            if value is None:
-                continue
-            folder = folder or _new_folder()
-            path = os.path.join(folder, f"{core.identifier(option['name'])}.ply")
-            write_ply(value, path, context.evaluated_depsgraph_get())
-            run_words.append(f"{option['name']}={path}")
-        else:
-            run_words += core.option_words(option, value)
+        if option["type"] != core.MESH_FILE:
+            run_words += core.option_words(option, getattr(options, core.identifier(option["name"])))
     try:
         _state["run"] = core.Run(_state["path"], model, run_words, folder)
     except OSError as error:
@@ -387,10 +381,6 @@ def meshes_of_the_run(context, model, options):
         if others and empty:
             chosen[empty[0]] = others[0]
     return {name: obj for name, obj in chosen.items() if obj is not None}
-
-
-def _new_folder():
-    return tempfile.mkdtemp(prefix="dla3d_blender_")
 
 
 def _status(text):
