@@ -31,7 +31,7 @@ Subcommand add_ballistic_command(CLI::App& app, const Model& model) {
               o.direction = parse_vec3("--direction", w->direction);
               if (o.direction.squaredNorm() == 0.0) throw InvalidInput("--direction 0,0,0 has no direction");
             }
-            b->links = links_of(w->seeded.links);
+            b->links = links_of(*w->seeded.links);
             w->files->finish(b->files);
             validate(*b);
             line.quiet = *quiet;

@@ -13,7 +13,7 @@ struct ColonizeWords {
   CLI::Option *attractors, *roots;
   std::vector<OptionDescription> described;
   std::unique_ptr<DescribedOptions<ColonizeRunOptions>> options;  // colonize_option_table()
-  std::unique_ptr<SeedWords> seeds;
+  std::unique_ptr<DescribedOptions<MeshSeeds>> seeds;  // mesh_seeds_option_table()
   std::unique_ptr<OutputWords> files;
 };
 
@@ -44,7 +44,7 @@ void finish(ColonizeRunOptions& c, const ColonizeWords& w) {
   }
   if (!w.tropism.empty()) c.colonization.tropism = parse_vec3("--tropism", w.tropism);
   c.root_at = parse_points("--root-at", w.root_at);
-  w.seeds->finish(c.seeds, !c.stl.empty() || !c.collide.empty());
+  w.seeds->finish(c.seeds);
   validate(c);
 }
 
@@ -107,11 +107,7 @@ Subcommand add_colonize_command(CLI::App& app, const Model& model) {
   command->add_option("--collide", c->collide, "a collision mesh (STL, OFF, OBJ or PLY) that new nodes "
                                                "are pushed out of or stuck to")
       ->type_name(kMeshFile)->group(colliding);
-  w->seeds = std::make_unique<SeedWords>(
-      *command, c->seeds, colliding, root_at_option,
-      "roots on the mesh (the vessel, else the collision mesh): K far apart, or all: the surface, the paint or the "
-      "--seed-mesh curves at the spacing",
-      "roots over the whole surface (or the painted part), a spacing apart");
+  w->seeds = std::make_unique<DescribedOptions<MeshSeeds>>(*command, mesh_seeds_option_table(true), c->seeds, &w->described);
   add_refused_mesh_controls(*command, colliding, "colonize");
   w->files = std::make_unique<OutputWords>(*command, c->files, *quiet);
   return {command,

@@ -24,7 +24,8 @@ inline std::string help_text(const OptionDescription& about) {
   return help;
 }
 
-//! The options of one table, added to a subcommand; finish() sets those given.
+//! The options of one table, added to a subcommand; finish() sets those given, in the table's
+//! order.
 template <class Options>
 class DescribedOptions {
  public:
@@ -40,7 +41,7 @@ class DescribedOptions {
       const OptionDescription& about = row.about;
       const OptionValue value = row.get(defaults);
       const std::string name = (about.short_name.empty() ? "" : "-" + std::string(about.short_name) + ",") +
-                               cli_flag(about.name),
+                               cli_flag(about.name) + (about.alias.empty() ? "" : "," + cli_flag(about.alias)),
                         help = help_text(about);
       switch (about.kind) {
         case OptionKind::flag:
@@ -64,6 +65,21 @@ class DescribedOptions {
           given->option = app.add_option(name, given->text, help)->capture_default_str()->type_name(words);
           break;
         }
+        case OptionKind::vector:
+        case OptionKind::points:
+        case OptionKind::colour:
+        case OptionKind::text:
+        case OptionKind::file:
+          if (about.repeats) {
+            // Each --seed-at takes one point; its default (none) is not shown.
+            given->texts = std::get<std::vector<std::string>>(value);
+            given->option = app.add_option(name, given->texts, help)->allow_extra_args(false);
+          } else {
+            given->text = std::get<std::string>(value);
+            given->option = app.add_option(name, given->text, help)->capture_default_str();
+          }
+          given->option->type_name(std::string(about.form));
+          break;
       }
       given->option->group(std::string(about.group));
       if (described) described->push_back(about);
@@ -80,6 +96,14 @@ class DescribedOptions {
         case OptionKind::integer: given->row->set(options, given->whole); break;
         case OptionKind::real: given->row->set(options, given->number); break;
         case OptionKind::word: given->row->set(options, given->text); break;
+        case OptionKind::vector:
+        case OptionKind::points:
+        case OptionKind::colour:
+        case OptionKind::text:
+        case OptionKind::file:
+          if (given->row->about.repeats) given->row->set(options, given->texts);
+          else given->row->set(options, given->text);
+          break;
       }
     }
   }
@@ -92,6 +116,7 @@ class DescribedOptions {
     std::int64_t whole = 0;
     double number = 0.0;
     std::string text;
+    std::vector<std::string> texts;
   };
   std::vector<std::unique_ptr<Given>> given_;
 };

@@ -12,7 +12,7 @@ struct DropWords {
   std::string zone_box, bias = "uniform", side, constraint;
   std::vector<OptionDescription> described;
   std::unique_ptr<DescribedOptions<DropOptions>> options;  // drop_option_table()
-  std::unique_ptr<SeedWords> seeds;
+  std::unique_ptr<DescribedOptions<MeshSeeds>> seeds;  // mesh_seeds_option_table()
   std::unique_ptr<OutputWords> files;
 };
 
@@ -25,8 +25,8 @@ void finish(DropRunOptions& d, const DropWords& w) {
   if (!w.zone_box.empty()) d.drop.zone_box = parse_box("--zone-box", w.zone_box);
   d.constraint.side = parse_word<Side>(w.side);
   d.constraint.mode = parse_word<ConstraintMode>(w.constraint);
-  w.seeds->finish(d.seeds, !d.stl.empty());
-  d.links = links_of(w.seeded.links);
+  w.seeds->finish(d.seeds);
+  d.links = links_of(*w.seeded.links);
   w.files->finish(d.files);
   validate(d);
 }
@@ -60,12 +60,7 @@ Subcommand add_drop_command(CLI::App& app, const Model& model) {
       ->capture_default_str()->group(meshes);
   command->add_option("--constraint", w->constraint, "a branch crossing the mesh: reject (drop again) or clip (end at it)")
       ->capture_default_str()->group(meshes);
-  w->seeds = std::make_unique<SeedWords>(
-      *command, d->seeds, meshes, w->seeded.seed_at_option,
-      "place K seeds on the growing side, far apart (default 1), or all: the surface, the paint or the --seed-mesh "
-      "curves at the spacing",
-      "start from the whole surface (or the painted part): seeds a spacing apart, half a spacing off it on the "
-      "growing side");
+  w->seeds = std::make_unique<DescribedOptions<MeshSeeds>>(*command, mesh_seeds_option_table(), d->seeds, &w->described);
   command->add_flag("--scene-mesh,!--no-scene-mesh", d->scene_mesh, "show the mesh, as glass, in the POV-Ray scene")
       ->capture_default_str()->group(meshes);
   add_refused_mesh_controls(*command, meshes, "drop");

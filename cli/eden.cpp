@@ -9,7 +9,8 @@ namespace {
 struct EdenWords {
   long long sites = 0;
   int dimensions = 2;
-  std::string lattice, mask, links;
+  std::string lattice, mask;
+  std::unique_ptr<DescribedOptions<LinkOptions>> links;  // links_option_table(true)
   CLI::Option* dimensions_option;
   std::vector<OptionDescription> described;
   std::unique_ptr<DescribedOptions<EdenOptions>> options;  // eden_option_table()
@@ -30,7 +31,7 @@ void finish(EdenRunOptions& e, const EdenWords& w) {
   } else {
     e.mask_file = w.mask;  // read, and checked, when the run is prepared
   }
-  e.links = links_of(w.links);
+  e.links = links_of(*w.links);
   w.files->finish(e.files);
   validate(e);
 }
@@ -61,7 +62,7 @@ Subcommand add_eden_command(CLI::App& app, const Model& model) {
   command->add_option("--rng-seed", e->eden.rng_seed, "seed of the random generator: the same seed gives "
                                                       "the same files")
       ->capture_default_str()->group(group);
-  add_links_option(*command, group, w->links, true);
+  w->links = add_links_option(*command, true);
   w->files = std::make_unique<OutputWords>(*command, e->files, *quiet);
   return {command,
           [w, e, quiet](CommandLine& line, const std::vector<std::string>&) {

@@ -31,7 +31,7 @@ Subcommand add_frames_command(CLI::App& app) {
   struct Words {
     long long count = 30;
     bool quiet = false;
-    std::string links;
+    std::unique_ptr<DescribedOptions<LinkOptions>> links;
     std::unique_ptr<OutputWords> files;
   };
   auto w = std::make_shared<Words>();
@@ -43,7 +43,7 @@ Subcommand add_frames_command(CLI::App& app) {
   command->add_option("csv", frames->csv_path, "a CSV that dla3d wrote")->required();
   command->add_option("--count", w->count, "frames, 1-100000: frame k of K holds the seeds and k/K of the "
                                            "other particles, in attach order")->capture_default_str();
-  add_links_option(*command, "Options", w->links);
+  w->links = add_links_option(*command);
   w->files = std::make_unique<OutputWords>(*command, frames->files, w->quiet, "glb");
   CLI::Option* output = command->get_option("--output");
   output->description("prefix of the files written, each PREFIX_NNNN.EXT; default: the CSV's, without .csv");
@@ -53,7 +53,7 @@ Subcommand add_frames_command(CLI::App& app) {
             if (w->count < 1 || w->count > 100000)
               throw InvalidInput("--count " + std::to_string(w->count) + " is not a number of frames in 1-100000");
             fr.count = static_cast<std::size_t>(w->count);
-            fr.links = links_of(w->links);
+            fr.links = links_of(*w->links);
             if (fr.links.lattice)
               throw InvalidInput("--links lattice: a CSV does not say its lattice; `dla3d eden --links lattice` makes them");
             if (!output->count()) {

@@ -12,6 +12,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,7 @@ namespace dla::cli {
 //! The type a file option that reads a mesh shows (`--stl MESH_FILE`): `dla3d options` gives it
 //! as the option's `type`, so that a front end can offer a mesh of its own (the Blender add-on
 //! an object); its kind stays `file`.
-inline constexpr const char* kMeshFile = "MESH_FILE";
+inline const std::string kMeshFile{kMeshFileForm};
 
 //! "x,y,z" (or more numbers for a box) as doubles; throws InvalidInput naming the flag.
 std::vector<double> parse_numbers(const std::string& flag, const std::string& text, std::size_t count);
@@ -61,8 +62,8 @@ std::string options_json(const std::vector<Subcommand>& models);
 std::string options_markdown(const CLI::App& app, const std::vector<Subcommand>& models);
 
 //! The Output, Look and Solid options, the same for every growth model and for `frames`: the
-//! library's described ones (output_option_table()) and the files', the formats', the leaf's
-//! and the paint's, added to `app`; finish() sets those given in `files`.
+//! library's (files_option_table(), output_option_table()) and the CLI's own (-q, --stream),
+//! added to `app`; finish() sets those given in `files`.
 class OutputWords {
  public:
   //! `formats`: the --formats default; empty: those `files` holds (the model's).
@@ -72,23 +73,8 @@ class OutputWords {
   void finish(OutputOptions& files) const;
 
  private:
-  std::string formats_, exclude_paint_;
-  std::unique_ptr<DescribedOptions<OutputOptions>> options_;
-  CLI::Option* exclude_paint_option_ = nullptr;
-};
-
-//! Where seeds (colonize: roots) go on the mesh: --seeds, --seed-surface, --seed-paint and
-//! --seed-mesh, the same for DLA, drop and colonize, none with `placed_by` (--seed-at, --root-at).
-class SeedWords {
- public:
-  SeedWords(CLI::App& app, MeshSeeds& seeds, const char* group, CLI::Option* placed_by, const std::string& seeds_help,
-            const std::string& surface_help);
-  //! The words as `seeds`, refused without a mesh.
-  void finish(MeshSeeds& seeds, bool has_mesh) const;
-
- private:
-  std::string count_, paint_;
-  CLI::Option *count_option_, *paint_option_, *placed_by_;
+  std::optional<Formats> formats_;  // the command's own default, if not the model's
+  std::unique_ptr<DescribedOptions<OutputOptions>> files_, options_;
 };
 
 //! --fill and --shell for the models they mean nothing to: each refused with why.
@@ -100,15 +86,19 @@ struct SeededWords {
   std::vector<std::string> seed_at;
   CLI::Option* spacing = nullptr;
   CLI::Option* seed_at_option = nullptr;
-  std::string links;
+  std::unique_ptr<DescribedOptions<LinkOptions>> links;  // links_option_table()
 };
 void add_seeded_options(CLI::App& command, const char* group, SeededWords& words, int& dimensions, double& spacing,
                         std::uint64_t& rng_seed, const std::string& spacing_help);
 
-//! --links D[,K] (and with `lattice`, Eden's word lattice) into `words`.
-void add_links_option(CLI::App& command, const char* group, std::string& words, bool lattice = false);
-//! --links' words as the library's options; none given: no links.
-inline LinkOptions links_of(const std::string& words) { return words.empty() ? LinkOptions{} : parse_links(words); }
+//! --links (with `lattice`, Eden's word lattice too), from links_option_table().
+std::unique_ptr<DescribedOptions<LinkOptions>> add_links_option(CLI::App& command, bool lattice = false);
+//! The links given to the options added by add_links_option(); none given: no links.
+inline LinkOptions links_of(const DescribedOptions<LinkOptions>& links) {
+  LinkOptions o;
+  links.finish(o);
+  return o;
+}
 
 // Each model's file adds its options, named and described as the library's registry says
 // (dla/run/run.h), and says how to finish them. DLA's are the top level's (`dla3d [options]`),

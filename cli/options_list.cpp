@@ -31,12 +31,15 @@ std::vector<const CLI::Option*> shown_options(const CLI::App& app) {
 }
 
 //! The library's description of `option`, if it has one: among a command's `described`, or
-//! the files' and the look's, which every growth model and `frames` have.
+//! the files', the look's and the links', which every growth model (and `frames` the first two) has.
 const OptionDescription* description_of(const CLI::Option& option, const std::vector<OptionDescription>& described) {
   const std::string name = "--" + option.get_lnames().front();
   for (const OptionDescription& about : described)
     if (cli_flag(about.name) == name) return &about;
-  for (const DescribedOption<OutputOptions>& row : output_option_table())
+  for (const auto* shared : {&output_option_table(), &files_option_table()})
+    for (const DescribedOption<OutputOptions>& row : *shared)
+      if (cli_flag(row.about.name) == name) return &row.about;
+  for (const DescribedOption<LinkOptions>& row : links_option_table())
     if (cli_flag(row.about.name) == name) return &row.about;
   return nullptr;
 }
@@ -180,6 +183,13 @@ std::string values_markdown(const CLI::Option& option, const OptionDescription* 
       return "one of " + text;
     case OptionKind::integer: text = "integer"; break;
     case OptionKind::real: text = "number"; break;
+    case OptionKind::vector:
+    case OptionKind::points:
+    case OptionKind::colour:
+    case OptionKind::text:
+    case OptionKind::file:
+      text = std::string(to_string(about->kind)) + " `" + std::string(about->form) + "`";
+      return about->repeats ? text + ", repeated" : text;
   }
   if (about->range) text += " in " + to_string(*about->range);
   if (!about->unit.empty()) text += " " + std::string(about->unit);

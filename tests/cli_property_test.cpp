@@ -86,6 +86,15 @@ std::vector<std::string> described_draws(const OptionDescription& about) {
       draws.push_back(detail::format_number(value));
     if (about.special) draws.push_back(detail::format_number(about.special->value));
   }
+  // A text form: a value of its shape, one of another shape, and none.
+  std::string sample;
+  for (std::size_t n = 0, numbers = std::count(about.form.begin(), about.form.end(), ',') + 1;
+       (about.kind == OptionKind::vector || about.kind == OptionKind::points) && n < numbers; ++n)
+    sample += (n ? "," : "") + std::to_string(n) + ".25";
+  if (about.kind == OptionKind::colour) sample = "ff8000,0.5";
+  if (!sample.empty()) draws.push_back(sample);
+  if (about.kind == OptionKind::file) draws.push_back("missing.file");
+  if (!about.form.empty()) draws.insert(draws.end(), {"x", "''"});
   return draws;
 }
 
@@ -192,7 +201,7 @@ const std::map<std::string, std::vector<std::string>>& option_table() {
       {"--resume", {"saved.ck", "missing.ck", "out.csv", "noise.stl", "folder.stl", "pipe.stl", "zero.stl", "empty.stl", "cut.ck"}},
       {"--help", {}},
       {"--version", {}},
-  }, descriptions(dla_option_table())), descriptions(output_option_table())), "grow");
+  }, descriptions(dla_run_option_table())), descriptions(output_option_table())), "grow");
   return table;
 }
 

@@ -349,7 +349,7 @@ TEST(Cli, ExtremeNumbersAreOneLineErrors) {
       {"--tip-radius 1e300", "--tip-radius 1e+300 is not in [0.001, 1000]"},
       {"--base-radius 1e-300", "--base-radius 1e-300 is not in [0.001, 1000]"},
       {"--checkpoint-every nan --checkpoint c.ck", "--checkpoint-every nan is not a number of seconds"},
-      {"-n 99999999999999999999", "is more than 2e9"},
+      {"-n 99999999999999999999", "is not in [0, 2e+09]"},
       {"-n 1999999999", "needs about 96 GB of memory"},
       {"--threads 99999999999", "--threads"},
       {"--seeds 0 --stl x.stl", "--seeds 0: there must be a seed"},

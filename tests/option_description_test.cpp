@@ -156,11 +156,74 @@ void expect_described_soundly(const OptionTable<Options>& table) {
         }
         break;
       }
+      case OptionKind::vector:
+      case OptionKind::points:
+      case OptionKind::colour:
+      case OptionKind::text:
+      case OptionKind::file: {
+        ASSERT_FALSE(about.form.empty());
+        EXPECT_EQ(about.repeats, std::holds_alternative<std::vector<std::string>>(value));
+        EXPECT_EQ(refusal([&] { option.set(again, true); }).rfind("`" + std::string(about.name) + "` ", 0), 0u);
+        // A value of its form is taken and written back as given; one of another form is refused by name.
+        std::string sample;
+        if (about.kind == OptionKind::colour) sample = "ff8000,0.5";
+        if (about.kind == OptionKind::vector || about.kind == OptionKind::points)
+          for (std::size_t n = 0, numbers = std::count(about.form.begin(), about.form.end(), ',') + 1; n < numbers; ++n)
+            sample += (n ? "," : "") + std::to_string(n) + ".25";
+        if (!sample.empty()) {
+          const OptionValue given = about.repeats ? OptionValue(std::vector<std::string>{sample, sample}) : OptionValue(sample);
+          EXPECT_EQ(refusal([&] { option.set(again, given); }), "");
+          EXPECT_TRUE(option.get(again) == given) << to_string(option.get(again));
+          EXPECT_EQ(refusal([&] { option.set(again, std::string("x")); }).rfind("`" + std::string(about.name) + "` ", 0), 0u);
+        }
+        break;
+      }
     }
   }
 }
 
 TEST(OptionDescription, DlasOptionsAreDescribedSoundly) { expect_described_soundly(dla_option_table()); }
+
+TEST(OptionDescription, DlaRunsOptionsAreDescribedSoundly) {
+  expect_described_soundly(dla_run_option_table());
+  expect_described_soundly(mesh_seeds_option_table());
+  expect_described_soundly(mesh_seeds_option_table(true));
+  expect_described_soundly(constraint_option_table());
+  expect_described_soundly(links_option_table());
+  expect_described_soundly(links_option_table(true));
+  expect_described_soundly(files_option_table());
+}
+
+TEST(OptionDescription, TextFormsReadWhatTheyPrint) {
+  DlaRunOptions o;
+  const OptionTable<DlaRunOptions>& table = dla_run_option_table();
+  find_option(table, "rotate")->set(o, std::string("y,-30"));
+  EXPECT_EQ(o.growth.rotate_axis, Axis::y);
+  EXPECT_EQ(o.growth.rotate_degrees, -30.0);
+  EXPECT_EQ(refusal([&] { find_option(table, "rotate")->set(o, std::string("w,30")); }),
+            "`rotate` 'w,30': its axis is not one of x, y, z");
+  find_option(table, "box")->set(o, std::string("-1,-2,-3,4,5,6"));
+  EXPECT_EQ(o.growth.spawn_box->min, Vec3(-1, -2, -3));
+  EXPECT_EQ(o.growth.spawn_box->max, Vec3(4, 5, 6));
+  EXPECT_EQ(refusal([&] { find_option(table, "drift")->set(o, std::string("0.1,0.2")); }),
+            "`drift` '0.1,0.2' is not 3 comma-separated numbers");
+  // A number the library prints reads back as the same double.
+  find_option(table, "drift")->set(o, std::string("0.1,1e-300,-0.30000000000000004"));
+  EXPECT_EQ(std::get<std::string>(find_option(table, "drift")->get(o)), "0.1,1e-300,-0.30000000000000004");
+  find_option(table, "seeds")->set(o, std::string("all"));
+  EXPECT_TRUE(o.seeds.all && o.seeds.whole_surface());
+  find_option(table, "seed_paint")->set(o, std::string("red"));
+  EXPECT_FALSE(o.seeds.whole_surface());
+  EXPECT_EQ(refusal([&] { find_option(table, "seeds")->set(o, std::string("0")); }), "`seeds` 0: there must be a seed");
+  find_option(table, "text")->set(o, std::string("A\\nB"));
+  EXPECT_EQ(o.text->text, "A\nB");
+  EXPECT_EQ(o.text->font, kDefaultFont);
+  find_option(table, "links")->set(o, std::string("2,3"));
+  EXPECT_EQ(o.links.distance, 2.0);
+  EXPECT_EQ(o.links.most, 3u);
+  EXPECT_EQ(find_option(table, "stl")->about.alias, "mesh");
+  EXPECT_EQ(find_option(table, "stl")->about.form, kMeshFileForm);
+}
 
 TEST(OptionDescription, BreakdownsOptionsAreDescribedSoundly) { expect_described_soundly(breakdown_option_table()); }
 

@@ -14,8 +14,68 @@ DlaOptions walk_options(const DlaRunOptions& o) {
   return g;
 }
 
+const OptionTable<DlaRunOptions>& dla_run_option_table() {
+  using O = DlaRunOptions;
+  static const OptionTable<O> table = [] {
+    OptionTable<O> t{
+        with_short_name(override_of(integer("particles", &DlaOptions::particles, closed(0, 2e9), "", "Growth",
+                                            "particles to attach, seeds not counted; with a mesh, default 30000"),
+                                    &O::particles),
+                        "n"),
+        override_of(real("spacing", &DlaOptions::spacing, closed(kMinSpacing, kMaxSpacing), "", "Growth",
+                         "distance between a particle and its parent; also the contact distance; with a mesh, "
+                         "default: its longest side / 100"),
+                    &O::spacing),
+        point_list("seed_at", &O::seed_at, "Growth", "a seed at x,y,z (repeat for several); default: one at the origin"),
+    };
+    const auto add = [&t](const auto& rows) { t.insert(t.end(), rows.begin(), rows.end()); };
+    add(nested(links_option_table(), &O::links));
+    // The spawn heads its group, which the walk's table goes on with.
+    t.push_back(override_of(word("spawn", &DlaOptions::spawn, "Spawn",
+                                 "where walkers start; radial, inside and surface with a mesh inside; with --side "
+                                 "inside, default surface"),
+                            &O::spawn));
+    add(nested(dla_option_table(), &O::growth));
+    add(OptionTable<O>{
+        with_alias(file("stl", &O::stl, kMeshFileForm, "Mesh constraint",
+                        "grow constrained by this mesh: STL, OFF, OBJ or PLY"),
+                   "mesh"),
+        parsed<O>(
+            "text", OptionKind::text, "TEXT", "Mesh constraint",
+            "grow in this text, extruded a quarter of its size (lines split at \\n): a mesh, as --stl's; one seed "
+            "in each letter",
+            [](O& o, const std::string& words) {
+              if (!o.text) o.text = TextOptions{};
+              o.text->text = words;
+              // "\n" typed in a shell is a line break.
+              for (std::size_t at = o.text->text.find("\\n"); at != std::string::npos; at = o.text->text.find("\\n", at + 1))
+                o.text->text.replace(at, 2, "\n");
+            },
+            [](const O& o) { return o.text ? o.text->text : std::string(); }),
+        parsed<O>(
+            "font", OptionKind::file, "FILE", "Mesh constraint", "--text's font: a TrueType or OpenType file",
+            [](O& o, const std::string& path) {
+              if (!o.text) o.text = TextOptions{};
+              o.text->font = path;
+            },
+            [](const O& o) { return o.text ? o.text->font : std::string(kDefaultFont); }),
+    });
+    add(nested(constraint_option_table(), &O::constraint));
+    add(nested(mesh_seeds_option_table(), &O::seeds));
+    add(OptionTable<O>{
+        flag("scene_mesh", &O::scene_mesh, "Mesh constraint", "show the mesh, as glass, in the POV-Ray scene",
+             "no_scene_mesh"),
+    });
+    return t;
+  }();
+  return table;
+}
+
 void validate(const DlaRunOptions& o) {
   const bool mesh = o.has_mesh();
+  require_in_ranges(dla_run_option_table(), o);
+  if (!o.stl.empty() && o.text) throw InvalidInput("`stl` and `text` are both the mesh to grow in: give one");
+  if (o.text && o.text->text.empty()) throw InvalidInput("`text` is empty: give the text to grow in (`font` is its font)");
   validate(o.files, o.growth.dimensions, mesh);
   detail::validate_links(o.links);
   if (o.growth.fill == 0.0 && o.growth.fill_distance != DlaOptions{}.fill_distance)

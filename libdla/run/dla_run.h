@@ -134,7 +134,7 @@ class DlaRun : public Run {
     // From the skin inside: thin parts (horns, fingers) get walkers by their surface. To fill
     // the volume, or to grow from seeds lining the skin, from anywhere in the volume: the
     // skin, covered, would stop walkers from the surface long before the inside is full.
-    const bool whole_surface = o.seeds.surface && !o.seeds.paint;
+    const bool whole_surface = o.seeds.whole_surface();
     // In a shell, anywhere in it: walkers reach the structure over the surface.
     if (!o.spawn)
       options_.spawn = constraint_->shell() > 0.0                ? SpawnMode::inside

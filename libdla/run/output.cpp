@@ -122,9 +122,32 @@ const OptionTable<OutputOptions>& output_option_table() {
                            "glb: levels of detail beside it, PREFIX_lod1.glb on, each with about half the triangles "
                            "of the one before"));
     add(nested(instance_option_table(), &O::instances));
+    rows.push_back(file("leaf", &O::leaf, "FILE.glb", "Look",
+                        "glb: a binary glTF whose mesh goes at each instancing point (as tips picks them), along its "
+                        "direction and scaled by its pscale; its +Y is the leaf's stem"));
+    add(nested(OptionTable<InstanceOptions>{colour(
+                   "tips_exclude_paint", &InstanceOptions::exclude_paint, "Look",
+                   "tips: leave out the points whose closest point of the mesh's surface is painted this colour (a "
+                   "name or ff8000), within TOLERANCE per channel, [0, 1), default 0.3")},
+               &O::instances));
     add(nested(solid_option_table(), &O::solid));
     return rows;
   }();
+  return table;
+}
+
+const OptionTable<OutputOptions>& files_option_table() {
+  using O = OutputOptions;
+  static const OptionTable<O> table{
+      with_short_name(file("output", &O::output, "PREFIX", "Output", "prefix of the files written"), "o"),
+      parsed<O>("formats", OptionKind::text, "LIST", "Output",
+                "files to write, a comma list of pov, csv, spheres (PREFIX_spheres.csv: x,y,z,r), mstm (MSTM's "
+                "PREFIX_mstm.pos), ddscat (DDSCAT's PREFIX_ddscat.dat), ply, json, glb, obj, tips (PREFIX_tips.ply, "
+                "and with pov PREFIX_tips.inc), svg and png (2D), html (the web viewer), and the watertight solid: "
+                "stl, 3mf, vdb, solid-glb, solid-obj",
+                [](O& o, const std::string& words) { o.formats = parse_formats(words); },
+                [](const O& o) { return format_words(o.formats); }),
+  };
   return table;
 }
 

@@ -64,13 +64,74 @@ bool flag(const char* name, py::handle value) {
   return value.cast<bool>();
 }
 
-OptionValue described_value(const OptionDescription& about, py::handle value) {
+namespace {
+
+bool is_sequence(py::handle value) {
+  return !py::isinstance<py::str>(value) && py::hasattr(value, "__len__") && py::hasattr(value, "__iter__");
+}
+
+//! A string, a path, or a number (exactly) as the words the library reads.
+std::string scalar_words(const char* name, py::handle value) {
+  if (py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__")) return path_text(name, value);
+  if (py::isinstance<py::bool_>(value)) throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is not a value");
+  if (py::isinstance<py::int_>(value) || (py::hasattr(value, "__index__") && !py::hasattr(value, "__len__")))
+    return py::str(value.attr("__index__")()).cast<std::string>();
+  if (py::hasattr(value, "__float__") && !py::hasattr(value, "__len__")) return detail::exact_number(value.cast<double>());
+  throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is not a string or a number");
+}
+
+//! A value as the CLI would spell it: a string as it is, a number exactly, a sequence of them
+//! joined by commas ((0, 1.5, 2): "0,1.5,2"; ("y", 30): "y,30").
+std::string words_given(const char* name, py::handle value) {
+  if (!is_sequence(value)) return scalar_words(name, value);
+  std::string words;
+  bool first = true;
+  for (py::handle item : value) {
+    words += (first ? "" : ",") + scalar_words(name, item);
+    first = false;
+  }
+  return words;
+}
+
+//! Several values of a repeated option: one value (a string, a path, a point of numbers, (V, F)
+//! arrays for a mesh), or a list of them.
+template <class One>
+std::vector<std::string> each_given(py::handle value, const One& one) {
+  const bool single = !is_sequence(value) || py::len(value) == 0 ||
+                      (!is_sequence(value[py::int_(0)]) && !py::isinstance<py::str>(value[py::int_(0)])) ||
+                      (py::isinstance<py::tuple>(value) && py::len(value) == 2 && py::hasattr(value[py::int_(0)], "shape"));
+  if (single) return {one(value)};
+  std::vector<std::string> all;
+  for (py::handle item : value) all.push_back(one(item));
+  return all;
+}
+
+}  // namespace
+
+OptionValue described_value(const OptionDescription& about, py::handle value, Given& given) {
   const std::string name(about.name);
+  const char* c_name = name.c_str();
   switch (about.kind) {
-    case OptionKind::flag: return flag(name.c_str(), value);
-    case OptionKind::integer: return static_cast<std::int64_t>(whole(name.c_str(), value));
-    case OptionKind::real: return number(name.c_str(), value);
-    case OptionKind::word: return text(name.c_str(), value);
+    case OptionKind::flag: return flag(c_name, value);
+    case OptionKind::integer: return static_cast<std::int64_t>(whole(c_name, value));
+    case OptionKind::real: return number(c_name, value);
+    case OptionKind::word: return text(c_name, value);
+    case OptionKind::file:
+      if (about.form == kMeshFileForm) {
+        const auto one = [&](py::handle v) {
+          return py::hasattr(v, "__fspath__") ? path_text(c_name, v) : mesh(c_name, v, given);
+        };
+        if (about.repeats) return each_given(value, one);
+        return one(value);
+      }
+      if (about.repeats) return each_given(value, [&](py::handle v) { return path_text(c_name, v); });
+      return path_text(c_name, value);
+    case OptionKind::vector:
+    case OptionKind::points:
+    case OptionKind::colour:
+    case OptionKind::text:
+      if (about.repeats) return each_given(value, [&](py::handle v) { return words_given(c_name, v); });
+      return words_given(c_name, value);
   }
   return {};
 }
@@ -106,21 +167,6 @@ std::vector<Vec3> points(const char* name, py::handle value) {
 Box box(const char* name, py::handle value) {
   const std::vector<double> b = numbers(name, value, 6);
   return Box{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}};
-}
-
-//! `links`: D spacings, (D, K), or a word as dla3d writes it: "D,K" or "lattice".
-LinkOptions links(const char* name, py::handle value) {
-  if (py::isinstance<py::str>(value)) return parse_links(text(name, value));
-  const bool pair = py::hasattr(value, "__len__");
-  const std::vector<double> dk = pair ? numbers(name, value, 2) : std::vector<double>{number(name, value), 1.0};
-  if (!(dk[0] > 0.0)) throw InvalidInput("`links` " + shown(value) + ": the distance is not above 0");
-  if (!(dk[1] >= 1 && dk[1] <= static_cast<double>(kMaxLinksEach) && dk[1] == std::floor(dk[1])))
-    throw InvalidInput("`links` " + shown(value) + ": K " + detail::format_number(dk[1]) + " is not a whole number in 1-64");
-  LinkOptions o;
-  o.distance = dk[0];
-  o.most = static_cast<std::size_t>(dk[1]);
-  validate(o);
-  return o;
 }
 
 using Vertices = py::array_t<double, py::array::c_style | py::array::forcecast>;
@@ -181,17 +227,7 @@ namespace {
 
 //! What only all the keywords together decide.
 void settle(RunOptions& run, const Given& given) {
-  const auto all = [&](MeshSeeds& seeds) {
-    if (given.seeds_all) seeds.surface = !seeds.paint && seeds.meshes.empty();
-  };
-  if (auto* o = run.get_if<DlaRunOptions>()) {
-    all(o->seeds);
-  } else if (auto* o = run.get_if<BreakdownRunOptions>()) {
-    all(o->seeds);
-  } else if (auto* o = run.get_if<DropRunOptions>()) {
-    all(o->seeds);
-  } else if (auto* o = run.get_if<ColonizeRunOptions>()) {
-    all(o->seeds);
+  if (auto* o = run.get_if<ColonizeRunOptions>()) {
     o->sample_attractors = given.attractors && !o->attractors_from.empty();
   } else if (auto* o = run.get_if<EdenRunOptions>()) {
     const int dimensions = given.eden_dimensions.value_or(2);

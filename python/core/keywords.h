@@ -35,8 +35,6 @@ Vec3 vec3(const char* name, py::handle value);
 //! One point (x, y, z), or a list or (N, 3) array of them.
 std::vector<Vec3> points(const char* name, py::handle value);
 Box box(const char* name, py::handle value);
-//! `links`: D spacings, (D, K), or a word as dla3d writes it: "D,K" or "lattice".
-LinkOptions links(const char* name, py::handle value);
 
 //! A word of a mode, parsed as the library parses it.
 template <class Mode>
@@ -48,7 +46,6 @@ Mode word(const char* name, py::handle value) {
 //! names that stand for them, and what only all the keywords together decide.
 struct Given {
   std::map<std::string, TriangleMesh> meshes;
-  bool seeds_all = false;         //!< seeds="all"
   bool attractors = false;        //!< attractors=N, a sample of attractors_from's
   std::optional<int> eden_dimensions;
   bool lattice = false;
@@ -63,17 +60,22 @@ template <class Options>
 using Table = std::map<std::string, Setter<Options>>;
 
 //! A keyword's value as the option `about` describes it (option_description.h): True or False,
-//! a whole number, a number or a word; or InvalidInput naming it.
-OptionValue described_value(const OptionDescription& about, py::handle value);
+//! a whole number, a number or a word; for the text forms, the words the CLI would take (a
+//! string, or numbers and words in a tuple or list, joined by commas), a list of them for one
+//! that repeats, and for a mesh (V, F) arrays too, held in `given`; or InvalidInput naming it.
+OptionValue described_value(const OptionDescription& about, py::handle value, Given& given);
 
 //! The keywords of a table of described options, setting the `Described` that `part` gives of
-//! the run's options.
+//! the run's options; an option's one-letter name and alias (`n`, `mesh`) are keywords too.
 template <class Options, class Described, class Part>
 void add_described(Table<Options>& t, const OptionTable<Described>& table, Part part) {
-  for (const DescribedOption<Described>& option : table)
-    t[std::string(option.about.name)] = [&option, part](Options& o, py::handle v, Given&) {
-      option.set(part(o), described_value(option.about, v));
+  for (const DescribedOption<Described>& option : table) {
+    const Setter<Options> set = [&option, part](Options& o, py::handle v, Given& given) {
+      option.set(part(o), described_value(option.about, v, given));
     };
+    for (const std::string_view name : {option.about.name, option.about.short_name, option.about.alias})
+      if (!name.empty()) t[std::string(name)] = set;
+  }
 }
 
 //! The keywords of a table that describes the options the keywords set, whole.

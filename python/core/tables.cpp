@@ -14,10 +14,6 @@ namespace {
 template <class Options, class Files>
 void add_look(Table<Options>& t, Files files) {
   add_described(t, output_option_table(), files);
-  t["leaf"] = [=](Options& o, py::handle v, Given&) { files(o).leaf = path_text("leaf", v); };
-  t["tips_exclude_paint"] = [=](Options& o, py::handle v, Given&) {
-    files(o).instances.exclude_paint = parse_paint(text("tips_exclude_paint", v), "tips_exclude_paint");
-  };
 }
 
 template <class Options>
@@ -28,19 +24,7 @@ void add_look(Table<Options>& t) {
 //! Where seeds (colonize: roots) go on the mesh, the same for DLA, drop and colonize.
 template <class O>
 void add_mesh_seeds(Table<O>& t) {
-  t["seeds"] = [](O& o, py::handle v, Given& g) {
-    if (py::isinstance<py::str>(v) && v.cast<std::string>() == "all") g.seeds_all = true;
-    else if ((o.seeds.count = count("seeds", v)) == 0) throw InvalidInput("`seeds` 0: there must be a seed");
-  };
-  t["seed_surface"] = [](O& o, py::handle v, Given&) { o.seeds.surface = flag("seed_surface", v); };
-  t["seed_paint"] = [](O& o, py::handle v, Given&) { o.seeds.paint = parse_paint(text("seed_paint", v)); };
-  t["seed_mesh"] = [](O& o, py::handle v, Given& g) {
-    const bool one = py::isinstance<py::str>(v) || (py::isinstance<py::tuple>(v) && py::len(v) == 2 &&
-                                                    py::hasattr(v[py::int_(0)], "shape"));
-    if (one) o.seeds.meshes.push_back(mesh("seed_mesh", v, g));
-    else
-      for (py::handle item : v) o.seeds.meshes.push_back(mesh("seed_mesh", item, g));
-  };
+  add_described(t, mesh_seeds_option_table(), [](O& o) -> MeshSeeds& { return o.seeds; });
 }
 
 //! --fill and --shell, for the models they mean nothing to: refused with why.
@@ -54,7 +38,7 @@ void add_refused(Table<O>& t, const char* model) {
 template <class O, class Model>
 void add_seeded(Table<O>& t, Model O::*model) {
   add_look(t);
-  t["links"] = [](O& o, py::handle v, Given&) { o.links = links("links", v); };
+  add_described(t, links_option_table(), [](O& o) -> LinkOptions& { return o.links; });
   t["particles"] = [=](O& o, py::handle v, Given&) { (o.*model).particles = count("particles", v); };
   t["dimensions"] = [=](O& o, py::handle v, Given&) { (o.*model).dimensions = whole_int("dimensions", v); };
   t["rng_seed"] = [=](O& o, py::handle v, Given&) { (o.*model).rng_seed = count("rng_seed", v); };
@@ -67,38 +51,8 @@ Table<DlaRunOptions> dla_table() {
   using O = DlaRunOptions;
   Table<O> t;
   add_look(t);
-  t["particles"] = [](O& o, py::handle v, Given&) { o.particles = count("particles", v); };
-  t["spacing"] = [](O& o, py::handle v, Given&) { o.spacing = number("spacing", v); };
-  t["seed_at"] = [](O& o, py::handle v, Given&) { o.seed_at = points("seed_at", v); };
   t["rng_seed"] = [](O& o, py::handle v, Given&) { o.growth.rng_seed = count("rng_seed", v); };
-  t["links"] = [](O& o, py::handle v, Given&) { o.links = links("links", v); };
-  add_described(t, dla_option_table(), [](O& o) -> DlaOptions& { return o.growth; });
-  t["stl"] = [](O& o, py::handle v, Given& g) { o.stl = mesh("stl", v, g); };
-  t["text"] = [](O& o, py::handle v, Given&) {
-    const std::string font = o.text ? o.text->font : kDefaultFont;
-    o.text = TextOptions{text("text", v), font};
-  };
-  t["font"] = [](O& o, py::handle v, Given&) {
-    if (!o.text) o.text = TextOptions{};
-    o.text->font = text("font", v);
-  };
-  t["side"] = [](O& o, py::handle v, Given&) { o.constraint.side = word<Side>("side", v); };
-  t["shell"] = [](O& o, py::handle v, Given&) { o.constraint.shell = number("shell", v); };
-  t["constraint"] = [](O& o, py::handle v, Given&) { o.constraint.mode = word<ConstraintMode>("constraint", v); };
-  add_mesh_seeds(t);
-  t["scene_mesh"] = [](O& o, py::handle v, Given&) { o.scene_mesh = flag("scene_mesh", v); };
-  t["fill"] = [](O& o, py::handle v, Given&) { o.growth.fill = number("fill", v); };
-  t["spawn"] = [](O& o, py::handle v, Given&) { o.spawn = word<SpawnMode>("spawn", v); };
-  t["box"] = [](O& o, py::handle v, Given&) { o.growth.spawn_box = box("box", v); };
-  t["drift"] = [](O& o, py::handle v, Given&) { o.growth.drift = vec3("drift", v); };
-  t["rotate"] = [](O& o, py::handle v, Given&) {
-    if (py::isinstance<py::str>(v) || !py::hasattr(v, "__len__") || py::len(v) != 2)
-      throw InvalidInput("`rotate` " + shown(v) + " is not (axis, degrees), as ('y', 30)");
-    o.growth.rotate_axis = word<Axis>("rotate", v[py::int_(0)]);
-    o.growth.rotate_degrees = number("rotate", v[py::int_(1)]);
-  };
-  t["n"] = t["particles"];
-  t["mesh"] = t["stl"];
+  add_described(t, dla_run_option_table());
   return t;
 }
 
@@ -148,7 +102,7 @@ Table<EdenRunOptions> eden_table() {
   using O = EdenRunOptions;
   Table<O> t;
   add_look(t);
-  t["links"] = [](O& o, py::handle v, Given&) { o.links = links("links", v); };
+  add_described(t, links_option_table(), [](O& o) -> LinkOptions& { return o.links; });
   t["sites"] = [](O& o, py::handle v, Given&) {
     if ((o.eden.sites = count("sites", v)) == 0) throw InvalidInput("`sites` 0 is not at least 1");
   };

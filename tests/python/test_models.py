@@ -193,9 +193,10 @@ def test_the_particle_arrays_share_the_structures_memory():
 # The library checks the options and names them in its messages; Python spells them as
 # keywords, dla3d as flags. Where the CLI reads the same values, it prints the same line.
 @pytest.mark.parametrize("options,python,cli_line", [
-    ({"particles": -1}, "particles=-1 is negative", "--particles -1 is negative"),
-    ({"spawn": "cube"}, "spawn mode 'cube' is not one of sphere, disk, box, inside, radial, surface", None),
-    ({"seed_at": (1, 2)}, "seed_at=(1, 2) is not 3 numbers", "--seed-at '1,2' is not 3 comma-separated numbers"),
+    ({"particles": -1}, "particles=-1 is not in [0, 2e+09]", "--particles -1 is not in [0, 2e+09]"),
+    ({"spawn": "cube"}, "spawn='cube' is not one of sphere, disk, box, inside, radial, surface",
+     "--spawn 'cube' is not one of sphere, disk, box, inside, radial, surface"),
+    ({"seed_at": (1, 2)}, "seed_at='1,2' is not 3 comma-separated numbers", "--seed-at '1,2' is not 3 comma-separated numbers"),
     ({"stickiness": 0}, "stickiness=0 is not in [0.0001, 1]", "--stickiness 0 is not in [0.0001, 1]"),
     ({"radius": "boundary"}, "radius boundary measures to a constraint mesh: give one with stl",
      "--radius boundary measures to a constraint mesh: give one with --stl"),
@@ -246,7 +247,7 @@ def test_a_missing_file_is_an_os_error():
     (lambda: dla3d.grow(formats=["csv"]), "formats is an argument of Result.write()"),
     (lambda: dla3d.grow(checkpoint="x.ck"), "checkpoint is an option of the dla3d command line"),
     (lambda: dla3d.grow(progress=3), "progress is not callable"),
-    (lambda: dla3d.grow(seed_at=[(0, 0, 0), object()]), "is not 3 numbers"),
+    (lambda: dla3d.grow(seed_at=[(0, 0, 0), object()]), "is not a string or a number"),
     (lambda: dla3d.grow(particles=10).write("/tmp/dla3d_py_x", formats=["gif"]), "'gif' is not one of"),
     (lambda: dla3d.grow(particles=10).write("/no/such/dir/x", formats=["csv"]), "cannot write"),
     (lambda: dla3d.grow(particles=10).tubes(sides=2), "sides=2 is not in [3, 64]"),

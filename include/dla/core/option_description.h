@@ -33,10 +33,16 @@ enum class OptionKind {
   integer,  //!< a whole number
   real,     //!< a number
   word,     //!< one word of a mode's table
+  vector,   //!< a fixed count of numbers: "X,Y,Z", a box's two corners
+  points,   //!< one point "X,Y,Z" a value, as many as given
+  colour,   //!< a colour by name or hex digits, with a tolerance after it or not: "ff8000,0.3"
+  text,     //!< words of a form of the option's own: "K|all", "D[,K]", "AXIS,DEGREES"
+  file,     //!< a file's path
 };
-inline constexpr WordTable<OptionKind, 4> kOptionKindWords{
+inline constexpr WordTable<OptionKind, 9> kOptionKindWords{
     "option kind", {{{OptionKind::flag, "flag"}, {OptionKind::integer, "integer"}, {OptionKind::real, "real"},
-                     {OptionKind::word, "word"}}}};
+                     {OptionKind::word, "word"}, {OptionKind::vector, "vector"}, {OptionKind::points, "points"},
+                     {OptionKind::colour, "colour"}, {OptionKind::text, "text"}, {OptionKind::file, "file"}}}};
 constexpr const auto& words_of(OptionKind) { return kOptionKindWords; }
 
 //! The numbers an option takes: from min to max, each end closed (taken) or open (not).
@@ -75,6 +81,10 @@ inline std::string cli_flag(std::string_view name) {
   return flag;
 }
 
+//! The form of a file option that reads a mesh (`--stl MESH_FILE`): a front end may offer a mesh
+//! of its own for it (the Blender add-on an object, Python arrays).
+inline constexpr std::string_view kMeshFileForm = "MESH_FILE";
+
 //! A value outside the range that means something of its own: walkers 0, "chosen by eta".
 struct SpecialValue {
   double value;
@@ -93,10 +103,17 @@ struct OptionDescription {
   std::vector<std::string_view> choices;  //!< word: the mode's words, in its table's order
   std::string_view negation;              //!< flag: the name that turns it off; empty: none
   std::string_view short_name;            //!< the CLI's one-letter name: "n" for -n; empty: none
+  //! vector, points, colour, text, file: the value's form as --help shows it ("X,Y,Z",
+  //! "COLOR[,TOLERANCE]", kMeshFileForm)
+  std::string_view form = {};
+  bool repeats = false;         //!< points, file: the option is given once a value, and keeps all
+  std::string_view alias = {};  //!< another name for it, as C++ and Python spell it: `mesh` for `stl`
 };
 
 //! A value of an option, as a front end hands it over.
-using OptionValue = std::variant<bool, std::int64_t, double, std::string>;
+//! A text-form option (vector, points, colour, text, file) takes its words as the CLI spells
+//! them; one that repeats, the list of them.
+using OptionValue = std::variant<bool, std::int64_t, double, std::string, std::vector<std::string>>;
 
 //! An option's description bound to the member of `Options` it sets.
 template <class Options>
@@ -116,7 +133,10 @@ inline std::string to_string(const OptionValue& value) {
   if (const bool* b = std::get_if<bool>(&value)) return *b ? "true" : "false";
   if (const std::int64_t* i = std::get_if<std::int64_t>(&value)) return std::to_string(*i);
   if (const double* d = std::get_if<double>(&value)) return detail::format_number(*d);
-  return std::get<std::string>(value);
+  if (const std::string* text = std::get_if<std::string>(&value)) return *text;
+  std::string list;
+  for (const std::string& item : std::get<std::vector<std::string>>(value)) list += (list.empty() ? "" : "; ") + item;
+  return list;
 }
 
 //! Throws InvalidInput "`eta` 11 is not in [0, 10]" unless `value` is in the option's range or
@@ -163,7 +183,7 @@ template <class Options>
 DescribedOption<Options> real(std::string_view name, double Options::*member, Range range, std::string_view unit,
                               std::string_view group, std::string_view help,
                               std::optional<SpecialValue> special = std::nullopt) {
-  OptionDescription about{name, OptionKind::real, group, help, range, special, unit, {}, {}, {}};
+  OptionDescription about{name, OptionKind::real, group, help, range, special, unit, {}, {}, {}, {}, false, {}};
   return {about,
           [about, member](Options& o, const OptionValue& v) {
             const double value = detail::number_of(about.name, v);
@@ -179,7 +199,7 @@ template <class Options, class Whole, std::enable_if_t<std::is_integral_v<Whole>
 DescribedOption<Options> integer(std::string_view name, Whole Options::*member, Range range, std::string_view unit,
                                  std::string_view group, std::string_view help,
                                  std::optional<SpecialValue> special = std::nullopt) {
-  OptionDescription about{name, OptionKind::integer, group, help, range, special, unit, {}, {}, {}};
+  OptionDescription about{name, OptionKind::integer, group, help, range, special, unit, {}, {}, {}, {}, false, {}};
   return {about,
           [about, member](Options& o, const OptionValue& v) {
             const double value = detail::number_of(about.name, v);
@@ -195,7 +215,7 @@ DescribedOption<Options> integer(std::string_view name, Whole Options::*member, 
 template <class Options, class Mode, std::enable_if_t<has_words<Mode>, int> = 0>
 DescribedOption<Options> word(std::string_view name, Mode Options::*member, std::string_view group,
                               std::string_view help) {
-  OptionDescription about{name, OptionKind::word, group, help, {}, {}, {}, words_list<Mode>(), {}, {}};
+  OptionDescription about{name, OptionKind::word, group, help, {}, {}, {}, words_list<Mode>(), {}, {}, {}, false, {}};
   return {about,
           [about, member](Options& o, const OptionValue& v) {
             const std::string* text = std::get_if<std::string>(&v);
@@ -214,7 +234,7 @@ DescribedOption<Options> word(std::string_view name, Mode Options::*member, std:
 template <class Options>
 DescribedOption<Options> flag(std::string_view name, bool Options::*member, std::string_view group,
                               std::string_view help, std::string_view negation = {}) {
-  OptionDescription about{name, OptionKind::flag, group, help, {}, {}, {}, {}, negation, {}};
+  OptionDescription about{name, OptionKind::flag, group, help, {}, {}, {}, {}, negation, {}, {}, false, {}};
   return {about,
           [about, member](Options& o, const OptionValue& v) {
             const bool* on = std::get_if<bool>(&v);
@@ -224,10 +244,64 @@ DescribedOption<Options> flag(std::string_view name, bool Options::*member, std:
           [member](const Options& o) { return OptionValue(o.*member); }};
 }
 
+namespace detail {
+//! The words a front end gave for the text-form option `name`.
+inline const std::string& words_given(std::string_view name, const OptionValue& value) {
+  if (const std::string* text = std::get_if<std::string>(&value)) return *text;
+  throw InvalidInput("`" + std::string(name) + "` " + to_string(value) + " is not " +
+                     (std::holds_alternative<std::vector<std::string>>(value) ? "one value" : "text"));
+}
+}  // namespace detail
+
+//! An option of `kind` vector, colour, text or file, whose words (of the form `form`) `parse`
+//! reads into the options, throwing InvalidInput that names the option, and `print` writes
+//! back from them: "" when unset.
+template <class Options>
+DescribedOption<Options> parsed(std::string_view name, OptionKind kind, std::string_view form, std::string_view group,
+                                std::string_view help, std::function<void(Options&, const std::string&)> parse,
+                                std::function<std::string(const Options&)> print) {
+  OptionDescription about{name, kind, group, help, {}, {}, {}, {}, {}, {}, form, false, {}};
+  return {about, [about, parse](Options& o, const OptionValue& v) { parse(o, detail::words_given(about.name, v)); },
+          [print](const Options& o) { return OptionValue(print(o)); }};
+}
+
+//! An option of `kind` points or file given once a value (`--seed-at 0,0,0 --seed-at 9,0,0`):
+//! `parse` reads the list, `print` writes it back.
+template <class Options>
+DescribedOption<Options> repeated(std::string_view name, OptionKind kind, std::string_view form,
+                                  std::string_view group, std::string_view help,
+                                  std::function<void(Options&, const std::vector<std::string>&)> parse,
+                                  std::function<std::vector<std::string>(const Options&)> print) {
+  OptionDescription about{name, kind, group, help, {}, {}, {}, {}, {}, {}, form, true, {}};
+  return {about,
+          [about, parse](Options& o, const OptionValue& v) {
+            if (const auto* list = std::get_if<std::vector<std::string>>(&v)) parse(o, *list);
+            else parse(o, {detail::words_given(about.name, v)});
+          },
+          [print](const Options& o) { return OptionValue(print(o)); }};
+}
+
+//! A file's path, in a member of type std::string ("" : none); `form` as --help shows it:
+//! "FILE.glb", kMeshFileForm.
+template <class Options>
+DescribedOption<Options> file(std::string_view name, std::string Options::*member, std::string_view form,
+                              std::string_view group, std::string_view help) {
+  return parsed<Options>(
+      name, OptionKind::file, form, group, help, [member](Options& o, const std::string& path) { o.*member = path; },
+      [member](const Options& o) { return o.*member; });
+}
+
 //! `row` with the CLI's one-letter name `letter` as well: -n for --monomers.
 template <class Options>
 DescribedOption<Options> with_short_name(DescribedOption<Options> row, std::string_view letter) {
   row.about.short_name = letter;
+  return row;
+}
+
+//! `row` with another name as well: `mesh` for `stl` (--mesh, mesh=).
+template <class Options>
+DescribedOption<Options> with_alias(DescribedOption<Options> row, std::string_view alias) {
+  row.about.alias = alias;
   return row;
 }
 
@@ -247,6 +321,7 @@ namespace detail {
 template <class Value>
 Value value_as(const OptionValue& value) {
   if constexpr (has_words<Value>) return parse_word<Value>(std::get<std::string>(value));
+  else if constexpr (std::is_integral_v<Value>) return static_cast<Value>(std::get<std::int64_t>(value));
   else return static_cast<Value>(std::get<double>(value));
 }
 }  // namespace detail
@@ -265,6 +340,7 @@ DescribedOption<Outer> override_of(const DescribedOption<Inner>& row, std::optio
           [row, member](const Outer& o) {
             if (!(o.*member)) return row.get(Inner{});
             if constexpr (has_words<Value>) return OptionValue(std::string(to_string(*(o.*member))));
+            else if constexpr (std::is_integral_v<Value>) return OptionValue(static_cast<std::int64_t>(*(o.*member)));
             else return OptionValue(static_cast<double>(*(o.*member)));
           }};
 }

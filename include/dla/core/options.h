@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstdio>
 #include <cstdint>
 #include <optional>
@@ -56,6 +57,106 @@ struct Box {
   Vec3 min = Vec3::Zero();
   Vec3 max = Vec3::Zero();
 };
+
+namespace detail {
+//! A number as the shortest "%g" text that reads back as the same double.
+inline std::string exact_number(double value) {
+  char text[32];
+  for (int digits = 6; digits <= 17; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, value);
+    if (std::strtod(text, nullptr) == value || value != value) break;
+  }
+  return text;
+}
+
+//! The `count` comma-separated numbers in `words`, given for option `name`; or InvalidInput
+//! "`drift` '1,2' is not 3 comma-separated numbers".
+inline std::vector<double> numbers_in(std::string_view name, std::string_view words, std::size_t count) {
+  std::vector<double> values;
+  bool numbers = true;
+  for (std::size_t start = 0; start <= words.size();) {
+    const std::size_t comma = std::min(words.find(',', start), words.size());
+    const std::string item(words.substr(start, comma - start));
+    char* end = nullptr;
+    values.push_back(std::strtod(item.c_str(), &end));
+    numbers = numbers && end != item.c_str() && end == item.c_str() + item.size();
+    start = comma + 1;
+  }
+  if (!numbers || values.size() != count)
+    throw InvalidInput("`" + std::string(name) + "` '" + std::string(words) + "' is not " + std::to_string(count) +
+                       " comma-separated numbers");
+  return values;
+}
+
+//! "x,y,z", as numbers_in() reads it back.
+inline std::string point_words(const Vec3& p) {
+  return exact_number(p.x()) + "," + exact_number(p.y()) + "," + exact_number(p.z());
+}
+}  // namespace detail
+
+// The text forms below read "" as unset (or none), as they print it.
+
+//! A vector "X,Y,Z" in a member of type Vec3 (or std::optional<Vec3>: unset, "").
+template <class Options, class Member>
+DescribedOption<Options> vector3(std::string_view name, Member Options::*member, std::string_view group,
+                                 std::string_view help) {
+  return parsed<Options>(
+      name, OptionKind::vector, "X,Y,Z", group, help,
+      [name, member](Options& o, const std::string& words) {
+        if constexpr (!std::is_same_v<Member, Vec3>)
+          if (words.empty()) return void(o.*member = std::nullopt);
+        const std::vector<double> v = detail::numbers_in(name, words, 3);
+        o.*member = Vec3(v[0], v[1], v[2]);
+      },
+      [member](const Options& o) -> std::string {
+        if constexpr (std::is_same_v<Member, Vec3>) return detail::point_words(o.*member);
+        else return o.*member ? detail::point_words(*(o.*member)) : "";
+      });
+}
+
+//! A box "X0,Y0,Z0,X1,Y1,Z1", its two opposite corners, in a member of type std::optional<Box>.
+template <class Options>
+DescribedOption<Options> box_corners(std::string_view name, std::optional<Box> Options::*member, std::string_view group,
+                             std::string_view help) {
+  return parsed<Options>(
+      name, OptionKind::vector, "X0,Y0,Z0,X1,Y1,Z1", group, help,
+      [name, member](Options& o, const std::string& words) {
+        if (words.empty()) return void(o.*member = std::nullopt);
+        const std::vector<double> b = detail::numbers_in(name, words, 6);
+        o.*member = Box{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}};
+      },
+      [member](const Options& o) -> std::string {
+        return o.*member ? detail::point_words((o.*member)->min) + "," + detail::point_words((o.*member)->max) : "";
+      });
+}
+
+//! Points "X,Y,Z", one a value, in a member of type std::optional<std::vector<Vec3>> (unset:
+//! none given) or std::vector<Vec3>.
+template <class Options, class Member>
+DescribedOption<Options> point_list(std::string_view name, Member Options::*member, std::string_view group,
+                                std::string_view help) {
+  return repeated<Options>(
+      name, OptionKind::points, "X,Y,Z", group, help,
+      [name, member](Options& o, const std::vector<std::string>& list) {
+        if constexpr (!std::is_same_v<Member, std::vector<Vec3>>)
+          if (list.empty()) return void(o.*member = std::nullopt);
+        std::vector<Vec3> at;
+        for (const std::string& words : list) {
+          const std::vector<double> v = detail::numbers_in(name, words, 3);
+          at.emplace_back(v[0], v[1], v[2]);
+        }
+        o.*member = at;
+      },
+      [member](const Options& o) {
+        std::vector<std::string> list;
+        const std::vector<Vec3>* at;
+        if constexpr (std::is_same_v<Member, std::vector<Vec3>>) at = &(o.*member);
+        else at = o.*member ? &*(o.*member) : nullptr;
+        if (at)
+          for (const Vec3& p : *at) list.push_back(detail::point_words(p));
+        return list;
+      });
+}
 
 //! Options of one growth run. Lengths are in scene units; the spacing sets the scale. The
 //! ranges and help of the single values: dla_option_table().
@@ -126,8 +227,34 @@ inline const OptionTable<DlaOptions>& dla_option_table() {
       word("spawn_axis", &O::spawn_axis, "Spawn", "disk: the axis the disk sits on"),
       real("disk_radius", &O::disk_radius, open_closed(0.0, kMaxDiskRadius), "", "Spawn",
            "disk: radius as a fraction of the launch radius"),
+      real("fill", &O::fill, closed(1e-6, 1.0), "", "Mesh constraint",
+           "grow until this fraction of the mesh's volume lies within --fill-distance of the structure; -n then "
+           "caps it (default 1e7)",
+           SpecialValue{0.0, "grow to the particle count"}),
       real("fill_distance", &O::fill_distance, closed(0.5, 1000.0), "spacings", "Mesh constraint",
            "--fill: how near counts as covered"),
+      box_corners("box", &O::spawn_box, "Spawn", "box: a fixed box; default: the cube around the launch sphere"),
+      vector3("drift", &O::drift, "Spawn", "bias of every step, per unit step length, length < 1"),
+      parsed<O>(
+          "rotate", OptionKind::text, "AXIS,DEGREES", "Spawn",
+          "turn the spawn and the drift about the seeds' centre by DEGREES per 1000 particles, as if the structure "
+          "turned while it grew: spirals; no mesh",
+          [](O& o, const std::string& words) {
+            if (words.empty()) return void(o.rotate_degrees = 0.0);
+            const std::size_t comma = words.find(',');
+            if (comma == std::string::npos) throw InvalidInput("`rotate` '" + words + "' is not AXIS,DEGREES (as y,30)");
+            try {
+              o.rotate_axis = parse_word<Axis>(words.substr(0, comma));
+            } catch (const InvalidInput&) {
+              throw InvalidInput("`rotate` '" + words + "': its axis is not one of " + accepted_words<Axis>());
+            }
+            o.rotate_degrees = detail::numbers_in("rotate", std::string_view(words).substr(comma + 1), 1)[0];
+          },
+          [](const O& o) {
+            return o.rotate_degrees == 0.0
+                       ? std::string()
+                       : std::string(to_string(o.rotate_axis)) + "," + detail::exact_number(o.rotate_degrees);
+          }),
   };
   return table;
 }
@@ -219,7 +346,6 @@ inline void validate(const DlaOptions& o) {
   detail::require_in("rotation, in degrees per 1000 particles,", o.rotate_degrees, -36000.0, 36000.0);
   if (o.dimensions == 2 && o.rotate_degrees != 0.0 && o.rotate_axis != Axis::z)
     throw InvalidInput("growth in 2 dimensions turns about z, not " + std::string(to_string(o.rotate_axis)));
-  if (o.fill != 0.0) detail::require_in("fill", o.fill, 1e-6, 1.0);
   if (o.threads > 1 && o.index != IndexKind::grid)
     throw InvalidInput("threads above 1 need the grid index, not " + std::string(to_string(o.index)));
 }

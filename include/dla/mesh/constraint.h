@@ -53,6 +53,21 @@ struct ConstraintOptions {
   double shell = 0.0;
 };
 
+//! The constraint's options, described once (option_description.h).
+inline const OptionTable<ConstraintOptions>& constraint_option_table() {
+  using O = ConstraintOptions;
+  static const OptionTable<O> table{
+      word("side", &O::side, "Mesh constraint",
+           "where growth goes: both: on either side, the mesh only a wall (need not be closed); surface: over it, on "
+           "both sides, in a shell"),
+      real("shell", &O::shell, closed(1.0, 1000.0), "spacings", "Mesh constraint",
+           "keep growth within this distance of the surface, on its side: frost, lichen",
+           SpecialValue{0.0, "anywhere on its side (--side surface: 3)"}),
+      word("constraint", &O::mode, "Mesh constraint", "a branch crossing the mesh: reject (walk on) or clip (end at it)"),
+  };
+  return table;
+}
+
 //! The layer's thickness for Side::surface when none is given: room for branches to cross
 //! one another, thin enough to read as a coat.
 inline constexpr double kShellSpacings = 3.0;

@@ -105,4 +105,17 @@ inline Paint parse_paint(std::string_view text, const char* option = "seed_paint
   return paint;
 }
 
+//! A colour of a mesh's paint, with its tolerance (`--seed-paint ff8000,0.3`), in a member of
+//! type std::optional<Paint> (unset: "").
+template <class Options>
+DescribedOption<Options> colour(std::string_view name, std::optional<Paint> Options::*member, std::string_view group,
+                                std::string_view help) {
+  return parsed<Options>(
+      name, OptionKind::colour, "COLOR[,TOLERANCE]", group, help,
+      [name, member](Options& o, const std::string& words) {
+        o.*member = words.empty() ? std::nullopt : std::optional<Paint>(parse_paint(words, name.data()));
+      },
+      [member](const Options& o) { return o.*member ? to_string(*(o.*member)) : std::string(); });
+}
+
 }  // namespace dla

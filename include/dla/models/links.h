@@ -89,6 +89,22 @@ inline std::string to_string(const LinkOptions& o) {
   return detail::format_number(o.distance) + (o.most == 1 ? "" : "," + std::to_string(o.most));
 }
 
+//! `links` described once: "D[,K]", with `lattice` (Eden's) "D[,K]|lattice".
+inline const OptionTable<LinkOptions>& links_option_table(bool lattice = false) {
+  const auto table = [](bool lattice) {
+    return OptionTable<LinkOptions>{parsed<LinkOptions>(
+        "links", OptionKind::text, lattice ? "D[,K]|lattice" : "D[,K]", "Growth",
+        lattice ? "also link each particle, as it attaches, to up to K (default 1) earlier ones within D spacings and "
+                  "at least 8 tree steps away: loops (docs/loops.md); lattice: every pair of neighbouring sites"
+                : "also link each particle, as it attaches, to up to K (default 1) earlier ones within D spacings and "
+                  "at least 8 tree steps away: loops (docs/loops.md)",
+        [](LinkOptions& o, const std::string& words) { o = words.empty() ? LinkOptions{} : parse_links(words); },
+        [](const LinkOptions& o) { return o.any() ? to_string(o) : std::string(); })};
+  };
+  static const OptionTable<LinkOptions> plain = table(false), with_lattice = table(true);
+  return lattice ? with_lattice : plain;
+}
+
 //! Whether a link may join two particles at these centres (a constraint mesh's test that the
 //! segment stays on its growing side); none: any.
 using LinkFilter = std::function<bool(const Vec3& earlier, const Vec3& later)>;

@@ -47,9 +47,16 @@ struct MeshSeeds {
   bool surface = false;               //!< `seed_surface`: the whole surface, sampled at the spacing
   std::optional<Paint> paint;         //!< `seed_paint`: the part of the surface painted this colour
   std::vector<std::string> meshes;    //!< `seed_mesh`: where these meshes' surfaces meet the mesh
+  //! `seeds` all: at the spacing over what `paint` or `meshes` pick of the surface, or all of it
+  bool all = false;
 
-  bool on_surface() const { return surface || paint || !meshes.empty(); }
+  bool on_surface() const { return surface || all || paint || !meshes.empty(); }
+  //! The seeds cover the whole surface, not a part of it.
+  bool whole_surface() const { return (surface || all) && !paint && meshes.empty(); }
 };
+//! Its options, described: `seeds`, `seed_surface`, `seed_paint`, `seed_mesh`; with `roots`, as
+//! colonize's roots.
+const OptionTable<MeshSeeds>& mesh_seeds_option_table(bool roots = false);
 
 //! `dla3d [options]`, `dla3d.grow()`: DLA, in or around a mesh or text when one is given.
 struct DlaRunOptions {
@@ -70,6 +77,10 @@ struct DlaRunOptions {
 
   bool has_mesh() const { return !stl.empty() || text.has_value(); }
 };
+
+//! Its options, described: the walk's (dla_option_table()), the count, the scale and the seeds,
+//! the mesh or text and the links. All but `rng_seed`, which the front ends still add.
+const OptionTable<DlaRunOptions>& dla_run_option_table();
 
 //! DLA's options with the run's optionals that are set put in place; what a mesh gives for
 //! those unset, prepare_run() resolves.

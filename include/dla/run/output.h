@@ -74,9 +74,12 @@ struct OutputOptions {
 //! The files' and the look's options with a single value, described once
 //! (option_description.h): the tables of PngOptions, PovOptions, LookOptions, InstanceOptions
 //! and SolidOptions as options of OutputOptions, those a mesh gives a default for setting its
-//! overrides (`up`, `radius`, `base_radius`, `tip_radius`). The file names, the formats, the
-//! leaf and the paint are the front ends'.
+//! overrides (`up`, `radius`, `base_radius`, `tip_radius`); the leaf and the paint the tips leave
+//! out.
 const OptionTable<OutputOptions>& output_option_table();
+//! The files' prefix and formats, described once: the CLI's `--output` and `--formats`. Python
+//! gives them to Result.write() instead.
+const OptionTable<OutputOptions>& files_option_table();
 
 //! Throws InvalidInput for levels of detail or a leaf without the glb they belong to: checked
 //! where the formats are final, before growth on the command line and at write() in Python.
