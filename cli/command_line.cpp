@@ -53,8 +53,8 @@ Subcommand add_model_command(CLI::App& app, const Model& model) {
   // The built-in models' command lines, until each is described whole.
   using Add = Subcommand (*)(CLI::App&, const Model&);
   static const std::pair<std::string_view, Add> commands[] = {
-      {"grow", add_grow_options},    {"colonize", add_colonize_command},   {"eden", add_eden_command},
-      {"drop", add_drop_command},    {"ballistic", add_ballistic_command}, {"breakdown", add_breakdown_command},
+      {"grow", add_grow_options}, {"colonize", add_colonize_command},
+      {"drop", add_drop_command}, {"breakdown", add_breakdown_command},
   };
   for (const auto& [name, add] : commands)
     if (name == model.name) return add(app, model);

@@ -82,6 +82,8 @@ class DescribedOptions {
           break;
       }
       given->option->group(std::string(about.group));
+      for (const std::string_view other : about.excludes)
+        if (CLI::Option* excluded = app.get_option_no_throw(cli_flag(other))) given->option->excludes(excluded);
       if (described) described->push_back(about);
       given_.push_back(std::move(given));
     }

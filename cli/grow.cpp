@@ -27,18 +27,11 @@ void check_resume_company(const std::vector<std::string>& args) {
   }
 }
 
-//! DLA's options on `app`; with `dla` false, those of a model that walks as DLA does but has no
-//! fill, drift, rotation, index choice or checkpoints (the breakdown model).
-void add_options(CLI::App& app, DlaRunOptions& g, CommandLine& line, GrowWords& w, bool dla = true) {
-  // The breakdown model takes all but kNotForBreakdown (models.h).
-  w.run = std::make_unique<DescribedOptions<DlaRunOptions>>(
-      app, dla_run_option_table(), g, &w.described,
-      dla ? std::vector<std::string_view>{} : std::vector<std::string_view>(kNotForBreakdown.begin(), kNotForBreakdown.end()));
-  app.add_option("--rng-seed", g.growth.rng_seed, "seed of the random generator: the same seed gives the same files")
-      ->capture_default_str()->group("Growth");
+//! DLA's options on `app`, and the long runs'.
+void add_options(CLI::App& app, DlaRunOptions& g, CommandLine& line, GrowWords& w) {
+  w.run = std::make_unique<DescribedOptions<DlaRunOptions>>(app, dla_run_option_table(), g, &w.described);
   w.threads_option = app.get_option("--threads");
   w.files = std::make_unique<OutputWords>(app, g.files, line.quiet);
-  if (!dla) return;
 
   const char* runs = "Long runs";
   app.add_option("--checkpoint", line.checkpoint_path, "save the run to FILE as it goes, and when stopped by Ctrl-C or SIGTERM")
@@ -58,17 +51,6 @@ void finish(CommandLine& line, DlaRunOptions& g, const GrowWords& w) {
 }
 
 }  // namespace
-
-WalkCommand add_walk_options(CLI::App& app, DlaRunOptions& run, bool& quiet, std::vector<OptionDescription>& described) {
-  auto words = std::make_shared<GrowWords>();
-  auto line = std::make_shared<CommandLine>();
-  add_options(app, run, *line, *words, false);
-  described.insert(described.end(), words->described.begin(), words->described.end());
-  return {[words, line, &run, &quiet] {
-    quiet = line->quiet;
-    finish(*line, run, *words);
-  }};
-}
 
 Subcommand add_grow_options(CLI::App& app, const Model&) {
   auto words = std::make_shared<GrowWords>();

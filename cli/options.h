@@ -1,7 +1,7 @@
 #pragma once
-// What dla3d's subcommands share: the option groups every growth model has (Output and Look;
-// the count, plane, scale and seeds of drop and ballistic), the parsing of number lists, and
-// the hook each subcommand's file gives the parser.
+// What dla3d's subcommands share: the option groups every growth model has (Output and Look),
+// the links, the refusals of DLA's mesh controls, and the hook each subcommand's file gives the
+// parser. The options themselves are the library's descriptions (described.h).
 
 #include "command_line.h"
 #include "described.h"
@@ -17,20 +17,6 @@
 #include <vector>
 
 namespace dla::cli {
-
-//! The type a file option that reads a mesh shows (`--stl MESH_FILE`): `dla3d options` gives it
-//! as the option's `type`, so that a front end can offer a mesh of its own (the Blender add-on
-//! an object); its kind stays `file`.
-inline const std::string kMeshFile{kMeshFileForm};
-
-//! "x,y,z" (or more numbers for a box) as doubles; throws InvalidInput naming the flag.
-std::vector<double> parse_numbers(const std::string& flag, const std::string& text, std::size_t count);
-Vec3 parse_vec3(const std::string& flag, const std::string& text);
-std::vector<Vec3> parse_points(const std::string& flag, const std::vector<std::string>& texts);
-//! "X0,Y0,Z0,X1,Y1,Z1" as a box.
-Box parse_box(const std::string& flag, const std::string& text);
-//! A count given as a signed number, so that -1 is refused as negative rather than wrapped.
-std::size_t parse_count(const std::string& flag, long long value);
 
 //! A subcommand's options added to the parser, and what turns their words into the command
 //! line (`args` are its words) once it has parsed and the subcommand was given.
@@ -80,17 +66,6 @@ class OutputWords {
 //! --fill and --shell for the models they mean nothing to: each refused with why.
 void add_refused_mesh_controls(CLI::App& app, const char* group, std::string_view model);
 
-//! What drop and ballistic share with DLA: the count, the plane, the scale, the seeds.
-struct SeededWords {
-  long long particles = 10000;
-  std::vector<std::string> seed_at;
-  CLI::Option* spacing = nullptr;
-  CLI::Option* seed_at_option = nullptr;
-  std::unique_ptr<DescribedOptions<LinkOptions>> links;  // links_option_table()
-};
-void add_seeded_options(CLI::App& command, const char* group, SeededWords& words, int& dimensions, double& spacing,
-                        std::uint64_t& rng_seed, const std::string& spacing_help);
-
 //! --links (with `lattice`, Eden's word lattice too), from links_option_table().
 std::unique_ptr<DescribedOptions<LinkOptions>> add_links_option(CLI::App& command, bool lattice = false);
 //! The links given to the options added by add_links_option(); none given: no links.
@@ -105,19 +80,9 @@ inline LinkOptions links_of(const DescribedOptions<LinkOptions>& links) {
 // with --resume and the checkpoints.
 Subcommand add_grow_options(CLI::App& app, const Model& model);
 
-//! DLA's options but fill, drift, rotate, index and the checkpoints (grow.cpp), on `app`, for
-//! `run`: what the breakdown model, which walks as DLA does, shares with it. `finish` turns
-//! the words into `run` and sets `quiet`; both must outlive it.
-struct WalkCommand {
-  std::function<void()> finish;
-};
-//! `described` receives the descriptions of the options added from the library's table.
-WalkCommand add_walk_options(CLI::App& app, DlaRunOptions& run, bool& quiet, std::vector<OptionDescription>& described);
 Subcommand add_breakdown_command(CLI::App& app, const Model& model);
 Subcommand add_colonize_command(CLI::App& app, const Model& model);
-Subcommand add_eden_command(CLI::App& app, const Model& model);
 Subcommand add_drop_command(CLI::App& app, const Model& model);
-Subcommand add_ballistic_command(CLI::App& app, const Model& model);
 
 //! Adds the options of `model`, registered in the library, to `app`; throws std::logic_error
 //! for a model with no command line here.

@@ -53,15 +53,32 @@ MESH_TYPES = ("stl", "obj", "ply", "off")
 STREAM_HEADER = struct.Struct("<4sIQQQ")  # "DLAs", count, first, done, total
 STREAM_FRAME_LIMIT = 1 << 24  # particles in one frame, what grew in 0.05 s: far above any model's
 
-# Options the page may not give: they name files and folders (the server picks those), or
-# belong to the server's own handling of the run.
-SERVER_OPTIONS = {"--output", "--stl", "--mesh", "--font", "--checkpoint", "--checkpoint-every", "--resume",
-                  "--stream", "--quiet", "--help", "--version"}
+# Options the page may not give besides those that name files (kind "file": the server picks
+# those): they belong to the server's own handling of the run.
+SERVER_OPTIONS = {"--checkpoint-every", "--quiet", "--help", "--version"}
 
 # Options whose value is a word or else a file's name: only the words, as no client path may
 # reach the file system.
 NAMED_ONLY = {"--mask": {"A", "B", "C", "D"}}
 MASK_SIZE = 17  # sites a side of a painted Eden mask: each within 8 of the dropped one
+
+
+def page_may_give(option):
+    """Whether the page may give `option` (an entry of `dla3d options`): no file, no option of
+    the server's."""
+    return option["kind"] != "file" and option["name"] not in SERVER_OPTIONS
+
+
+def main_mesh_option(options):
+    """The name of the option an uploaded mesh goes to, among a model's `options`: the first
+    mesh file of the group that holds most of them (grow's --stl, not a discharge's target
+    electrode); None if the model reads no mesh."""
+    meshes = [o for o in options if o["kind"] == "file" and o["type"] == "MESH_FILE"]
+    if not meshes:
+        return None
+    groups = [o["group"] for o in meshes]
+    busiest = max(groups, key=groups.count)
+    return next(o["name"] for o in meshes if o["group"] == busiest)
 
 
 def one_line(text):
@@ -271,8 +288,8 @@ class Studio:
             option = known.get(name)
             if option is None:
                 raise ValueError(f"{model} has no option '{name[:50]}'")
-            if name in SERVER_OPTIONS or "FILE" in option["type"]:
-                raise ValueError(f"{name} names a file: the studio chooses those")
+            if not page_may_give(option):
+                raise ValueError(f"{name} names a file, or is the studio's: the studio chooses those")
             if name in NAMED_ONLY and value not in NAMED_ONLY[name]:
                 raise ValueError(f"{name} is one of " + ", ".join(sorted(NAMED_ONLY[name])) + " here: no file names")
             if name in seen and not option["repeats"]:
@@ -288,9 +305,10 @@ class Studio:
             else:
                 words += [name, value]
         if mesh is not None:
-            if "--stl" not in known:
+            main = main_mesh_option(next(m["options"] for m in self.models["models"] if m["name"] == model))
+            if main is None:
                 raise ValueError(f"{model} grows in no mesh")
-            words += ["--stl", mesh]
+            words += [main, mesh]
         for name, file in files:
             if name not in known or name in seen:
                 raise ValueError(f"{name} is the studio's to write here, and {model} takes it from the page once")

@@ -264,6 +264,8 @@ function paintedColours() {
 let models = [], serverOptions = new Set();
 const model = () => models.find((m) => m.name === $('model').value);
 const has = (name) => model().options.some((o) => o.name === name);
+//! Whether the model reads a mesh: the server hands the uploaded one to its main mesh option.
+const readsMesh = () => model().options.some((o) => o.kind === 'file' && o.type === 'MESH_FILE');
 
 function buildPanel() {
   const m = model();
@@ -272,7 +274,7 @@ function buildPanel() {
   const groups = new Map();
   for (const option of m.options) {
     // --preset is the Preset menu above the groups.
-    if (serverOptions.has(option.name) || option.type.includes('FILE') || option.name === '--preset') continue;
+    if (serverOptions.has(option.name) || option.kind === 'file' || option.name === '--preset') continue;
     if (!groups.has(option.group)) groups.set(option.group, []);
     groups.get(option.group).push(option);
   }
@@ -436,7 +438,7 @@ async function grow() {
   const options = chosenOptions();
   const given = new Set(options.map(([name]) => name));
   meshUsed = null;
-  if (mesh && has('--stl')) {
+  if (mesh && readsMesh()) {
     meshUsed = 'mesh';
     if (painted) {
       const response = await fetch(api('/api/paint', { session }), { method: 'POST', body: paintedPly() });

@@ -810,7 +810,7 @@ TEST(Cli, ColonizeBadInputIsOneLineAndNoFiles) {
   const char* cases[] = {
       "--kill-distance 0.5", "--influence 1", "--noise 1", "--noise 11,1", "--tropism 0,0,20", "--attractors 0",
       "--attractors-in cone", "--attractor-radius 0", "--attractor-box 0,0,0,1,1,1", "--root-at 1,2",
-      "--roots 0", "--roots 2 --root-at 0,0,0", "-n 0", "--max-iterations 0", "--dimensions 2 --root-at 0,0,1",
+      "--roots -1", "--roots 2 --root-at 0,0,0", "-n 0", "--max-iterations 0", "--dimensions 2 --root-at 0,0,1",
       "--spacing 1e-100", "--particles 10", "--radius boundary", "--formats svg", "--attractors-in mesh",
       "--roots-in mesh", "--attractors-from a.csv --attractors-in box", "--roots-scale 2", "--roots 2 --roots-scale 0",
       // Files that cannot be read: exit 1.
@@ -889,7 +889,7 @@ TEST(Cli, DropAndBallisticBadInputIsOneLineAndNoFiles) {
       "drop --zone-box 0,0,0,1,1", "drop --zone-box 1,1,1,0,0,0 --zone box", "drop --zone-box 0,0,0,1,1,1",
       "drop --drop same:0", "drop --drop offset:3", "drop --drop rain", "drop --stickiness 0", "drop --side outside",
       "drop --seed-at 0,0,1 --dimensions 2", "drop --seed-at 0,0,0 --seed-at 0.5,0,0", "drop -n -1", "drop --spacing 0",
-      "drop --formats png", "drop --radius boundary", "ballistic --direction 0,0,0", "ballistic --direction 1,2",
+      "drop --formats png", "drop --radius boundary", "ballistic --direction 0,0,nan", "ballistic --direction 1,2",
       "ballistic --dimensions 2 --direction 0,0,1", "ballistic --zone ball", "ballistic --formats svg",
       // A mesh that cannot be read: exit 1.
       "drop --stl missing.stl",

@@ -15,10 +15,7 @@ namespace dla {
 const OptionTable<AggregateRunOptions>& aggregate_run_option_table() {
   static const OptionTable<AggregateRunOptions> table = [] {
     OptionTable<AggregateRunOptions> rows = nested(aggregate_option_table(), &AggregateRunOptions::aggregate);
-    rows.push_back(nested(OptionTable<AggregateOptions>{integer("rng_seed", &AggregateOptions::rng_seed,
-                                                                closed(0, 1e15), "", "Aggregate",
-                                                                "seed of the random generator: the same seed gives the "
-                                                                "same files")},
+    rows.push_back(nested(OptionTable<AggregateOptions>{rng_seed_option(&AggregateOptions::rng_seed, "Aggregate")},
                           &AggregateRunOptions::aggregate)[0]);
     return rows;
   }();

@@ -6,7 +6,33 @@
 
 namespace dla {
 
+const OptionTable<BallisticRunOptions>& ballistic_run_option_table() {
+  using O = BallisticOptions;
+  static const OptionTable<BallisticRunOptions> table = [] {
+    constexpr std::string_view group = "Ballistic";
+    OptionTable<BallisticRunOptions> t = nested(
+        OptionTable<O>{
+            with_short_name(integer("particles", &O::particles, closed(0, 2e9), "", group,
+                                    "particles to attach, seeds not counted"),
+                            "n"),
+            integer("dimensions", &O::dimensions, closed(2, 3), "", group, "3, or 2 for growth in the plane z = 0"),
+            real("spacing", &O::spacing, closed(kMinSpacing, kMaxSpacing), "", group,
+                 "distance between a particle and its parent; also the contact distance"),
+            point_list("seed_at", &O::seeds, group, "a seed at x,y,z (repeat for several); default: one at the origin"),
+            rng_seed_option(&O::rng_seed, group),
+            vector3("direction", &O::direction, group,
+                    "deposition: every particle flies along x,y,z; 0,0,0: each from a random direction"),
+        },
+        &BallisticRunOptions::ballistic);
+    const OptionTable<BallisticRunOptions> links = nested(links_option_table(), &BallisticRunOptions::links);
+    t.insert(t.end(), links.begin(), links.end());
+    return t;
+  }();
+  return table;
+}
+
 void validate(const BallisticRunOptions& b) {
+  require_in_ranges(ballistic_run_option_table(), b);
   validate(b.ballistic);
   validate(b.files, b.ballistic.dimensions, false);
   detail::validate_links(b.links);

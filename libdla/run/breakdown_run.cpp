@@ -13,6 +13,81 @@
 
 namespace dla {
 
+namespace {
+
+//! The one target: a second of another kind is refused, whichever came first.
+void aim(Target& target, TargetKind kind) {
+  if (target.kind != TargetKind::none && target.kind != kind)
+    throw InvalidInput("`target_" + std::string(to_string(target.kind)) + "` and `target_" +
+                       std::string(to_string(kind)) + "` are two targets: give one");
+  target.kind = kind;
+}
+
+}  // namespace
+
+const OptionTable<BreakdownRunOptions>& breakdown_run_option_table() {
+  using O = BreakdownRunOptions;
+  static const OptionTable<O> table = [] {
+    // The discharge first: its group heads --help, and its target is the mesh a front end
+    // offers a second object for before the seeds' (the Blender add-on).
+    OptionTable<O> t = nested(breakdown_option_table(), &O::breakdown);
+    using B = BreakdownOptions;
+    constexpr std::string_view group = "Discharge";
+    const OptionTable<O> targets = nested(
+        OptionTable<B>{
+            parsed<B>(
+                "target_point", OptionKind::vector, "X,Y,Z", group,
+                "the other electrode: a small ball at x,y,z; walkers leave it",
+                [](B& o, const std::string& words) {
+                  if (words.empty()) return;
+                  const std::vector<double> p = detail::numbers_in("target_point", words, 3);
+                  aim(o.target, TargetKind::point);
+                  o.target.point = Vec3(p[0], p[1], p[2]);
+                },
+                [](const B& o) {
+                  return o.target.kind == TargetKind::point ? detail::point_words(o.target.point) : std::string();
+                }),
+            excluding(parsed<B>(
+                "target_plane", OptionKind::text, "AXIS=VALUE", group,
+                "the other electrode: the plane AXIS = VALUE (a line in 2D), the ground; walkers leave it",
+                [](B& o, const std::string& words) {
+                  if (words.empty()) return;
+                  const std::size_t mark = words.find_first_of("=,");
+                  if (mark == std::string::npos || mark == 0)
+                    throw InvalidInput("`target_plane` '" + words + "' is not AXIS=VALUE (as y=-60)");
+                  Axis axis;
+                  try {
+                    axis = parse_word<Axis>(words.substr(0, mark));
+                  } catch (const InvalidInput&) {
+                    throw InvalidInput("`target_plane` '" + words + "': its axis is not one of " + accepted_words<Axis>());
+                  }
+                  const double at = detail::numbers_in("target_plane", std::string_view(words).substr(mark + 1), 1)[0];
+                  aim(o.target, TargetKind::plane);
+                  o.target.axis = axis;
+                  o.target.at = at;
+                },
+                [](const B& o) {
+                  return o.target.kind == TargetKind::plane
+                             ? std::string(to_string(o.target.axis)) + "=" + detail::exact_number(o.target.at)
+                             : std::string();
+                }),
+                {"target_point"}),
+        },
+        &O::breakdown);
+    t.insert(t.end(), targets.begin(), targets.end());
+    t.push_back(excluding(file("target_mesh", &O::target_mesh, kMeshFileForm, group,
+                               "the other electrode: a mesh's surface (STL, OBJ, PLY, OFF; repaired as --stl is), a "
+                               "lightning rod; 3D only"),
+                          {"target_point", "target_plane"}));
+    for (const DescribedOption<DlaRunOptions>& row : dla_run_option_table())
+      if (std::find(kNotForBreakdown.begin(), kNotForBreakdown.end(), row.about.name) == kNotForBreakdown.end())
+        t.push_back({row.about, [set = row.set](O& o, const OptionValue& v) { set(o, v); },
+                     [get = row.get](const O& o) { return get(o); }});
+    return t;
+  }();
+  return table;
+}
+
 void validate(const BreakdownRunOptions& o) {
   // Before DLA's checks, which would ask a fill for a mesh.
   if (o.growth.fill != 0.0) refuse_for("breakdown", "fill");

@@ -77,18 +77,112 @@ std::vector<Vec3> colonize_roots(const ColonizeRunOptions& options, const std::v
   return roots;
 }
 
+namespace {
+
+//! `influence`: 0 given or shown for the unbounded default (infinity, which JSON has not).
+DescribedOption<ColonizationOptions> influence_option(std::string_view group) {
+  using O = ColonizationOptions;
+  DescribedOption<O> row = real("influence", &O::influence, open_closed(0, 1e6), "spacings", group,
+                                "an attractor pulls its nearest node only this close, above the kill distance",
+                                SpecialValue{0.0, "any; with --venation closed, 4 times --kill-distance"});
+  row.set = [about = row.about](O& o, const OptionValue& v) {
+    const double value = detail::number_of(about.name, v);
+    require_in(about, value);
+    o.influence = value == 0.0 ? std::numeric_limits<double>::infinity() : value;
+  };
+  row.get = [](const O& o) { return OptionValue(std::isinf(o.influence) ? 0.0 : o.influence); };
+  return row;
+}
+
+}  // namespace
+
 const OptionTable<ColonizeRunOptions>& colonize_option_table() {
   using O = ColonizeRunOptions;
   static const OptionTable<O> table = [] {
-    OptionTable<O> rows = nested(colonization_option_table(), &O::colonization);
-    for (DescribedOption<O>& row : nested(attractor_option_table(), &O::attractors)) rows.push_back(std::move(row));
-    rows.push_back(word("roots_in", &O::roots_in, "Attractors and roots",
-                        "--roots K: on the sphere around the attractors, in the mesh (the vessel, else the collision "
-                        "mesh) or on its surface"));
-    rows.push_back(real("roots_scale", &O::roots_scale, closed(0.01, 100), "", "Attractors and roots",
-                        "--roots-in sphere: the roots' sphere is this times the attractors'"));
-    rows.push_back(word("collision", &O::collision, "Vessel and collision",
-                        "push (growth flows around the mesh) or stick (it crawls over its surface)"));
+    constexpr std::string_view colonizing = "Colonization", attracting = "Attractors and roots",
+                               colliding = "Vessel and collision";
+    using C = ColonizationOptions;
+    OptionTable<O> rows = nested(
+        OptionTable<C>{
+            with_short_name(integer("max_nodes", &C::max_nodes, closed(1, 2e9), "", colonizing,
+                                    "nodes at most, roots included"),
+                            "n"),
+            integer("max_iterations", &C::max_iterations, closed(1, 1e12), "", colonizing, "growth steps at most"),
+            real("spacing", &C::spacing, closed(kMinSpacing, kMaxSpacing), "", colonizing,
+                 "the step: distance between a node and its parent"),
+            influence_option(colonizing),
+            parsed<C>(
+                "noise", OptionKind::text, "A,S", colonizing,
+                "each new node moves by up to A spacings, in features S spacings wide; A in [0, 10], S > 0",
+                [](C& o, const std::string& words) {
+                  const std::vector<double> n = detail::numbers_in("noise", words, 2);
+                  o.noise_amplitude = n[0];
+                  o.noise_scale = n[1];
+                },
+                [](const C& o) {
+                  return detail::exact_number(o.noise_amplitude) + "," + detail::exact_number(o.noise_scale);
+                }),
+            vector3("tropism", &C::tropism, colonizing,
+                    "added to each step's unit direction (gravity, light), each in [-10, 10]"),
+            rng_seed_option(&C::rng_seed, colonizing),
+        },
+        &O::colonization);
+    const auto add = [&rows](const OptionTable<O>& more) { rows.insert(rows.end(), more.begin(), more.end()); };
+    add(nested(colonization_option_table(), &O::colonization));
+    using A = AttractorOptions;
+    // A count given with --attractors-from asks for a sample of the file's.
+    DescribedOption<O> count = nested(
+        OptionTable<A>{integer("attractors", &A::count, closed(1, static_cast<double>(kMaxAttractors)), "", attracting,
+                               "how many attractors; with --attractors-from, a seeded sample of that many")},
+        &O::attractors)[0];
+    count.set = [set = count.set](O& o, const OptionValue& v) {
+      set(o, v);
+      o.sample_attractors = true;
+    };
+    rows.push_back(count);
+    add(nested(attractor_option_table(), &O::attractors));
+    add(OptionTable<O>{
+        excluding(file("attractors_from", &O::attractors_from, "FILE", attracting,
+                       "read them from a file: CSV rows x,y,z (or a header naming x, y, z) or PLY points"),
+                  {"attractors_in"}),
+    });
+    add(nested(
+        OptionTable<A>{
+            vector3("attractor_center", &A::center, attracting, "the sphere's centre"),
+            parsed<A>(
+                "attractor_box", OptionKind::vector, "X0,Y0,Z0,X1,Y1,Z1", attracting, "the box",
+                [](A& o, const std::string& words) {
+                  const std::vector<double> b = detail::numbers_in("attractor_box", words, 6);
+                  o.box_min = Vec3(b[0], b[1], b[2]);
+                  o.box_max = Vec3(b[3], b[4], b[5]);
+                },
+                [](const A& o) { return detail::point_words(o.box_min) + "," + detail::point_words(o.box_max); }),
+            excluding(colour("attractor_paint", &A::paint, attracting,
+                             "with --attractors-in surface: only on the part of the --stl or --collide mesh painted "
+                             "this colour (a name or ff8000), within TOLERANCE per channel, [0, 1), default 0.3"),
+                      {"attractors_from"}),
+        },
+        &O::attractors));
+    add(OptionTable<O>{
+        point_list("root_at", &O::root_at, attracting,
+                   "a root at x,y,z (repeat for several); default: one at the attractors' lowest point (-y)"),
+        excluding(integer("roots", &O::root_count, closed(1, 1e6), "", attracting,
+                          "K roots at random, where --roots-in says",
+                          SpecialValue{0.0, "one at the attractors' lowest point, unless --root-at or --seeds"}),
+                  {"root_at"}),
+        word("roots_in", &O::roots_in, attracting,
+             "--roots K: on the sphere around the attractors, in the mesh (the vessel, else the collision mesh) or on "
+             "its surface"),
+        real("roots_scale", &O::roots_scale, closed(0.01, 100), "", attracting,
+             "--roots-in sphere: the roots' sphere is this times the attractors'"),
+        file("stl", &O::stl, kMeshFileForm, colliding,
+             "a vessel (STL, OFF, OBJ or PLY) that growth stays inside: a step that would cross its surface is refused"),
+        file("collide", &O::collide, kMeshFileForm, colliding,
+             "a collision mesh (STL, OFF, OBJ or PLY) that new nodes are pushed out of or stuck to"),
+        word("collision", &O::collision, colliding,
+             "push (growth flows around the mesh) or stick (it crawls over its surface)"),
+    });
+    add(nested(mesh_seeds_option_table(true), &O::seeds));
     return rows;
   }();
   return table;
@@ -114,7 +208,10 @@ void validate(const ColonizeRunOptions& c) {
   const AttractorOptions unset;
   if (c.attractors.region != AttractorRegion::box && (c.attractors.box_min != unset.box_min || c.attractors.box_max != unset.box_max))
     throw InvalidInput("`attractor_box` is for `attractors_in` box, not " + std::string(to_string(c.attractors.region)));
-  if (!c.attractors_from.empty() && on_mesh)
+  if (!c.attractors_from.empty() && c.attractors.paint)
+    throw InvalidInput("`attractor_paint` picks where `attractors_in` surface scatters them; `attractors_from` reads "
+                       "them: give one");
+  if (!c.attractors_from.empty() && c.attractors.region != AttractorOptions{}.region)
     throw InvalidInput("`attractors_from` reads the attractors; `attractors_in` scatters them: give one");
   if (!c.stl.empty() && o.dimensions != 3) throw InvalidInput("`stl` needs 3 dimensions");
   if (c.collision != CollisionMode::push && c.collide.empty())

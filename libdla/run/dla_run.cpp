@@ -40,7 +40,7 @@ const OptionTable<DlaRunOptions>& dla_run_option_table() {
         with_alias(file("stl", &O::stl, kMeshFileForm, "Mesh constraint",
                         "grow constrained by this mesh: STL, OFF, OBJ or PLY"),
                    "mesh"),
-        parsed<O>(
+        excluding(parsed<O>(
             "text", OptionKind::text, "TEXT", "Mesh constraint",
             "grow in this text, extruded a quarter of its size (lines split at \\n): a mesh, as --stl's; one seed "
             "in each letter",
@@ -52,6 +52,7 @@ const OptionTable<DlaRunOptions>& dla_run_option_table() {
                 o.text->text.replace(at, 2, "\n");
             },
             [](const O& o) { return o.text ? o.text->text : std::string(); }),
+            {"stl"}),
         parsed<O>(
             "font", OptionKind::file, "FILE", "Mesh constraint", "--text's font: a TrueType or OpenType file",
             [](O& o, const std::string& path) {

@@ -9,7 +9,60 @@
 
 namespace dla {
 
+const OptionTable<DropRunOptions>& drop_run_option_table() {
+  using O = DropRunOptions;
+  static const OptionTable<O> table = [] {
+    constexpr std::string_view group = "Random drops";
+    OptionTable<O> t = nested(
+        OptionTable<DropOptions>{
+            with_short_name(integer("particles", &DropOptions::particles, closed(0, 2e9), "", group,
+                                    "particles to attach, seeds not counted"),
+                            "n"),
+            integer("dimensions", &DropOptions::dimensions, closed(2, 3), "", group,
+                    "3, or 2 for growth in the plane z = 0"),
+            rng_seed_option(&DropOptions::rng_seed, group),
+        },
+        &O::drop);
+    const auto add = [&t](const OptionTable<O>& rows) { t.insert(t.end(), rows.begin(), rows.end()); };
+    add(OptionTable<O>{
+        override_of(real("spacing", &DropOptions::spacing, closed(kMinSpacing, kMaxSpacing), "", group,
+                         "distance between a particle and its parent; also the contact distance; with a mesh, "
+                         "default: its longest side / 100"),
+                    &O::spacing),
+        point_list("seed_at", &O::seed_at, group, "a seed at x,y,z (repeat for several); default: one at the origin"),
+    });
+    add(nested(links_option_table(), &O::links));
+    add(nested(drop_option_table(), &O::drop));
+    add(nested(
+        OptionTable<DropOptions>{
+            real("zone_radius", &DropOptions::zone_radius, open_closed(0, 1e15), "scene units", group,
+                 "ball: a fixed radius about the seeds' centre, 1 to 1e6 spacings",
+                 SpecialValue{0.0, "growing, --zone-margin beyond the farthest particle"}),
+            box_corners("zone_box", &DropOptions::zone_box, group,
+                        "box: a fixed box; default: the square or cube around the ball"),
+            parsed<DropOptions>(
+                "drop", OptionKind::text, "uniform|circle|same:N|offset:N,R", group,
+                "uniform; circle (on the zone's edge); same:N (N drops at one point); offset:N,R (N more, each "
+                "within R of the last)",
+                [](DropOptions& o, const std::string& words) { o.bias = parse_drop_bias(words); },
+                [](const DropOptions& o) { return to_string(o.bias); }),
+        },
+        &O::drop));
+    add(OptionTable<O>{with_alias(file("stl", &O::stl, kMeshFileForm, "Mesh constraint",
+                                       "grow constrained by this mesh: STL, OFF, OBJ or PLY"),
+                                  "mesh")});
+    for (const DescribedOption<O>& row : nested(constraint_option_table(), &O::constraint))
+      if (row.about.name != "shell") t.push_back(row);  // drops fall through space
+    add(nested(mesh_seeds_option_table(), &O::seeds));
+    add(OptionTable<O>{flag("scene_mesh", &O::scene_mesh, "Mesh constraint",
+                            "show the mesh, as glass, in the POV-Ray scene", "no_scene_mesh")});
+    return t;
+  }();
+  return table;
+}
+
 void validate(const DropRunOptions& d) {
+  require_in_ranges(drop_run_option_table(), d);
   const bool mesh = !d.stl.empty();
   detail::validate_mesh_seeds(d.seeds, mesh, "seed_at");
   if (d.seed_at && (d.seeds.count || d.seeds.on_surface()))

@@ -9,13 +9,76 @@
 
 namespace dla {
 
+namespace {
+//! Where `dimensions` has its default, for its description.
+struct Plane {
+  int dimensions = 2;
+};
+}  // namespace
+
+const OptionTable<EdenRunOptions>& eden_run_option_table() {
+  using O = EdenRunOptions;
+  static const OptionTable<O> table = [] {
+    constexpr std::string_view group = "Eden";
+    OptionTable<O> t{
+        with_short_name(nested(OptionTable<EdenOptions>{integer("sites", &EdenOptions::sites, closed(1, 2e9), "",
+                                                                group, "sites at most, the seed included")},
+                               &O::eden)[0],
+                        "n"),
+        override_of(integer("dimensions", &Plane::dimensions, closed(2, 3), "", group,
+                            "2, or 3 for a cubic lattice: the lattice's default there"),
+                    &O::dimensions),
+        override_of(word("lattice", &EdenOptions::lattice, group,
+                         "the lattice (the number: neighbours); default square4, with --dimensions 3 cubic6"),
+                    &O::lattice),
+    };
+    const auto add = [&t](const OptionTable<O>& rows) { t.insert(t.end(), rows.begin(), rows.end()); };
+    add(nested(eden_option_table(), &O::eden));
+    add(OptionTable<O>{
+        parsed<O>(
+            "mask", OptionKind::text, "A|B|C|D|FILE", group,
+            "drop: A, B, C or D (the paper's masks: 4, 8, 12 and 24 sites around), or a file drawing one",
+            [](O& o, const std::string& words) {
+              const bool preset = words.size() == 1 && words.find_first_of("ABCD") == 0;
+              if (preset) o.eden.mask = parse_word<EdenMask>(words);
+              o.mask_file = preset ? "" : words;  // read, and checked, when the run is prepared
+            },
+            [](const O& o) { return o.mask_file.empty() ? std::string(to_string(o.eden.mask)) : o.mask_file; }),
+    });
+    add(nested(
+        OptionTable<EdenOptions>{
+            integer("mask_threshold", &EdenOptions::mask_threshold, closed(1, 4912), "sites", group,
+                    "drop: occupied mask sites a site needs, 1 to the mask's size"),
+            real("spacing", &EdenOptions::spacing, closed(kMinSpacing, kMaxSpacing), "", group,
+                 "distance between neighbouring sites"),
+            rng_seed_option(&EdenOptions::rng_seed, group),
+        },
+        &O::eden));
+    add(nested(links_option_table(true), &O::links));
+    return t;
+  }();
+  return table;
+}
+
+EdenOptions eden_options(const EdenRunOptions& e) {
+  EdenOptions o = e.eden;
+  if (e.lattice) o.lattice = *e.lattice;
+  else if (e.dimensions) o.lattice = *e.dimensions == 3 ? Lattice::cubic6 : Lattice::square4;
+  return o;
+}
+
 void validate(const EdenRunOptions& e) {
-  validate(e.files, dimensions_of(e.eden.lattice), false);
+  require_in_ranges(eden_run_option_table(), e);
+  if (e.lattice && e.dimensions && dimensions_of(*e.lattice) != *e.dimensions)
+    throw InvalidInput("`lattice` " + std::string(to_string(*e.lattice)) + " is not a lattice in " +
+                       std::to_string(*e.dimensions) + "D");
+  const EdenOptions eden = eden_options(e);
+  validate(e.files, dimensions_of(eden.lattice), false);
   const EdenOptions unset;
-  const bool masked = !e.mask_file.empty() || !e.eden.mask_offsets.empty() || e.eden.mask != unset.mask ||
-                      e.eden.mask_threshold != unset.mask_threshold;
-  if (e.eden.mode == EdenMode::perimeter && masked) throw InvalidInput("`mask` and `mask_threshold` are for `mode` drop");
-  if (e.mask_file.empty()) validate(e.eden);
+  const bool masked = !e.mask_file.empty() || !eden.mask_offsets.empty() || eden.mask != unset.mask ||
+                      eden.mask_threshold != unset.mask_threshold;
+  if (eden.mode == EdenMode::perimeter && masked) throw InvalidInput("`mask` and `mask_threshold` are for `mode` drop");
+  if (e.mask_file.empty()) validate(eden);
   validate(e.links);
 }
 
@@ -26,7 +89,7 @@ namespace {
 //! An Eden cluster on a lattice, its mask a preset or drawn in a file.
 class EdenRun : public Run {
  public:
-  explicit EdenRun(const EdenRunOptions& o) : options_(o.eden), mask_file_(o.mask_file) {
+  explicit EdenRun(const EdenRunOptions& o) : options_(eden_options(o)), mask_file_(o.mask_file) {
     files = resolve(o.files, nullptr, false);
     links = o.links;
     unit = "sites";

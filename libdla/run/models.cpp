@@ -37,7 +37,7 @@ const OptionTable<MeshSeeds>& mesh_seeds_option_table(bool roots) {
   using O = MeshSeeds;
   const auto table = [](std::string_view group, std::string_view seeds, std::string_view surface) {
     return OptionTable<O>{
-        parsed<O>(
+        excluding(parsed<O>(
             "seeds", OptionKind::text, "K|all", group, seeds,
             [](O& o, const std::string& words) {
               o.all = words == "all";
@@ -49,15 +49,19 @@ const OptionTable<MeshSeeds>& mesh_seeds_option_table(bool roots) {
               if (o.count == 0) throw InvalidInput("`seeds` 0: there must be a seed");
             },
             [](const O& o) { return o.all ? std::string("all") : o.count ? std::to_string(o.count) : std::string(); }),
-        flag("seed_surface", &O::surface, group, surface),
-        colour("seed_paint", &O::paint, group,
-               "seeds on the part of the surface painted this colour (a name or ff8000), within TOLERANCE per "
-               "channel, [0, 1), default 0.3"),
-        repeated<O>(
-            "seed_mesh", OptionKind::file, kMeshFileForm, group,
-            "seeds where this mesh's surface meets the mesh (repeat for several): growth from where objects enter",
-            [](O& o, const std::vector<std::string>& paths) { o.meshes = paths; },
-            [](const O& o) { return o.meshes; }),
+            {"seed_at", "root_at"}),
+        excluding(flag("seed_surface", &O::surface, group, surface), {"seeds", "seed_at", "root_at"}),
+        excluding(colour("seed_paint", &O::paint, group,
+                         "seeds on the part of the surface painted this colour (a name or ff8000), within TOLERANCE "
+                         "per channel, [0, 1), default 0.3"),
+                  {"seed_at", "root_at"}),
+        excluding(repeated<O>(
+                      "seed_mesh", OptionKind::file, kMeshFileForm, group,
+                      "seeds where this mesh's surface meets the mesh (repeat for several): growth from where "
+                      "objects enter",
+                      [](O& o, const std::vector<std::string>& paths) { o.meshes = paths; },
+                      [](const O& o) { return o.meshes; }),
+                  {"seed_at", "root_at", "seed_paint", "seed_surface"}),
     };
   };
   static const OptionTable<O> seeds = table(

@@ -103,7 +103,7 @@ std::deque<Model>& registry() {
       make_model<EdenRunOptions>("eden",
                                  "grow an Eden cluster on a lattice: sites join at random on its edge, or where a "
                                  "mask counts enough of it (docs/eden.md)",
-                                 detail::prepare_eden),
+                                 detail::prepare_eden, eden_run_option_table()),
       make_model<DropRunOptions>("drop",
                                  "grow by random-drop ballistic aggregation: particles dropped at random join the "
                                  "closest particle (docs/drop.md)",
@@ -111,7 +111,7 @@ std::deque<Model>& registry() {
       make_model<BallisticRunOptions>("ballistic",
                                       "grow by ballistic aggregation: particles fly in straight lines and stick where "
                                       "they first touch (docs/ballistic.md)",
-                                      detail::prepare_ballistic),
+                                      detail::prepare_ballistic, ballistic_run_option_table()),
       make_model<BreakdownRunOptions>(
           "breakdown",
           "grow a discharge by the dielectric breakdown model: growth where the field to the power eta is strong, "

@@ -32,21 +32,6 @@ long long whole(const char* name, py::handle value) {
   }
 }
 
-//! A whole number for an int option: one beyond an int is refused here, not wrapped into range.
-int whole_int(const char* name, py::handle value) {
-  const long long n = whole(name, value);
-  if (n < std::numeric_limits<int>::min() || n > std::numeric_limits<int>::max())
-    throw InvalidInput(std::string("`") + name + "` " + std::to_string(n) +
-                       (n > 0 ? " is too large" : " is too small"));
-  return static_cast<int>(n);
-}
-
-std::size_t count(const char* name, py::handle value) {
-  const long long n = whole(name, value);
-  if (n < 0) throw InvalidInput(std::string("`") + name + "` " + std::to_string(n) + " is negative");
-  return static_cast<std::size_t>(n);
-}
-
 std::string text(const char* name, py::handle value) {
   if (!py::isinstance<py::str>(value)) throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is not a string");
   return value.cast<std::string>();
@@ -136,39 +121,6 @@ OptionValue described_value(const OptionDescription& about, py::handle value, Gi
   return {};
 }
 
-//! `count` numbers: a tuple, a list or an array of them.
-std::vector<double> numbers(const char* name, py::handle value, std::size_t count) {
-  const std::string wanted = std::to_string(count) + " numbers";
-  if (py::isinstance<py::str>(value) || !py::hasattr(value, "__len__") || py::len(value) != count)
-    throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is not " + wanted);
-  std::vector<double> values;
-  for (py::handle item : value) values.push_back(number(name, item));
-  return values;
-}
-
-Vec3 vec3(const char* name, py::handle value) {
-  const std::vector<double> v = numbers(name, value, 3);
-  return {v[0], v[1], v[2]};
-}
-
-//! One point (x, y, z), or a list or (N, 3) array of them.
-std::vector<Vec3> points(const char* name, py::handle value) {
-  // A sequence of numbers is one point, however many it holds.
-  const bool one = py::hasattr(value, "__len__") && !py::isinstance<py::str>(value) && py::len(value) > 0 &&
-                   !py::hasattr(value[py::int_(0)], "__len__");
-  std::vector<Vec3> all;
-  if (one) return {vec3(name, value)};
-  if (py::isinstance<py::str>(value) || !py::hasattr(value, "__iter__"))
-    throw InvalidInput(std::string("`") + name + "` " + shown(value) + " is not a point (x, y, z) or a list of them");
-  for (py::handle item : value) all.push_back(vec3(name, item));
-  return all;
-}
-
-Box box(const char* name, py::handle value) {
-  const std::vector<double> b = numbers(name, value, 6);
-  return Box{{b[0], b[1], b[2]}, {b[3], b[4], b[5]}};
-}
-
 using Vertices = py::array_t<double, py::array::c_style | py::array::forcecast>;
 using Faces = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
 
@@ -225,20 +177,6 @@ const Table<SolidOptions>& solid_keywords() {
 
 namespace {
 
-//! What only all the keywords together decide.
-void settle(RunOptions& run, const Given& given) {
-  if (auto* o = run.get_if<ColonizeRunOptions>()) {
-    o->sample_attractors = given.attractors && !o->attractors_from.empty();
-  } else if (auto* o = run.get_if<EdenRunOptions>()) {
-    const int dimensions = given.eden_dimensions.value_or(2);
-    if (dimensions != 2 && dimensions != 3) throw InvalidInput("`dimensions` " + std::to_string(dimensions) + " is not 2 or 3");
-    if (!given.lattice) o->eden.lattice = dimensions == 3 ? Lattice::cubic6 : Lattice::square4;
-    else if (given.eden_dimensions && dimensions_of(o->eden.lattice) != dimensions)
-      throw InvalidInput("`lattice` " + std::string(to_string(o->eden.lattice)) + " is not a lattice in " +
-                         std::to_string(dimensions) + "D");
-  }
-}
-
 //! The part of `run` that a table of keywords sets: its options of type `Options`, or all of it.
 template <class Options>
 Options& part(RunOptions& run) {
@@ -285,9 +223,7 @@ Keywords keywords_of(const Model& model) {
   static const std::pair<std::string_view, Keywords> tables[] = {
       {"grow", keywords_of<DlaRunOptions, dla_table>},
       {"colonize", keywords_of<ColonizeRunOptions, colonize_table>},
-      {"eden", keywords_of<EdenRunOptions, eden_table>},
       {"drop", keywords_of<DropRunOptions, drop_table>},
-      {"ballistic", keywords_of<BallisticRunOptions, ballistic_table>},
       {"breakdown", keywords_of<BreakdownRunOptions, breakdown_table>},
   };
   for (const auto& [name, set] : tables)
@@ -305,7 +241,6 @@ RunOptions run_options(const std::string& model, const py::dict& keywords, Given
     throw InvalidInput("'" + model + "' is not one of " + names);
   }
   RunOptions run = keywords_of(*found)(*found, keywords, given);
-  settle(run, given);
   validate(run);
   return run;
 }

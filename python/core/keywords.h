@@ -22,19 +22,10 @@ namespace py = pybind11;
 std::string shown(py::handle value);
 double number(const char* name, py::handle value);
 long long whole(const char* name, py::handle value);
-//! A whole number for an int option: one beyond an int is refused here, not wrapped into range.
-int whole_int(const char* name, py::handle value);
-std::size_t count(const char* name, py::handle value);
 std::string text(const char* name, py::handle value);
 //! A file's path: a string or a pathlib path.
 std::string path_text(const char* name, py::handle value);
 bool flag(const char* name, py::handle value);
-//! `count` numbers: a tuple, a list or an array of them.
-std::vector<double> numbers(const char* name, py::handle value, std::size_t count);
-Vec3 vec3(const char* name, py::handle value);
-//! One point (x, y, z), or a list or (N, 3) array of them.
-std::vector<Vec3> points(const char* name, py::handle value);
-Box box(const char* name, py::handle value);
 
 //! A word of a mode, parsed as the library parses it.
 template <class Mode>
@@ -43,12 +34,9 @@ Mode word(const char* name, py::handle value) {
 }
 
 //! What a run's keywords set besides its options: the meshes handed over as arrays, under the
-//! names that stand for them, and what only all the keywords together decide.
+//! names that stand for them.
 struct Given {
   std::map<std::string, TriangleMesh> meshes;
-  bool attractors = false;        //!< attractors=N, a sample of attractors_from's
-  std::optional<int> eden_dimensions;
-  bool lattice = false;
 };
 
 //! A file's path, or (V, F) arrays held under a name that stands for them.

@@ -7,9 +7,7 @@ namespace dla::python {
 
 Table<DlaRunOptions> dla_table();
 Table<ColonizeRunOptions> colonize_table();
-Table<EdenRunOptions> eden_table();
 Table<DropRunOptions> drop_table();
-Table<BallisticRunOptions> ballistic_table();
 Table<BreakdownRunOptions> breakdown_table();
 //! The keywords of a model described whole (run.h's Model::option_table), and the look's.
 Table<RunOptions> described_table(const Model& model);

@@ -108,6 +108,10 @@ struct OptionDescription {
   std::string_view form = {};
   bool repeats = false;         //!< points, file: the option is given once a value, and keeps all
   std::string_view alias = {};  //!< another name for it, as C++ and Python spell it: `mesh` for `stl`
+  //! Options it cannot go with (both place the seeds, both are the target): the CLI refuses
+  //! the pair at once, and an option given beside a preset drops the preset's it excludes; the
+  //! library's validate() refuses the pair for every front end.
+  std::vector<std::string_view> excludes = {};
 };
 
 //! A value of an option, as a front end hands it over.
@@ -183,7 +187,7 @@ template <class Options>
 DescribedOption<Options> real(std::string_view name, double Options::*member, Range range, std::string_view unit,
                               std::string_view group, std::string_view help,
                               std::optional<SpecialValue> special = std::nullopt) {
-  OptionDescription about{name, OptionKind::real, group, help, range, special, unit, {}, {}, {}, {}, false, {}};
+  OptionDescription about{name, OptionKind::real, group, help, range, special, unit, {}, {}, {}, {}, false, {}, {}};
   return {about,
           [about, member](Options& o, const OptionValue& v) {
             const double value = detail::number_of(about.name, v);
@@ -199,7 +203,7 @@ template <class Options, class Whole, std::enable_if_t<std::is_integral_v<Whole>
 DescribedOption<Options> integer(std::string_view name, Whole Options::*member, Range range, std::string_view unit,
                                  std::string_view group, std::string_view help,
                                  std::optional<SpecialValue> special = std::nullopt) {
-  OptionDescription about{name, OptionKind::integer, group, help, range, special, unit, {}, {}, {}, {}, false, {}};
+  OptionDescription about{name, OptionKind::integer, group, help, range, special, unit, {}, {}, {}, {}, false, {}, {}};
   return {about,
           [about, member](Options& o, const OptionValue& v) {
             const double value = detail::number_of(about.name, v);
@@ -215,7 +219,7 @@ DescribedOption<Options> integer(std::string_view name, Whole Options::*member, 
 template <class Options, class Mode, std::enable_if_t<has_words<Mode>, int> = 0>
 DescribedOption<Options> word(std::string_view name, Mode Options::*member, std::string_view group,
                               std::string_view help) {
-  OptionDescription about{name, OptionKind::word, group, help, {}, {}, {}, words_list<Mode>(), {}, {}, {}, false, {}};
+  OptionDescription about{name, OptionKind::word, group, help, {}, {}, {}, words_list<Mode>(), {}, {}, {}, false, {}, {}};
   return {about,
           [about, member](Options& o, const OptionValue& v) {
             const std::string* text = std::get_if<std::string>(&v);
@@ -234,7 +238,7 @@ DescribedOption<Options> word(std::string_view name, Mode Options::*member, std:
 template <class Options>
 DescribedOption<Options> flag(std::string_view name, bool Options::*member, std::string_view group,
                               std::string_view help, std::string_view negation = {}) {
-  OptionDescription about{name, OptionKind::flag, group, help, {}, {}, {}, {}, negation, {}, {}, false, {}};
+  OptionDescription about{name, OptionKind::flag, group, help, {}, {}, {}, {}, negation, {}, {}, false, {}, {}};
   return {about,
           [about, member](Options& o, const OptionValue& v) {
             const bool* on = std::get_if<bool>(&v);
@@ -260,7 +264,7 @@ template <class Options>
 DescribedOption<Options> parsed(std::string_view name, OptionKind kind, std::string_view form, std::string_view group,
                                 std::string_view help, std::function<void(Options&, const std::string&)> parse,
                                 std::function<std::string(const Options&)> print) {
-  OptionDescription about{name, kind, group, help, {}, {}, {}, {}, {}, {}, form, false, {}};
+  OptionDescription about{name, kind, group, help, {}, {}, {}, {}, {}, {}, form, false, {}, {}};
   return {about, [about, parse](Options& o, const OptionValue& v) { parse(o, detail::words_given(about.name, v)); },
           [print](const Options& o) { return OptionValue(print(o)); }};
 }
@@ -272,7 +276,7 @@ DescribedOption<Options> repeated(std::string_view name, OptionKind kind, std::s
                                   std::string_view group, std::string_view help,
                                   std::function<void(Options&, const std::vector<std::string>&)> parse,
                                   std::function<std::vector<std::string>(const Options&)> print) {
-  OptionDescription about{name, kind, group, help, {}, {}, {}, {}, {}, {}, form, true, {}};
+  OptionDescription about{name, kind, group, help, {}, {}, {}, {}, {}, {}, form, true, {}, {}};
   return {about,
           [about, parse](Options& o, const OptionValue& v) {
             if (const auto* list = std::get_if<std::vector<std::string>>(&v)) parse(o, *list);
@@ -295,6 +299,13 @@ DescribedOption<Options> file(std::string_view name, std::string Options::*membe
 template <class Options>
 DescribedOption<Options> with_short_name(DescribedOption<Options> row, std::string_view letter) {
   row.about.short_name = letter;
+  return row;
+}
+
+//! `row`, which cannot go with the options `names` (those described before it).
+template <class Options>
+DescribedOption<Options> excluding(DescribedOption<Options> row, std::vector<std::string_view> names) {
+  row.about.excludes = std::move(names);
   return row;
 }
 

@@ -211,6 +211,17 @@ constexpr bool spawns_from_mesh(SpawnMode mode) {
   return mode == SpawnMode::inside || mode == SpawnMode::radial || mode == SpawnMode::surface;
 }
 
+//! The largest rng seed: every seed up to it is a double's, so the studio's JavaScript and any
+//! JSON reader hold it exactly.
+inline constexpr double kMaxRngSeed = 1e15;
+
+//! `rng_seed`, as every model describes it.
+template <class Options>
+DescribedOption<Options> rng_seed_option(std::uint64_t Options::*member, std::string_view group) {
+  return integer("rng_seed", member, closed(0, kMaxRngSeed), "", group,
+                 "seed of the random generator: the same seed gives the same files");
+}
+
 //! DLA's walk options that are single values, described once (option_description.h): the CLI,
 //! Python, validate() and `dla3d options` read it.
 inline const OptionTable<DlaOptions>& dla_option_table() {
@@ -219,6 +230,7 @@ inline const OptionTable<DlaOptions>& dla_option_table() {
       real("stickiness", &O::stickiness, closed(kMinStickiness, 1.0), "", "Growth",
            "probability of sticking at a contact"),
       integer("dimensions", &O::dimensions, closed(2, 3), "", "Growth", "3, or 2 for growth in the plane z = 0"),
+      rng_seed_option(&O::rng_seed, "Growth"),
       real("min_step", &O::min_step, closed(kMinMinStep, 1.0), "spacings", "Growth",
            "step length next to the structure"),
       word("index", &O::index, "Growth", "nearest-particle look-up (docs/spatial-index.md)"),

@@ -102,7 +102,8 @@ struct ColonizeRunOptions {
   ColonizationOptions colonization;
   AttractorOptions attractors;
   //! The attractors from a file (CSV rows x,y,z or PLY points) instead of scattered; with
-  //! `sample_attractors`, a seeded sample of attractors.count of them.
+  //! `sample_attractors` (which giving `attractors` sets), a seeded sample of attractors.count
+  //! of them.
   std::string attractors_from;
   bool sample_attractors = false;
   std::vector<Vec3> root_at;      //!< roots here; none: see root_count
@@ -119,18 +120,24 @@ struct ColonizeRunOptions {
   OutputOptions files;
 };
 
-//! Space colonization's run options with a single value, described once
-//! (option_description.h): the model's and the attractors' tables, and where the roots go and
-//! how growth meets the collision mesh.
+//! Space colonization's run options, described whole but the refusals of `fill` and `shell`:
+//! the model's, the attractors', the roots' and the meshes'.
 const OptionTable<ColonizeRunOptions>& colonize_option_table();
 
 //! `dla3d eden`, `dla3d.eden()`: an Eden cluster on a lattice.
 struct EdenRunOptions {
-  EdenOptions eden;
+  EdenOptions eden;       //!< its `lattice` holds unless `lattice` or `dimensions` is set
+  std::optional<Lattice> lattice;  //!< in place of eden.lattice
+  //! 2 or 3: without `lattice`, its default there (square4, cubic6); with it, its dimensions
+  std::optional<int> dimensions;
   std::string mask_file;  //!< the mask drawn in a file; empty: a preset (eden.mask) or none
   LinkOptions links;      //!< links beside the tree: lattice, or between neighbours (links.h)
   OutputOptions files;
 };
+//! Its options, described whole.
+const OptionTable<EdenRunOptions>& eden_run_option_table();
+//! The Eden model's options with the run's lattice resolved.
+EdenOptions eden_options(const EdenRunOptions& options);
 
 //! `dla3d drop`, `dla3d.drop()`: random-drop ballistic aggregation, in or around a mesh.
 struct DropRunOptions {
@@ -144,6 +151,8 @@ struct DropRunOptions {
   LinkOptions links;              //!< links between neighbours beside the tree (links.h)
   OutputOptions files;
 };
+//! Its options, described whole but the refusals of `fill` and `shell`.
+const OptionTable<DropRunOptions>& drop_run_option_table();
 
 //! `dla3d ballistic`, `dla3d.ballistic()`: ballistic aggregation along straight lines.
 struct BallisticRunOptions {
@@ -151,6 +160,8 @@ struct BallisticRunOptions {
   LinkOptions links;  //!< links between neighbours beside the tree (links.h)
   OutputOptions files;
 };
+//! Its options, described whole.
+const OptionTable<BallisticRunOptions>& ballistic_run_option_table();
 
 //! The files of an aggregate as no one changed them: its monomers drawn at their own radii, as
 //! spheres in POV-Ray and in the solid, and the sphere list beside the usual files.
@@ -187,6 +198,9 @@ struct BreakdownRunOptions : DlaRunOptions {
 //! walkers neither drift nor turn, its walk needs the grid index, and it grows to its count or
 //! its strike, not to fill a mesh. The front ends leave them out (`fill` they refuse, with why).
 inline constexpr std::array<std::string_view, 5> kNotForBreakdown{"fill", "fill_distance", "drift", "rotate", "index"};
+//! Its options, described whole but the refusal of `fill`: DLA's but kNotForBreakdown, the
+//! discharge's (breakdown_option_table()) and the target electrode.
+const OptionTable<BreakdownRunOptions>& breakdown_run_option_table();
 
 //! The roots a colonize run grows from: its `root_at` points; or `root_count` on the sphere
 //! around the attractors, or in or on `mesh` (the vessel, else the collision mesh); or one at
