@@ -12,13 +12,11 @@ const OptionTable<BallisticRunOptions>& ballistic_run_option_table() {
     constexpr std::string_view group = "Ballistic";
     OptionTable<BallisticRunOptions> t = nested(
         OptionTable<O>{
-            with_short_name(integer("particles", &O::particles, closed(0, 2e9), "", group,
-                                    "particles to attach, seeds not counted"),
-                            "n"),
-            integer("dimensions", &O::dimensions, closed(2, 3), "", group, "3, or 2 for growth in the plane z = 0"),
-            real("spacing", &O::spacing, closed(kMinSpacing, kMaxSpacing), "", group,
-                 "distance between a particle and its parent; also the contact distance"),
-            point_list("seed_at", &O::seeds, group, "a seed at x,y,z (repeat for several); default: one at the origin"),
+            detail::particles_option(&O::particles, group),
+            detail::dimensions_option(&O::dimensions, group),
+            detail::spacing_option(&O::spacing, group,
+                                   "distance between a particle and its parent; also the contact distance"),
+            detail::seed_at_option(&O::seeds, group),
             rng_seed_option(&O::rng_seed, group),
             vector3("direction", &O::direction, group,
                     "deposition: every particle flies along x,y,z; 0,0,0: each from a random direction"),

@@ -108,8 +108,7 @@ const OptionTable<ColonizeRunOptions>& colonize_option_table() {
                                     "nodes at most, roots included"),
                             "n"),
             integer("max_iterations", &C::max_iterations, closed(1, 1e12), "", colonizing, "growth steps at most"),
-            real("spacing", &C::spacing, closed(kMinSpacing, kMaxSpacing), "", colonizing,
-                 "the step: distance between a node and its parent"),
+            detail::spacing_option(&C::spacing, colonizing, "the step: distance between a node and its parent"),
             influence_option(colonizing),
             parsed<C>(
                 "noise", OptionKind::text, "A,S", colonizing,

@@ -18,15 +18,14 @@ const OptionTable<DlaRunOptions>& dla_run_option_table() {
   using O = DlaRunOptions;
   static const OptionTable<O> table = [] {
     OptionTable<O> t{
-        with_short_name(override_of(integer("particles", &DlaOptions::particles, closed(0, 2e9), "", "Growth",
-                                            "particles to attach, seeds not counted; with a mesh, default 30000"),
-                                    &O::particles),
-                        "n"),
-        override_of(real("spacing", &DlaOptions::spacing, closed(kMinSpacing, kMaxSpacing), "", "Growth",
-                         "distance between a particle and its parent; also the contact distance; with a mesh, "
-                         "default: its longest side / 100"),
+        override_of(detail::particles_option(&DlaOptions::particles, "Growth",
+                                             "particles to attach, seeds not counted; with a mesh, default 30000"),
+                    &O::particles),
+        override_of(detail::spacing_option(&DlaOptions::spacing, "Growth",
+                                           "distance between a particle and its parent; also the contact distance; "
+                                           "with a mesh, default: its longest side / 100"),
                     &O::spacing),
-        point_list("seed_at", &O::seed_at, "Growth", "a seed at x,y,z (repeat for several); default: one at the origin"),
+        detail::seed_at_option(&O::seed_at, "Growth"),
     };
     const auto add = [&t](const auto& rows) { t.insert(t.end(), rows.begin(), rows.end()); };
     add(nested(links_option_table(), &O::links));

@@ -15,21 +15,18 @@ const OptionTable<DropRunOptions>& drop_run_option_table() {
     constexpr std::string_view group = "Random drops";
     OptionTable<O> t = nested(
         OptionTable<DropOptions>{
-            with_short_name(integer("particles", &DropOptions::particles, closed(0, 2e9), "", group,
-                                    "particles to attach, seeds not counted"),
-                            "n"),
-            integer("dimensions", &DropOptions::dimensions, closed(2, 3), "", group,
-                    "3, or 2 for growth in the plane z = 0"),
+            detail::particles_option(&DropOptions::particles, group),
+            detail::dimensions_option(&DropOptions::dimensions, group),
             rng_seed_option(&DropOptions::rng_seed, group),
         },
         &O::drop);
     const auto add = [&t](const OptionTable<O>& rows) { t.insert(t.end(), rows.begin(), rows.end()); };
     add(OptionTable<O>{
-        override_of(real("spacing", &DropOptions::spacing, closed(kMinSpacing, kMaxSpacing), "", group,
-                         "distance between a particle and its parent; also the contact distance; with a mesh, "
-                         "default: its longest side / 100"),
+        override_of(detail::spacing_option(&DropOptions::spacing, group,
+                                           "distance between a particle and its parent; also the contact distance; "
+                                           "with a mesh, default: its longest side / 100"),
                     &O::spacing),
-        point_list("seed_at", &O::seed_at, group, "a seed at x,y,z (repeat for several); default: one at the origin"),
+        detail::seed_at_option(&O::seed_at, group),
     });
     add(nested(links_option_table(), &O::links));
     add(nested(drop_option_table(), &O::drop));

@@ -25,8 +25,8 @@ const OptionTable<EdenRunOptions>& eden_run_option_table() {
                                                                 group, "sites at most, the seed included")},
                                &O::eden)[0],
                         "n"),
-        override_of(integer("dimensions", &Plane::dimensions, closed(2, 3), "", group,
-                            "2, or 3 for a cubic lattice: the lattice's default there"),
+        override_of(detail::dimensions_option(&Plane::dimensions, group,
+                                              "2, or 3 for a cubic lattice: the lattice's default there"),
                     &O::dimensions),
         override_of(word("lattice", &EdenOptions::lattice, group,
                          "the lattice (the number: neighbours); default square4, with --dimensions 3 cubic6"),
@@ -49,8 +49,7 @@ const OptionTable<EdenRunOptions>& eden_run_option_table() {
         OptionTable<EdenOptions>{
             integer("mask_threshold", &EdenOptions::mask_threshold, closed(1, 4912), "sites", group,
                     "drop: occupied mask sites a site needs, 1 to the mask's size"),
-            real("spacing", &EdenOptions::spacing, closed(kMinSpacing, kMaxSpacing), "", group,
-                 "distance between neighbouring sites"),
+            detail::spacing_option(&EdenOptions::spacing, group, "distance between neighbouring sites"),
             rng_seed_option(&EdenOptions::rng_seed, group),
         },
         &O::eden));

@@ -73,4 +73,32 @@ inline constexpr double kPairsPerSecond = 1e8;
 //! "up to 20 minutes": how long looking at `pairs` may take.
 std::string time_for_pairs(double pairs);
 
+// The rows several models' tables share, each written once.
+
+//! `particles` (`-n`), in [0, 2e9].
+template <class Options>
+DescribedOption<Options> particles_option(std::size_t Options::*member, std::string_view group,
+                                          std::string_view help = "particles to attach, seeds not counted") {
+  return with_short_name(integer("particles", member, closed(0, 2e9), "", group, help), "n");
+}
+
+//! `dimensions`: 3, or 2 for the plane z = 0.
+template <class Options>
+DescribedOption<Options> dimensions_option(int Options::*member, std::string_view group,
+                                           std::string_view help = "3, or 2 for growth in the plane z = 0") {
+  return integer("dimensions", member, closed(2, 3), "", group, help);
+}
+
+//! `spacing`, in [kMinSpacing, kMaxSpacing] scene units.
+template <class Options>
+DescribedOption<Options> spacing_option(double Options::*member, std::string_view group, std::string_view help) {
+  return real("spacing", member, closed(kMinSpacing, kMaxSpacing), "", group, help);
+}
+
+//! `seed_at`: the seeds' points, one a value.
+template <class Options, class Member>
+DescribedOption<Options> seed_at_option(Member Options::*member, std::string_view group) {
+  return point_list("seed_at", member, group, "a seed at x,y,z (repeat for several); default: one at the origin");
+}
+
 }  // namespace dla::detail
