@@ -1,5 +1,6 @@
-// dla3d's command line: the top level's options are DLA's (grow.cpp), each subcommand's are in
-// its own file; this file puts them together, parses, and hands the words to the one given.
+// dla3d's command line: the top level's options are the first model's (DLA's), each other
+// model's a subcommand's (model_command.cpp), and the commands that grow nothing are here; this
+// file puts them together, parses, and hands the words to the one given.
 
 #include "command_line.h"
 
@@ -17,49 +18,6 @@
 namespace dla::cli {
 
 Subcommand add_frames_command(CLI::App& app);
-
-namespace {
-
-//! The command of a model described whole (run.h's Model::option_table): its own options, then
-//! the files' and the look's.
-Subcommand add_described_command(CLI::App& app, const Model& model) {
-  struct Words {
-    RunOptions run;
-    bool quiet = false;
-    std::vector<OptionDescription> described;
-    std::unique_ptr<DescribedOptions<RunOptions>> own;
-    std::unique_ptr<OutputWords> files;  // bound to run's files, which stay put
-  };
-  auto w = std::make_shared<Words>();
-  w->run = model.options();
-  CLI::App* command = app.add_subcommand(std::string(model.name), std::string(model.summary));
-  command->get_formatter()->column_width(34);
-  w->own = std::make_unique<DescribedOptions<RunOptions>>(*command, model.option_table, w->run, &w->described);
-  w->files = std::make_unique<OutputWords>(*command, model.files(w->run), w->quiet);
-  return {command,
-          [w, &model](CommandLine& line, const std::vector<std::string>&) {
-            w->own->finish(w->run);
-            w->files->finish(model.files(w->run));
-            validate(w->run);
-            line.quiet = w->quiet;
-            line.run = w->run;
-          },
-          w->described};
-}
-
-}  // namespace
-
-Subcommand add_model_command(CLI::App& app, const Model& model) {
-  // The built-in models' command lines, until each is described whole.
-  using Add = Subcommand (*)(CLI::App&, const Model&);
-  static const std::pair<std::string_view, Add> commands[] = {
-      {"grow", add_grow_options}, {"colonize", add_colonize_command},
-      {"drop", add_drop_command}, {"breakdown", add_breakdown_command},
-  };
-  for (const auto& [name, add] : commands)
-    if (name == model.name) return add(app, model);
-  return add_described_command(app, model);
-}
 
 namespace {
 
@@ -161,10 +119,11 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
   app.set_version_flag("--version", std::string("dla3d ") + version);
   app.get_formatter()->column_width(34);
 
-  // Every model's options: DLA's are the top level's, the others' a subcommand each.
+  // Every model's options: the first's (DLA's) are the top level's, the others' a subcommand each.
   std::vector<Subcommand> models;
   for (const Model& model : dla::models()) {
-    models.push_back(add_model_command(app, model));
+    models.push_back(add_model_command(
+        models.empty() ? app : *app.add_subcommand(std::string(model.name), std::string(model.summary)), model));
     add_preset_option(*models.back().app, model);
   }
   CLI::App* convert = app.add_subcommand("convert", "read a mesh (STL, OFF, OBJ, PLY) and write it as binary STL, then stop");
@@ -222,7 +181,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
 
   // --stream is every growth model's; only the run reads it.
   const auto finish_model = [&](const Subcommand& model) {
-    model.finish(line, args);
+    model.finish(line);
     if (const CLI::Option* stream = model.app->get_option_no_throw("--stream"); stream && stream->count()) {
       line.stream_path = stream->as<std::string>();
       if (line.stream_path.empty()) throw InvalidInput("--stream '' names no file");
@@ -259,7 +218,7 @@ CommandLine parse_command_line(const std::vector<std::string>& args) {
     return line;
   }
   if (frames.app->parsed()) {
-    frames.finish(line, args);
+    frames.finish(line);
     return line;
   }
   for (const Subcommand& model : models)

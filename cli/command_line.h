@@ -35,7 +35,7 @@ struct StudioCommand {
 struct CommandLine {
   enum class Kind {
     run,      //!< a growth run of any model: `run` holds its options
-    resume,   //!< --resume FILE, with only -q and --threads beside it
+    resume,   //!< --resume FILE, with only -q, --stream and `resume_options` beside it
     convert,  //!< dla3d convert IN OUT.stl
     analyze,  //!< dla3d analyze PREFIX.csv, or sphere lists
     frames,   //!< dla3d frames PREFIX.csv: `frames` holds the options
@@ -52,7 +52,12 @@ struct CommandLine {
   std::string stream_path;           //!< --stream FILE (stream.h); empty: none
   double checkpoint_every = 60.0;    //!< seconds
   std::string resume_path;
-  std::optional<int> threads;        //!< with --resume: replaces the checkpoint's thread count
+  //! An option given beside --resume that changes only how fast the run goes (--threads): it
+  //! replaces the checkpoint's, given by any of `names`, with `words`.
+  struct ResumeOption {
+    std::vector<std::string> names, words;
+  };
+  std::vector<ResumeOption> resume_options;
   std::string convert_in, convert_out;
   std::vector<std::string> analyze_files;
   FramesCommand frames;

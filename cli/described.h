@@ -8,6 +8,9 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,6 +25,17 @@ inline std::string help_text(const OptionDescription& about) {
   if (!about.unit.empty()) help += " " + std::string(about.unit);
   if (about.special) help += "; " + detail::format_number(about.special->value) + ": " + std::string(about.special->means);
   return help;
+}
+
+//! The number an integer option's words give: refused as typed, naming the option, when they are
+//! not a number or not in its range (so before any cast to an integer).
+inline OptionValue typed_number(const OptionDescription& about, const std::string& words) {
+  char* end = nullptr;
+  const double value = std::strtod(words.c_str(), &end);
+  if (words.empty() || std::isspace(static_cast<unsigned char>(words[0])) || end != words.c_str() + words.size())
+    throw InvalidInput("`" + std::string(about.name) + "` '" + words + "' is not a whole number");
+  require_in(about, value, words);
+  return value;
 }
 
 //! The options of one table, added to a subcommand; finish() sets those given, in the table's
@@ -51,8 +65,9 @@ class DescribedOptions {
                               ->default_str(to_string(value));
           break;
         case OptionKind::integer:
-          given->whole = std::get<std::int64_t>(value);
-          given->option = app.add_option(name, given->whole, help)->capture_default_str();
+          // Read as typed, so that a number past what an integer holds is refused as typed.
+          given->text = to_string(value);
+          given->option = app.add_option(name, given->text, help)->capture_default_str()->type_name("INT");
           break;
         case OptionKind::real:
           given->number = std::get<double>(value);
@@ -89,13 +104,21 @@ class DescribedOptions {
     }
   }
 
+  //! The options added whose description `pick` accepts.
+  std::vector<const CLI::Option*> options_where(const std::function<bool(const OptionDescription&)>& pick) const {
+    std::vector<const CLI::Option*> picked;
+    for (const auto& given : given_)
+      if (pick(given->row->about)) picked.push_back(given->option);
+    return picked;
+  }
+
   //! Sets in `options` each option the command line gave, checked by its description.
   void finish(Options& options) const {
     for (const auto& given : given_) {
       if (!given->option->count()) continue;
       switch (given->row->about.kind) {
         case OptionKind::flag: given->row->set(options, given->on); break;
-        case OptionKind::integer: given->row->set(options, given->whole); break;
+        case OptionKind::integer: given->row->set(options, typed_number(given->row->about, given->text)); break;
         case OptionKind::real: given->row->set(options, given->number); break;
         case OptionKind::word: given->row->set(options, given->text); break;
         case OptionKind::vector:
@@ -115,7 +138,6 @@ class DescribedOptions {
     const DescribedOption<Options>* row = nullptr;
     CLI::Option* option = nullptr;
     bool on = false;
-    std::int64_t whole = 0;
     double number = 0.0;
     std::string text;
     std::vector<std::string> texts;

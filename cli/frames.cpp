@@ -37,17 +37,16 @@ Subcommand add_frames_command(CLI::App& app) {
   auto w = std::make_shared<Words>();
   auto frames = std::make_shared<FramesCommand>();
   CLI::App* command = app.add_subcommand(
-      "frames", "write the structure a CSV holds as it grew, K files of each format (PREFIX_0001.glb ...): "
-                "growth for tools without an age attribute (docs/animation.md)");
+      "frames", "write the structure a CSV holds as it grew, K files of each format (PREFIX_0001.glb ...; PREFIX "
+                "by default the CSV's, without .csv): growth for tools without an age attribute (docs/animation.md)");
   command->get_formatter()->column_width(34);
   command->add_option("csv", frames->csv_path, "a CSV that dla3d wrote")->required();
   command->add_option("--count", w->count, "frames, 1-100000: frame k of K holds the seeds and k/K of the "
                                            "other particles, in attach order")->capture_default_str();
   w->links = add_links_option(*command);
+  frames->files.output.clear();  // the CSV's prefix unless given
   w->files = std::make_unique<OutputWords>(*command, frames->files, w->quiet, "glb");
-  CLI::Option* output = command->get_option("--output");
-  output->description("prefix of the files written, each PREFIX_NNNN.EXT; default: the CSV's, without .csv");
-  return {command, [w, frames, output](CommandLine& line, const std::vector<std::string>&) {
+  return {command, [w, frames](CommandLine& line) {
             FramesCommand& fr = *frames;
             line.kind = CommandLine::Kind::frames;
             if (w->count < 1 || w->count > 100000)
@@ -55,14 +54,14 @@ Subcommand add_frames_command(CLI::App& app) {
             fr.count = static_cast<std::size_t>(w->count);
             fr.links = links_of(*w->links);
             if (fr.links.lattice)
-              throw InvalidInput("--links lattice: a CSV does not say its lattice; `dla3d eden --links lattice` makes them");
-            if (!output->count()) {
+              throw InvalidInput("`links` lattice: a CSV does not say its lattice; dla3d eden makes lattice links");
+            w->files->finish(fr.files);
+            if (fr.files.output.empty()) {
               fr.files.output = fr.csv_path;
               if (fr.files.output.size() > 4 && fr.files.output.compare(fr.files.output.size() - 4, 4, ".csv") == 0)
                 fr.files.output.resize(fr.files.output.size() - 4);
             }
-            w->files->finish(fr.files);
-            if (fr.files.formats.json) throw InvalidInput("--formats json: frames have no run to report; leave json out");
+            if (fr.files.formats.json) throw InvalidInput("`formats` json: frames have no run to report; leave json out");
             // svg and png need 2D growth, which only the CSV tells: frames() checks them.
             validate(fr.files, 2, false);
             line.quiet = w->quiet;
@@ -89,7 +88,7 @@ int frames(const FramesCommand& command, bool quiet, const StopSignals& stop) {
     }
   }
   if ((command.files.formats.svg || command.files.formats.png) && whole.dimensions != 2)
-    throw InvalidInput(command.csv_path + " holds 3D growth: --formats svg and png draw 2D growth");
+    throw InvalidInput(command.csv_path + " holds 3D growth: `formats` svg and png draw 2D growth");
   OutputOptions files = command.files;
   files.output = frame_prefix(command.files.output, 1, command.count);
   check_writable(file_names(files).front());

@@ -54,17 +54,23 @@ int run(const std::vector<std::string>& args) {
       return dla::cli::run(line, line.words, {}, stop_signals);
     case Kind::resume: break;
   }
-  // The checkpoint's own command, with this thread count and -q: the count changes how fast it
-  // goes on, never what it grows.
+  // The checkpoint's own command, with -q and the options given that change how fast it goes
+  // on, never what it grows (the thread count).
   dla::require_regular_file(line.resume_path, "resume");
   const dla::Checkpoint checkpoint = dla::read_checkpoint(line.resume_path);
   std::vector<std::string> command;
   for (std::size_t i = 0; i < checkpoint.command.size(); ++i) {
     const std::string& word = checkpoint.command[i];
-    if (line.threads && word == "--threads") ++i;
-    else if (!(line.threads && word.rfind("--threads=", 0) == 0)) command.push_back(word);
+    bool replaced = false, value_follows = false;
+    for (const auto& option : line.resume_options)
+      for (const std::string& name : option.names) {
+        value_follows = value_follows || word == name;
+        replaced = replaced || word == name || word.rfind(name + "=", 0) == 0;
+      }
+    if (!replaced) command.push_back(word);
+    if (value_follows) ++i;
   }
-  if (line.threads) command.insert(command.end(), {"--threads", std::to_string(*line.threads)});
+  for (const auto& option : line.resume_options) command.insert(command.end(), option.words.begin(), option.words.end());
   if (line.quiet) command.push_back("-q");
   dla::cli::CommandLine resumed = dla::cli::parse_command_line(command);
   if (resumed.kind != Kind::run || !resumed.run.get_if<dla::DlaRunOptions>())

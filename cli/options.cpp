@@ -25,16 +25,6 @@ void OutputWords::finish(OutputOptions& f) const {
   options_->finish(f);
 }
 
-void add_refused_mesh_controls(CLI::App& app, const char* group, std::string_view model) {
-  for (const char* option : {"fill", "shell"}) {
-    app.add_option_function<std::string>(
-           std::string("--") + option, [model, option](const std::string&) { refuse_for(model, option); },
-           std::string(option) == "fill" ? "DLA's: grow until a mesh is full (not for " + std::string(model) + ")"
-                                         : "DLA's: keep growth near the surface (not for " + std::string(model) + ")")
-        ->type_name(std::string(option) == "fill" ? "F" : "T")->group(group);
-  }
-}
-
 std::unique_ptr<DescribedOptions<LinkOptions>> add_links_option(CLI::App& command, bool lattice) {
   return std::make_unique<DescribedOptions<LinkOptions>>(command, links_option_table(lattice), LinkOptions{}, nullptr);
 }

@@ -19,10 +19,10 @@
 namespace dla::cli {
 
 //! A subcommand's options added to the parser, and what turns their words into the command
-//! line (`args` are its words) once it has parsed and the subcommand was given.
+//! line once it has parsed and the subcommand was given.
 struct Subcommand {
   CLI::App* app;
-  std::function<void(CommandLine& line, const std::vector<std::string>& args)> finish;
+  std::function<void(CommandLine& line)> finish;
   //! The library's descriptions of the options added from them (described.h), which
   //! `dla3d options` gives with their kind, choices, range and unit.
   std::vector<OptionDescription> described = {};
@@ -63,9 +63,6 @@ class OutputWords {
   std::unique_ptr<DescribedOptions<OutputOptions>> files_, options_;
 };
 
-//! --fill and --shell for the models they mean nothing to: each refused with why.
-void add_refused_mesh_controls(CLI::App& app, const char* group, std::string_view model);
-
 //! --links (with `lattice`, Eden's word lattice too), from links_option_table().
 std::unique_ptr<DescribedOptions<LinkOptions>> add_links_option(CLI::App& command, bool lattice = false);
 //! The links given to the options added by add_links_option(); none given: no links.
@@ -75,17 +72,9 @@ inline LinkOptions links_of(const DescribedOptions<LinkOptions>& links) {
   return o;
 }
 
-// Each model's file adds its options, named and described as the library's registry says
-// (dla/run/run.h), and says how to finish them. DLA's are the top level's (`dla3d [options]`),
-// with --resume and the checkpoints.
-Subcommand add_grow_options(CLI::App& app, const Model& model);
-
-Subcommand add_breakdown_command(CLI::App& app, const Model& model);
-Subcommand add_colonize_command(CLI::App& app, const Model& model);
-Subcommand add_drop_command(CLI::App& app, const Model& model);
-
-//! Adds the options of `model`, registered in the library, to `app`; throws std::logic_error
-//! for a model with no command line here.
-Subcommand add_model_command(CLI::App& app, const Model& model);
+//! Adds the options of `model`, as the library's registry describes them (dla/run/run.h), to
+//! `command`: the top level for DLA (`dla3d [options]`), else the model's subcommand. In
+//! model_command.cpp.
+Subcommand add_model_command(CLI::App& command, const Model& model);
 
 }  // namespace dla::cli

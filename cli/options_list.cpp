@@ -68,6 +68,17 @@ std::string description_json(const CLI::Option& option, const std::vector<Option
       text += ", \"special\": {\"value\": " + json::number(about.special->value) +
               ", \"means\": " + json::string(about.special->means) + "}";
     if (!about.unit.empty()) text += ", \"unit\": " + json::string(about.unit);
+    // Both ways, of the command's own: the description writes a pair once, on the later option.
+    std::vector<std::string> excludes;
+    for (const OptionDescription& other : described)
+      if (std::find(about.excludes.begin(), about.excludes.end(), other.name) != about.excludes.end() ||
+          std::find(other.excludes.begin(), other.excludes.end(), about.name) != other.excludes.end())
+        excludes.push_back(cli_flag(other.name).substr(2));
+    if (!excludes.empty()) text += ", \"excludes\": " + names_json(excludes, "--");
+    if (about.paints) text += ", \"paints\": " + json::string(to_string(*about.paints));
+    if (about.needs)
+      text += ", \"needs\": [" + json::string(cli_flag(about.needs->name)) + ", " + json::string(about.needs->value) + "]";
+    if (about.speed_only) text += ", \"speed_only\": true";
     return text;
   }
   const std::string type = option.get_type_name();

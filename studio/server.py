@@ -57,9 +57,6 @@ STREAM_FRAME_LIMIT = 1 << 24  # particles in one frame, what grew in 0.05 s: far
 # those): they belong to the server's own handling of the run.
 SERVER_OPTIONS = {"--checkpoint-every", "--quiet", "--help", "--version"}
 
-# Options whose value is a word or else a file's name: only the words, as no client path may
-# reach the file system.
-NAMED_ONLY = {"--mask": {"A", "B", "C", "D"}}
 MASK_SIZE = 17  # sites a side of a painted Eden mask: each within 8 of the dropped one
 
 
@@ -67,6 +64,24 @@ def page_may_give(option):
     """Whether the page may give `option` (an entry of `dla3d options`): no file, no option of
     the server's."""
     return option["kind"] != "file" and option["name"] not in SERVER_OPTIONS
+
+
+def names_file(option):
+    """Whether `option`'s value may be a file's name: kind file, or text whose form has a FILE
+    (Eden's --mask A|B|C|D|FILE). The page may give such text only its choices, as no client
+    path may reach the file system."""
+    return option["kind"] == "file" or (option["kind"] == "text" and "FILE" in option["type"].split("|"))
+
+
+def painted_option(options, role):
+    """The option among `options` that a painting gives, by its `paints` role (seeds,
+    attractors, bare, mask); None if none."""
+    return next((o for o in options if o.get("paints") == role), None)
+
+
+def prefix_option(options):
+    """The option that names the files' prefix: the file option of form PREFIX (-o)."""
+    return next(o["name"] for o in options if o["kind"] == "file" and o["type"] == "PREFIX")
 
 
 def main_mesh_option(options):
@@ -290,8 +305,8 @@ class Studio:
                 raise ValueError(f"{model} has no option '{name[:50]}'")
             if not page_may_give(option):
                 raise ValueError(f"{name} names a file, or is the studio's: the studio chooses those")
-            if name in NAMED_ONLY and value not in NAMED_ONLY[name]:
-                raise ValueError(f"{name} is one of " + ", ".join(sorted(NAMED_ONLY[name])) + " here: no file names")
+            if names_file(option) and value not in option.get("choices", []):
+                raise ValueError(f"{name} is one of " + ", ".join(option.get("choices", [])) + " here: no file names")
             if name in seen and not option["repeats"]:
                 raise ValueError(f"{name} is given twice")
             seen.add(name)
@@ -304,8 +319,9 @@ class Studio:
                     words.append(name)
             else:
                 words += [name, value]
+        listed = next(m["options"] for m in self.models["models"] if m["name"] == model)
         if mesh is not None:
-            main = main_mesh_option(next(m["options"] for m in self.models["models"] if m["name"] == model))
+            main = main_mesh_option(listed)
             if main is None:
                 raise ValueError(f"{model} grows in no mesh")
             words += [main, mesh]
@@ -313,7 +329,7 @@ class Studio:
             if name not in known or name in seen:
                 raise ValueError(f"{name} is the studio's to write here, and {model} takes it from the page once")
             words += [name, file]
-        return words + ["-o", "run"]
+        return words + [prefix_option(listed), "run"]
 
 
 def keep_alive(transport):
@@ -379,12 +395,15 @@ class Session:
             try:
                 files = []
                 if asked.get("mask") is not None:
-                    if asked.get("model") != "eden":
-                        raise ValueError("a painted mask is Eden's --mask, in place of A, B, C or D")
+                    model = asked.get("model")
+                    listed = self.studio.options.get(model, {}) if isinstance(model, str) else {}
+                    option = painted_option(listed.values(), "mask")
+                    if option is None:
+                        raise ValueError(f"{str(asked.get('model'))[:50]} reads no painted mask")
                     mask = mask_text(asked["mask"])
                     with open(os.path.join(self.folder, "mask.txt"), "w") as f:
                         f.write(mask)
-                    files.append(["--mask", "mask.txt"])
+                    files.append([option["name"], "mask.txt"])
                 words = self.studio.command_of(asked.get("model"), asked.get("options", []), mesh, files)
             except ValueError as e:
                 return await self.send({"type": "error", "line": str(e)})
@@ -392,7 +411,9 @@ class Session:
             for name in os.listdir(self.folder):
                 if name.startswith("run"):
                     os.remove(os.path.join(self.folder, name))
-            checkpoint = ["--checkpoint", "run.ck"] if words[0] != "breakdown" and asked.get("model") == "grow" else []
+            # A model that goes on from a checkpoint (DLA) writes one as it grows, for Go on.
+            resumes = "--checkpoint" in self.studio.options[asked["model"]]
+            checkpoint = ["--checkpoint", "run.ck"] if resumes else []
             self.start(words, words + checkpoint, resumed=False)
         elif kind == "goon":
             if self.run is not None:

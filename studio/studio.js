@@ -263,14 +263,22 @@ function paintedColours() {
 // -- the option panel, from `dla3d options` ----------------------------------------------------
 let models = [], serverOptions = new Set();
 const model = () => models.find((m) => m.name === $('model').value);
-const has = (name) => model().options.some((o) => o.name === name);
+//! The model's option that a painting gives (its `paints`: seeds, attractors, bare, mask), if any.
+const optionPainted = (role) => model().options.find((o) => o.paints === role);
 //! Whether the model reads a mesh: the server hands the uploaded one to its main mesh option.
 const readsMesh = () => model().options.some((o) => o.kind === 'file' && o.type === 'MESH_FILE');
 
 function buildPanel() {
   const m = model();
   $('summary').textContent = m.summary;
-  $('mask-painter').hidden = !has('--mask');
+  const mask = optionPainted('mask');
+  $('mask-painter').hidden = !mask;
+  $('mask-option').textContent = mask ? `(${mask.name} mask.txt)` : '';
+  // Each brush names the option its paint goes to, as this model spells it.
+  for (const brush of $('brush').querySelectorAll('option[data-label]')) {
+    const option = optionPainted(brush.value);
+    brush.textContent = `${brush.dataset.label}: ${option ? option.name : 'not read by ' + m.name})`;
+  }
   const groups = new Map();
   for (const option of m.options) {
     // --preset is the Preset menu above the groups.
@@ -444,17 +452,20 @@ async function grow() {
       const response = await fetch(api('/api/paint', { session }), { method: 'POST', body: paintedPly() });
       if (!response.ok) return void ($('error').textContent = (await response.text()).trim());
       meshUsed = 'painted';
-      const colours = paintedColours();
-      const placed = ['--seeds', '--seed-at', '--seed-surface', '--seed-paint', '--seed-mesh'].some((n) => given.has(n));
-      if (colours.has('seeds') && has('--seed-paint') && !placed) options.push(['--seed-paint', 'ff0000']);
-      // Colonization's attractors on the painted part of the surface: the tree grows to it.
-      if (colours.has('attractors') && has('--attractor-paint') && !given.has('--attractor-paint') &&
-          !given.has('--attractors-in')) options.push(['--attractors-in', 'surface'], ['--attractor-paint', '00ff00']);
-      if (colours.has('bare') && has('--tips-exclude-paint') && !given.has('--tips-exclude-paint'))
-        options.push(['--tips-exclude-paint', '0000ff']);
+      // Each colour painted to the option that reads it, unless the page gave that option, one
+      // it cannot go with, or another value of the one it needs (colonize's attractors need
+      // --attractors-in surface).
+      for (const role of paintedColours()) {
+        const option = optionPainted(role);
+        if (!option || given.has(option.name) || (option.excludes || []).some((n) => given.has(n))) continue;
+        const [needed, value] = option.needs || [];
+        if (needed && given.has(needed) && !options.some(([n, v]) => n === needed && v === value)) continue;
+        if (needed && !given.has(needed)) options.push([needed, value]);
+        options.push([option.name, PAINT[role].map((c) => c.toString(16).padStart(2, '0')).join('')]);
+      }
     }
   }
-  maskUsed = has('--mask') && $('mask-use').checked;
+  maskUsed = Boolean(optionPainted('mask')) && $('mask-use').checked;
   setRunning(true);
   socket.send(JSON.stringify({ type: 'grow', model: model().name, options, mesh: meshUsed,
                                ...(maskUsed ? { mask: maskRows() } : {}) }));

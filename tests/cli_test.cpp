@@ -190,7 +190,10 @@ TEST(Cli, CtrlCKeepsTheWorkAndResumeEndsAsAnUninterruptedRun) {
   EXPECT_TRUE(read_file(dir / "part.csv") == read_file(dir / "whole.csv")) << "resumed run differs";
   EXPECT_EQ(dla3d(dir, "--resume part.ck").exit_code, 1) << "the checkpoint is gone";
   EXPECT_EQ(dla3d(dir, "--resume whole.csv").exit_code, 2);
-  EXPECT_EQ(dla3d(dir, "--resume whole.csv -n 5").exit_code, 2);
+  const CliRun with_count = dla3d(dir, "--resume whole.csv -n 5");
+  EXPECT_EQ(with_count.exit_code, 2);
+  EXPECT_NE(with_count.err.find("--resume takes no other options but -q, --threads, --stream"), std::string::npos)
+      << with_count.err;
 }
 
 TEST(Cli, CtrlCWhileTheSolidBuildsKeepsTheOtherFilesAndLeavesNoSolidFile) {
@@ -349,9 +352,12 @@ TEST(Cli, ExtremeNumbersAreOneLineErrors) {
       {"--tip-radius 1e300", "--tip-radius 1e+300 is not in [0.001, 1000]"},
       {"--base-radius 1e-300", "--base-radius 1e-300 is not in [0.001, 1000]"},
       {"--checkpoint-every nan --checkpoint c.ck", "--checkpoint-every nan is not a number of seconds"},
-      {"-n 99999999999999999999", "is not in [0, 2e+09]"},
+      // Past what an integer holds: refused as typed, not as a clamped number.
+      {"-n 99999999999999999999", "--particles 99999999999999999999 is not in [0, 2e+09]"},
       {"-n 1999999999", "needs about 96 GB of memory"},
-      {"--threads 99999999999", "--threads"},
+      {"--threads 99999999999", "--threads 99999999999 is not in [1, 256]"},
+      {"--threads 2.5", "--threads 2.5 is not a whole number"},
+      {"--threads 2x", "--threads '2x' is not a whole number"},
       {"--seeds 0 --stl x.stl", "--seeds 0: there must be a seed"},
   };
   for (const auto& c : cases) {
@@ -1263,6 +1269,25 @@ TEST(Cli, OptionsDescribesEveryModelsHelp) {
         "\"kind\": \"real\", \"min\": 0, \"max\": 1000, \"min_open\": true, \"max_open\": false}",
         "\"name\": \"--stop-at-strike\", \"short\": [], \"negation\": [\"--no-stop-at-strike\"], \"flag\": true"})
     EXPECT_NE(json.find(entry), std::string::npos) << entry;
+  // What a front end that paints reads: the roles, the exclusions both ways, what an option needs.
+  const auto entry_of = [&json](const std::string& model, const std::string& option) {
+    const std::size_t at = json.find("{\"name\": \"" + model + "\""), next = json.find("\n {\"name\": ", at + 1);
+    const std::size_t from = json.find("{\"name\": \"" + option + "\"", at);
+    return from >= next ? std::string() : json.substr(from, json.find('\n', from) - from);
+  };
+  for (const auto& [model, option, says] : std::vector<std::array<std::string, 3>>{
+           {"grow", "--seed-paint", "\"paints\": \"seeds\""},
+           {"grow", "--seed-paint", "\"excludes\": [\"--seed-at\", \"--seed-mesh\"]"},
+           {"grow", "--seed-at", "\"--seed-paint\""},
+           {"grow", "--tips-exclude-paint", "\"paints\": \"bare\""},
+           {"grow", "--threads", "\"speed_only\": true"},
+           {"colonize", "--attractor-paint", "\"paints\": \"attractors\""},
+           {"colonize", "--attractor-paint", "\"needs\": [\"--attractors-in\", \"surface\"]"},
+           {"eden", "--mask", "\"choices\": [\"A\", \"B\", \"C\", \"D\"]"},
+           {"eden", "--mask", "\"paints\": \"mask\""},
+           {"eden", "--links", "\"group\": \"Eden\""}})
+    EXPECT_NE(entry_of(model, option).find(says), std::string::npos) << model << " " << option << ": " << says;
+  EXPECT_EQ(entry_of("colonize", "--fill"), "") << "a refused option is not offered";
 }
 
 TEST(Cli, EveryPresetGrowsAndOptionsBesideItOverrideIt) {

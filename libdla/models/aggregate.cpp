@@ -70,9 +70,9 @@ const OptionTable<AggregateOptions>& aggregate_option_table() {
            "with a radius that grows as N^(1/2), and the speed of a gas's clusters of equal energy)"),
       real("df", &O::df, closed(1, 3), "", "Tuned", "tuned: the fractal dimension D_f of N = kf (Rg/a)^df"),
       real("kf", &O::kf, open_closed(0, 10), "", "Tuned", "tuned: the prefactor k_f of N = kf (Rg/a)^df"),
-      integer("threads", &O::threads, closed(1, 256), "", "Aggregate",
-              "the box: threads that test the moves of clusters of 512 monomers or more; the aggregate does not "
-              "depend on it"),
+      speed_only(integer("threads", &O::threads, closed(1, 256), "", "Aggregate",
+                         "the box: threads that test the moves of clusters of 512 monomers or more; the aggregate "
+                         "does not depend on it")),
   };
   return table;
 }

@@ -94,7 +94,7 @@ class AggregateRun : public Run {
   ModelRecord record() const override {
     ModelRecord out{model, options_.rng_seed};
     out.options = [this](RecordWriter& w) {
-      write_described(w, aggregate_option_table(), options_, {"threads"});
+      write_described(w, aggregate_option_table(), options_);
     };
     out.timings = [this](RecordWriter& w) { w.integer("threads", options_.threads); };
     out.statistics = [this](RecordWriter& w) {

@@ -22,7 +22,8 @@ const OptionTable<BallisticRunOptions>& ballistic_run_option_table() {
                     "deposition: every particle flies along x,y,z; 0,0,0: each from a random direction"),
         },
         &BallisticRunOptions::ballistic);
-    const OptionTable<BallisticRunOptions> links = nested(links_option_table(), &BallisticRunOptions::links);
+    const OptionTable<BallisticRunOptions> links =
+        in_group(nested(links_option_table(), &BallisticRunOptions::links), group);
     t.insert(t.end(), links.begin(), links.end());
     return t;
   }();

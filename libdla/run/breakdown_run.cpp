@@ -8,12 +8,18 @@
 #include "dla/mesh/mesh_repair.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 
 namespace dla {
 
 namespace {
+
+//! The options of a DLA run that a breakdown run does not take: its walkers neither drift nor
+//! turn, its walk needs the grid index, and it grows to its count or its strike, not to fill a
+//! mesh (`fill` the front ends refuse, with why: Model::refuses).
+constexpr std::array<std::string_view, 5> kNotForBreakdown{"fill", "fill_distance", "drift", "rotate", "index"};
 
 //! The one target: a second of another kind is refused, whichever came first.
 void aim(Target& target, TargetKind kind) {

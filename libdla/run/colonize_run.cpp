@@ -156,9 +156,12 @@ const OptionTable<ColonizeRunOptions>& colonize_option_table() {
                   o.box_max = Vec3(b[3], b[4], b[5]);
                 },
                 [](const A& o) { return detail::point_words(o.box_min) + "," + detail::point_words(o.box_max); }),
-            excluding(colour("attractor_paint", &A::paint, attracting,
-                             "with --attractors-in surface: only on the part of the --stl or --collide mesh painted "
-                             "this colour (a name or ff8000), within TOLERANCE per channel, [0, 1), default 0.3"),
+            excluding(needing(with_paint_role(colour("attractor_paint", &A::paint, attracting,
+                                                     "with --attractors-in surface: only on the part of the --stl or "
+                                                     "--collide mesh painted this colour (a name or ff8000), within "
+                                                     "TOLERANCE per channel, [0, 1), default 0.3"),
+                                              PaintRole::attractors),
+                              "attractors_in", "surface"),
                       {"attractors_from"}),
         },
         &O::attractors));

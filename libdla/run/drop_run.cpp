@@ -28,7 +28,7 @@ const OptionTable<DropRunOptions>& drop_run_option_table() {
                     &O::spacing),
         detail::seed_at_option(&O::seed_at, group),
     });
-    add(nested(links_option_table(), &O::links));
+    add(in_group(nested(links_option_table(), &O::links), group));
     add(nested(drop_option_table(), &O::drop));
     add(nested(
         OptionTable<DropOptions>{

@@ -34,7 +34,8 @@ const OptionTable<EdenRunOptions>& eden_run_option_table() {
     };
     const auto add = [&t](const OptionTable<O>& rows) { t.insert(t.end(), rows.begin(), rows.end()); };
     add(nested(eden_option_table(), &O::eden));
-    add(OptionTable<O>{
+    // A painted mask goes to it as a file; a page may give it only the words (the choices).
+    DescribedOption<O> mask = with_paint_role(
         parsed<O>(
             "mask", OptionKind::text, "A|B|C|D|FILE", group,
             "drop: A, B, C or D (the paper's masks: 4, 8, 12 and 24 sites around), or a file drawing one",
@@ -44,7 +45,9 @@ const OptionTable<EdenRunOptions>& eden_run_option_table() {
               o.mask_file = preset ? "" : words;  // read, and checked, when the run is prepared
             },
             [](const O& o) { return o.mask_file.empty() ? std::string(to_string(o.eden.mask)) : o.mask_file; }),
-    });
+        PaintRole::mask);
+    mask.about.choices = words_list<EdenMask>();
+    add(OptionTable<O>{mask});
     add(nested(
         OptionTable<EdenOptions>{
             integer("mask_threshold", &EdenOptions::mask_threshold, closed(1, 4912), "sites", group,
@@ -53,7 +56,7 @@ const OptionTable<EdenRunOptions>& eden_run_option_table() {
             rng_seed_option(&EdenOptions::rng_seed, group),
         },
         &O::eden));
-    add(nested(links_option_table(true), &O::links));
+    add(in_group(nested(links_option_table(true), &O::links), group));
     return t;
   }();
   return table;

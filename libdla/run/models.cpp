@@ -51,9 +51,10 @@ const OptionTable<MeshSeeds>& mesh_seeds_option_table(bool roots) {
             [](const O& o) { return o.all ? std::string("all") : o.count ? std::to_string(o.count) : std::string(); }),
             {"seed_at", "root_at"}),
         excluding(flag("seed_surface", &O::surface, group, surface), {"seeds", "seed_at", "root_at"}),
-        excluding(colour("seed_paint", &O::paint, group,
-                         "seeds on the part of the surface painted this colour (a name or ff8000), within TOLERANCE "
-                         "per channel, [0, 1), default 0.3"),
+        excluding(with_paint_role(colour("seed_paint", &O::paint, group,
+                                         "seeds on the part of the surface painted this colour (a name or ff8000), "
+                                         "within TOLERANCE per channel, [0, 1), default 0.3"),
+                                  PaintRole::seeds),
                   {"seed_at", "root_at"}),
         excluding(repeated<O>(
                       "seed_mesh", OptionKind::file, kMeshFileForm, group,

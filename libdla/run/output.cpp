@@ -125,10 +125,11 @@ const OptionTable<OutputOptions>& output_option_table() {
     rows.push_back(file("leaf", &O::leaf, "FILE.glb", "Look",
                         "glb: a binary glTF whose mesh goes at each instancing point (as tips picks them), along its "
                         "direction and scaled by its pscale; its +Y is the leaf's stem"));
-    add(nested(OptionTable<InstanceOptions>{colour(
-                   "tips_exclude_paint", &InstanceOptions::exclude_paint, "Look",
-                   "tips: leave out the points whose closest point of the mesh's surface is painted this colour (a "
-                   "name or ff8000), within TOLERANCE per channel, [0, 1), default 0.3")},
+    add(nested(OptionTable<InstanceOptions>{with_paint_role(
+                   colour("tips_exclude_paint", &InstanceOptions::exclude_paint, "Look",
+                          "tips: leave out the points whose closest point of the mesh's surface is painted this "
+                          "colour (a name or ff8000), within TOLERANCE per channel, [0, 1), default 0.3"),
+                   PaintRole::bare)},
                &O::instances));
     add(nested(solid_option_table(), &O::solid));
     return rows;

@@ -91,15 +91,22 @@ TriangleMesh with_entering(TriangleMesh mesh, const std::vector<TriangleMesh>& e
 
 namespace {
 
+//! `model`, whose runs go on from a checkpoint.
+Model resuming(Model model) {
+  model.resumes = true;
+  return model;
+}
+
 //! The models, the built-in ones first: a line each, in the order `dla3d --help` lists them.
 std::deque<Model>& registry() {
+  // DLA's `fill` and `shell` mean nothing to the others; front ends refuse them with why.
   static std::deque<Model> all = {
-      make_model<DlaRunOptions>(
+      resuming(make_model<DlaRunOptions>(
           "grow", "grow by off-lattice diffusion-limited aggregation, in or around a mesh or text (docs/dla.md)",
-          detail::prepare_dla),
+          detail::prepare_dla, dla_run_option_table())),
       make_model<ColonizeRunOptions>(
           "colonize", "grow a tree by space colonization: attractor points pull its nearest nodes (docs/colonization.md)",
-          detail::prepare_colonize),
+          detail::prepare_colonize, colonize_option_table(), {"fill", "shell"}),
       make_model<EdenRunOptions>("eden",
                                  "grow an Eden cluster on a lattice: sites join at random on its edge, or where a "
                                  "mask counts enough of it (docs/eden.md)",
@@ -107,7 +114,7 @@ std::deque<Model>& registry() {
       make_model<DropRunOptions>("drop",
                                  "grow by random-drop ballistic aggregation: particles dropped at random join the "
                                  "closest particle (docs/drop.md)",
-                                 detail::prepare_drop),
+                                 detail::prepare_drop, drop_run_option_table(), {"fill", "shell"}),
       make_model<BallisticRunOptions>("ballistic",
                                       "grow by ballistic aggregation: particles fly in straight lines and stick where "
                                       "they first touch (docs/ballistic.md)",
@@ -116,7 +123,7 @@ std::deque<Model>& registry() {
           "breakdown",
           "grow a discharge by the dielectric breakdown model: growth where the field to the power eta is strong, "
           "towards a target electrode, around insulating meshes: lightning, Lichtenberg figures (docs/breakdown.md)",
-          detail::prepare_breakdown),
+          detail::prepare_breakdown, breakdown_run_option_table(), {"fill"}),
       make_model<AggregateRunOptions>(
           "aggregate",
           "grow an aggregate of clusters: soot, dust, colloids; clusters diffuse (dlca, rlca) or fly (ballistic) "
@@ -193,7 +200,7 @@ std::unique_ptr<Run> prepare_run(const RunOptions& options, const MeshReader& re
   validate(options);
   require_input_files(options);
   const Model& model = model_of(options);
-  if (resumed.cluster && model.name != "grow") throw InvalidInput("only DLA runs go on from a checkpoint");
+  if (resumed.cluster && !model.resumes) throw InvalidInput("only DLA runs go on from a checkpoint");
   const MeshReader reader =
       read ? read : [](const std::string& path, std::uint64_t* hash) { return read_mesh(path, hash); };
   // The leaf before the meshes: a bad one is refused before a long set-up.

@@ -177,58 +177,23 @@ const Table<SolidOptions>& solid_keywords() {
 
 namespace {
 
-//! The part of `run` that a table of keywords sets: its options of type `Options`, or all of it.
-template <class Options>
-Options& part(RunOptions& run) {
-  if constexpr (std::is_same_v<Options, RunOptions>) return run;
-  else return run.get<Options>();
-}
-
-//! The run options of `model` that `keywords` ask for, from its defaults, with `table`.
-template <class Options>
-RunOptions set_all(const Table<Options>& table, const Model& model, const py::dict& keywords, Given& given) {
-  RunOptions run = model.options();
-  Options& options = part<Options>(run);
-  const std::string name(model.name);
-  for (const auto& [key, value] : keywords) {
-    const std::string keyword = key.template cast<std::string>();
-    const auto setter = table.find(keyword);
-    if (setter == table.end())
-      throw InvalidInput(keyword + " is not an option of " + name + "(): see docs/python.md, or `dla3d " +
-                         (name == "grow" ? "" : name + " ") + "--help`");
-    if (!value.is_none()) setter->second(options, value, given);
-  }
-  return run;
-}
-
-template <class Options, Table<Options> (*make_table)()>
-RunOptions keywords_of(const Model& model, const py::dict& keywords, Given& given) {
-  static const Table<Options> table = make_table();
-  return set_all(table, model, keywords, given);
-}
-
-//! The keywords of a model described whole: its table, made once.
-RunOptions described_keywords(const Model& model, const py::dict& keywords, Given& given) {
+//! The run options of `model` that `keywords` ask for, from its defaults, with its table of
+//! keywords, made once.
+RunOptions set_all(const Model& model, const py::dict& keywords, Given& given) {
   static std::map<const Model*, Table<RunOptions>> tables;  // the registry's models stay put
   auto table = tables.find(&model);
   if (table == tables.end()) table = tables.emplace(&model, described_table(model)).first;
-  return set_all(table->second, model, keywords, given);
-}
-
-using Keywords = RunOptions (*)(const Model& model, const py::dict& keywords, Given& given);
-
-//! Each model's keywords, by its name in the library's registry (dla/run/run.h): the built-in
-//! models' own tables, else the model's description.
-Keywords keywords_of(const Model& model) {
-  static const std::pair<std::string_view, Keywords> tables[] = {
-      {"grow", keywords_of<DlaRunOptions, dla_table>},
-      {"colonize", keywords_of<ColonizeRunOptions, colonize_table>},
-      {"drop", keywords_of<DropRunOptions, drop_table>},
-      {"breakdown", keywords_of<BreakdownRunOptions, breakdown_table>},
-  };
-  for (const auto& [name, set] : tables)
-    if (name == model.name) return set;
-  return described_keywords;
+  RunOptions run = model.options();
+  const std::string name(model.name);
+  for (const auto& [key, value] : keywords) {
+    const std::string keyword = key.template cast<std::string>();
+    const auto setter = table->second.find(keyword);
+    if (setter == table->second.end())
+      throw InvalidInput(keyword + " is not an option of " + name + "(): see docs/python.md, or `dla3d " +
+                         (&model == &models().front() ? "" : name + " ") + "--help`");
+    if (!value.is_none()) setter->second(run, value, given);
+  }
+  return run;
 }
 
 }  // namespace
@@ -240,7 +205,7 @@ RunOptions run_options(const std::string& model, const py::dict& keywords, Given
     for (const Model& m : models()) names += (names.empty() ? "" : ", ") + std::string(m.name);
     throw InvalidInput("'" + model + "' is not one of " + names);
   }
-  RunOptions run = keywords_of(*found)(*found, keywords, given);
+  RunOptions run = set_all(*found, keywords, given);
   validate(run);
   return run;
 }

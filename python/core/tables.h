@@ -5,11 +5,8 @@
 
 namespace dla::python {
 
-Table<DlaRunOptions> dla_table();
-Table<ColonizeRunOptions> colonize_table();
-Table<DropRunOptions> drop_table();
-Table<BreakdownRunOptions> breakdown_table();
-//! The keywords of a model described whole (run.h's Model::option_table), and the look's.
+//! The keywords of a registered model (run.h's Model): its described options, the look's and
+//! the files', and the refusals of other models' options it does not take.
 Table<RunOptions> described_table(const Model& model);
 
 }  // namespace dla::python

@@ -261,7 +261,7 @@ def test_a_run_streams_and_its_files_are_the_commands(studio, tmp_path):
                                                                              ["--formats", "csv,json"]]})
             positions, counts, end = await run_to_end(ws)
             assert end["type"] == "done" and not end["stopped"], end
-            assert end["command"] == ["dla3d", "--particles", "30000", "--formats", "csv,json", "-o", "run"]
+            assert end["command"] == ["dla3d", "--particles", "30000", "--formats", "csv,json", "--output", "run"]
             assert sorted(end["files"]) == ["run.csv", "run.json"]
             assert len(positions) == 30001 and counts[-1] == 30001
             async with client.get(f"{studio.base}/api/file", headers={"Origin": studio.base},
@@ -616,7 +616,7 @@ def test_the_page_draws_a_million_points(studio, tmp_path):
     assert seen["messages"] == [], seen["messages"]
     end = seen["end"]
     assert end["state"] == "done" and end["error"] == "" and end["count"] == 1000001, end  # and the seed
-    assert end["command"] == "dla3d --particles 1000000 --formats csv -o run", end["command"]
+    assert end["command"] == "dla3d --particles 1000000 --formats csv --output run", end["command"]
     # Drawn as they came, not once at the end: many partial counts, rising.
     partial = [c for c in end["seen"] if 0 < c < end["count"]]
     assert len(set(partial)) >= 10 and partial == sorted(partial), end["seen"][:50]

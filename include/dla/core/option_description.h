@@ -85,6 +85,24 @@ inline std::string cli_flag(std::string_view name) {
 //! of its own for it (the Blender add-on an object, Python arrays).
 inline constexpr std::string_view kMeshFileForm = "MESH_FILE";
 
+//! What a front end that paints may give an option: the studio's brushes on a mesh, and its
+//! mask painter.
+enum class PaintRole {
+  seeds,       //!< colour: seeds on the part of the mesh painted it
+  attractors,  //!< colour: attractors there
+  bare,        //!< colour: no tips where the surface below is painted it
+  mask,        //!< text: besides its words, a file of a mask drawn on the lattice
+};
+inline constexpr WordTable<PaintRole, 4> kPaintRoleWords{
+    "paint role", {{{PaintRole::seeds, "seeds"}, {PaintRole::attractors, "attractors"}, {PaintRole::bare, "bare"},
+                    {PaintRole::mask, "mask"}}}};
+constexpr const auto& words_of(PaintRole) { return kPaintRoleWords; }
+
+//! An option set to a value: what another option needs in order to act.
+struct OptionSetting {
+  std::string_view name, value;
+};
+
 //! A value outside the range that means something of its own: walkers 0, "chosen by eta".
 struct SpecialValue {
   double value;
@@ -100,7 +118,7 @@ struct OptionDescription {
   std::optional<Range> range;           //!< integer, real: the values taken
   std::optional<SpecialValue> special;  //!< integer, real: a value outside the range
   std::string_view unit;                //!< integer, real: "spacings", "degrees"; empty: none
-  std::vector<std::string_view> choices;  //!< word: the mode's words, in its table's order
+  std::vector<std::string_view> choices;  //!< word: the mode's words; text: the words besides its form
   std::string_view negation;              //!< flag: the name that turns it off; empty: none
   std::string_view short_name;            //!< the CLI's one-letter name: "n" for -n; empty: none
   //! vector, points, colour, text, file: the value's form as --help shows it ("X,Y,Z",
@@ -112,6 +130,14 @@ struct OptionDescription {
   //! the pair at once, and an option given beside a preset drops the preset's it excludes; the
   //! library's validate() refuses the pair for every front end.
   std::vector<std::string_view> excludes = {};
+  //! What a front end's painting gives it; none: nothing.
+  std::optional<PaintRole> paints = {};
+  //! The value another option must have for this one to act (`attractor_paint`: `attractors_in`
+  //! surface): a front end that sets this one for its user sets that one too.
+  std::optional<OptionSetting> needs = {};
+  //! It changes how fast a run goes, never its files (`threads`): a run resumed from a
+  //! checkpoint may change it.
+  bool speed_only = false;
 };
 
 //! A value of an option, as a front end hands it over.
@@ -187,7 +213,7 @@ template <class Options>
 DescribedOption<Options> real(std::string_view name, double Options::*member, Range range, std::string_view unit,
                               std::string_view group, std::string_view help,
                               std::optional<SpecialValue> special = std::nullopt) {
-  OptionDescription about{name, OptionKind::real, group, help, range, special, unit, {}, {}, {}, {}, false, {}, {}};
+  OptionDescription about{name, OptionKind::real, group, help, range, special, unit, {}, {}, {}, {}, false, {}, {}, {}, {}, false};
   return {about,
           [about, member](Options& o, const OptionValue& v) {
             const double value = detail::number_of(about.name, v);
@@ -203,7 +229,7 @@ template <class Options, class Whole, std::enable_if_t<std::is_integral_v<Whole>
 DescribedOption<Options> integer(std::string_view name, Whole Options::*member, Range range, std::string_view unit,
                                  std::string_view group, std::string_view help,
                                  std::optional<SpecialValue> special = std::nullopt) {
-  OptionDescription about{name, OptionKind::integer, group, help, range, special, unit, {}, {}, {}, {}, false, {}, {}};
+  OptionDescription about{name, OptionKind::integer, group, help, range, special, unit, {}, {}, {}, {}, false, {}, {}, {}, {}, false};
   return {about,
           [about, member](Options& o, const OptionValue& v) {
             const double value = detail::number_of(about.name, v);
@@ -219,7 +245,7 @@ DescribedOption<Options> integer(std::string_view name, Whole Options::*member, 
 template <class Options, class Mode, std::enable_if_t<has_words<Mode>, int> = 0>
 DescribedOption<Options> word(std::string_view name, Mode Options::*member, std::string_view group,
                               std::string_view help) {
-  OptionDescription about{name, OptionKind::word, group, help, {}, {}, {}, words_list<Mode>(), {}, {}, {}, false, {}, {}};
+  OptionDescription about{name, OptionKind::word, group, help, {}, {}, {}, words_list<Mode>(), {}, {}, {}, false, {}, {}, {}, {}, false};
   return {about,
           [about, member](Options& o, const OptionValue& v) {
             const std::string* text = std::get_if<std::string>(&v);
@@ -238,7 +264,7 @@ DescribedOption<Options> word(std::string_view name, Mode Options::*member, std:
 template <class Options>
 DescribedOption<Options> flag(std::string_view name, bool Options::*member, std::string_view group,
                               std::string_view help, std::string_view negation = {}) {
-  OptionDescription about{name, OptionKind::flag, group, help, {}, {}, {}, {}, negation, {}, {}, false, {}, {}};
+  OptionDescription about{name, OptionKind::flag, group, help, {}, {}, {}, {}, negation, {}, {}, false, {}, {}, {}, {}, false};
   return {about,
           [about, member](Options& o, const OptionValue& v) {
             const bool* on = std::get_if<bool>(&v);
@@ -264,7 +290,7 @@ template <class Options>
 DescribedOption<Options> parsed(std::string_view name, OptionKind kind, std::string_view form, std::string_view group,
                                 std::string_view help, std::function<void(Options&, const std::string&)> parse,
                                 std::function<std::string(const Options&)> print) {
-  OptionDescription about{name, kind, group, help, {}, {}, {}, {}, {}, {}, form, false, {}, {}};
+  OptionDescription about{name, kind, group, help, {}, {}, {}, {}, {}, {}, form, false, {}, {}, {}, {}, false};
   return {about, [about, parse](Options& o, const OptionValue& v) { parse(o, detail::words_given(about.name, v)); },
           [print](const Options& o) { return OptionValue(print(o)); }};
 }
@@ -276,7 +302,7 @@ DescribedOption<Options> repeated(std::string_view name, OptionKind kind, std::s
                                   std::string_view group, std::string_view help,
                                   std::function<void(Options&, const std::vector<std::string>&)> parse,
                                   std::function<std::vector<std::string>(const Options&)> print) {
-  OptionDescription about{name, kind, group, help, {}, {}, {}, {}, {}, {}, form, true, {}, {}};
+  OptionDescription about{name, kind, group, help, {}, {}, {}, {}, {}, {}, form, true, {}, {}, {}, {}, false};
   return {about,
           [about, parse](Options& o, const OptionValue& v) {
             if (const auto* list = std::get_if<std::vector<std::string>>(&v)) parse(o, *list);
@@ -307,6 +333,34 @@ template <class Options>
 DescribedOption<Options> excluding(DescribedOption<Options> row, std::vector<std::string_view> names) {
   row.about.excludes = std::move(names);
   return row;
+}
+
+//! `row`, whose value a front end's painting gives (the studio's seed brush: `seed_paint`).
+template <class Options>
+DescribedOption<Options> with_paint_role(DescribedOption<Options> row, PaintRole role) {
+  row.about.paints = role;
+  return row;
+}
+
+//! `row`, which acts only when the option `name` has `value`.
+template <class Options>
+DescribedOption<Options> needing(DescribedOption<Options> row, std::string_view name, std::string_view value) {
+  row.about.needs = OptionSetting{name, value};
+  return row;
+}
+
+//! `row`, which changes how fast a run goes and never its files.
+template <class Options>
+DescribedOption<Options> speed_only(DescribedOption<Options> row) {
+  row.about.speed_only = true;
+  return row;
+}
+
+//! `table` under the heading `group`: links among Eden's options.
+template <class Options>
+OptionTable<Options> in_group(OptionTable<Options> table, std::string_view group) {
+  for (DescribedOption<Options>& row : table) row.about.group = group;
+  return table;
 }
 
 //! `row` with another name as well: `mesh` for `stl` (--mesh, mesh=).

@@ -194,12 +194,8 @@ struct BreakdownRunOptions : DlaRunOptions {
   std::string target_mesh;
 };
 
-//! The options of a DLA run that a breakdown run does not take, as C++ and Python name them: its
-//! walkers neither drift nor turn, its walk needs the grid index, and it grows to its count or
-//! its strike, not to fill a mesh. The front ends leave them out (`fill` they refuse, with why).
-inline constexpr std::array<std::string_view, 5> kNotForBreakdown{"fill", "fill_distance", "drift", "rotate", "index"};
-//! Its options, described whole but the refusal of `fill`: DLA's but kNotForBreakdown, the
-//! discharge's (breakdown_option_table()) and the target electrode.
+//! Its options, described whole: DLA's but those it does not take, the discharge's
+//! (breakdown_option_table()) and the target electrode.
 const OptionTable<BreakdownRunOptions>& breakdown_run_option_table();
 
 //! The roots a colonize run grows from: its `root_at` points; or `root_count` on the sphere

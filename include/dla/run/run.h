@@ -129,20 +129,24 @@ struct Model {
   std::function<void(const RunOptions& options)> validate;
   //! The files its run writes: its options' `files`.
   OutputOptions& (*files)(RunOptions& options);
-  //! Its own options, described (option_description.h). A model whose options are all here
-  //! gets its command, its Python keywords and its record from them; the built-in models'
-  //! command lines and keywords are still their front ends' own, and describe only a part.
+  //! Its own options, described (option_description.h), from which it gets its command, its
+  //! Python keywords and its record (the files' and the look's are output_option_table()'s).
   OptionTable<RunOptions> option_table;
+  //! Options of other models that front ends offer it only to refuse, each with why
+  //! (refuse_for()): `fill` for all but DLA.
+  std::vector<std::string_view> refuses = {};
+  //! Whether its runs go on from a checkpoint (`Resumed`): DLA's.
+  bool resumes = false;
 };
 
 //! The model `name` that grows from run options of type `Options` with a `files` member (of
 //! type OutputOptions), checked by `validate(const Options&)`, found where `Options` is declared,
-//! and set up by `prepare`. `table` describes its own options (not the files'): those the CLI and
-//! Python give it when no front end of its own does.
+//! and set up by `prepare`. `table` describes its own options (not the files'), which the CLI
+//! and Python give it; it refuses those of other models named in `refuses`.
 template <class Options>
 Model make_model(std::string_view name, std::string_view summary,
                  std::unique_ptr<Run> (*prepare)(const Options&, const MeshReader&, const Resumed&),
-                 const OptionTable<Options>& table = {}) {
+                 const OptionTable<Options>& table, std::vector<std::string_view> refuses = {}) {
   Model model{name,
               summary,
               typeid(Options),
@@ -152,7 +156,9 @@ Model make_model(std::string_view name, std::string_view summary,
               },
               [](const RunOptions& o) { validate(o.get<Options>()); },
               [](RunOptions& o) -> OutputOptions& { return o.get<Options>().files; },
-              {}};
+              {},
+              std::move(refuses),
+              false};
   for (const DescribedOption<Options>& row : table)
     model.option_table.push_back({row.about,
                                   [set = row.set](RunOptions& o, const OptionValue& v) { set(o.get<Options>(), v); },
@@ -175,14 +181,13 @@ const Model& model_of(const RunOptions& options);
 const Model* find_model(std::string_view name);
 
 //! Writes each described option's value in `options` as a field of the JSON record: the
-//! record's "options" of a model described whole. Options named in `timing_only` (threads)
-//! change how long a run takes, never what it grows: they belong in the record's timings, so
-//! that the same options give the same record.
+//! record's "options" of a model described whole. An option that changes only how fast a run
+//! goes (threads) belongs in the record's timings, so that the same options give the same
+//! record.
 template <class Options>
-void write_described(RecordWriter& out, const OptionTable<Options>& table, const Options& options,
-                     std::initializer_list<std::string_view> timing_only = {}) {
+void write_described(RecordWriter& out, const OptionTable<Options>& table, const Options& options) {
   for (const DescribedOption<Options>& row : table) {
-    if (std::find(timing_only.begin(), timing_only.end(), row.about.name) != timing_only.end()) continue;
+    if (row.about.speed_only) continue;
     const OptionValue value = row.get(options);
     if (const bool* b = std::get_if<bool>(&value)) out.flag(row.about.name, *b);
     else if (const std::int64_t* i = std::get_if<std::int64_t>(&value)) out.integer(row.about.name, *i);
