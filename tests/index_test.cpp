@@ -6,6 +6,7 @@
 #include "dla/index/kdtree_index.h"
 #include "dla/core/random.h"
 #include "dla/index/spatial_index.h"
+#include "index/gap_rows.h"  // libdla/: the gap update's row test
 
 #include <gtest/gtest.h>
 
