@@ -31,6 +31,9 @@ struct StudioCommand {
   bool open = false;               //!< open the page in the browser
 };
 
+//! `--checkpoint-every`'s default, in seconds.
+inline constexpr double kCheckpointEvery = 60.0;
+
 //! What the command line asks for.
 struct CommandLine {
   enum class Kind {
@@ -50,7 +53,7 @@ struct CommandLine {
   bool quiet = false;                //!< -q: no progress bar and no summary
   std::string checkpoint_path;       //!< DLA: --checkpoint FILE; empty: none
   std::string stream_path;           //!< --stream FILE (stream.h); empty: none
-  double checkpoint_every = 60.0;    //!< seconds
+  double checkpoint_every = kCheckpointEvery;  //!< seconds
   std::string resume_path;
   //! An option given beside --resume that changes only how fast the run goes (--threads): it
   //! replaces the checkpoint's, given by any of `names`, with `words`.

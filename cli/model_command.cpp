@@ -19,7 +19,7 @@ struct ModelWords {
   std::unique_ptr<OutputWords> files;  // bound to run's files, which stay put
   // The Long runs group, for a model that resumes.
   std::string checkpoint_path, resume_path;
-  double checkpoint_every = 60.0;
+  double checkpoint_every = kCheckpointEvery;
   const CLI::Option* resume = nullptr;
 };
 

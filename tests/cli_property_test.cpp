@@ -753,8 +753,10 @@ std::string check_files(const ScratchDir& dir, const std::string& prefix, const 
     spacing = json_value(json, "spacing");
     // Space colonization's noise moves each node by up to its amplitude in each coordinate,
     // and a collision mesh moves it as far as its surface.
-    noise = std::max(0.0, json_value(json, "noise_amplitude"));
-    collided = json.find("\"collide\": ") != std::string::npos;
+    // "noise": "A,K" (or "A"): up to A.
+    const std::size_t noise_at = json.find("\"noise\": \"");
+    noise = noise_at == std::string::npos ? 0.0 : std::max(0.0, std::atof(json.c_str() + noise_at + 10));
+    collided = json.find("\"collide\": \"") != std::string::npos;
     // An Eden site hangs from the nearest occupied site of its mask, up to 8 sites away along
     // each axis.
     if (json.find("\"model\": \"eden\"") != std::string::npos) reach = 8 * std::sqrt(3.0);

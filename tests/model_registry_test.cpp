@@ -91,10 +91,8 @@ class TwigRun : public dla::Run {
     return "grew a twig of " + std::to_string(dla::attached(cluster)) + " particles";
   }
 
-  dla::ModelRecord record() const override {
-    dla::ModelRecord out{"twig", options_.rng_seed};
-    out.options = [this](dla::RecordWriter& w) { dla::write_described(w, twig_option_table(), options_); };
-    return out;
+  dla::ModelRecord own_record() const override {
+    return {model, options_.rng_seed};  // its options the record writes from its table
   }
 
  private:

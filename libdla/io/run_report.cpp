@@ -21,6 +21,11 @@ void write_run_report(const Cluster& cluster, const ModelRecord& model, const Lo
   out.open("options");
   if (model.options) model.options(out);
   out.close();
+  if (model.resolved) {
+    out.open("resolved");
+    model.resolved(out);
+    out.close();
+  }
 
   out.open("look")
       .text("radius", to_string(look.radius.model))

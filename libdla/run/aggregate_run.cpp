@@ -91,11 +91,8 @@ class AggregateRun : public Run {
     return summary;
   }
 
-  ModelRecord record() const override {
+  ModelRecord own_record() const override {
     ModelRecord out{model, options_.rng_seed};
-    out.options = [this](RecordWriter& w) {
-      write_described(w, aggregate_option_table(), options_);
-    };
     out.timings = [this](RecordWriter& w) { w.integer("threads", options_.threads); };
     out.statistics = [this](RecordWriter& w) {
       w.open("aggregation")

@@ -65,15 +65,8 @@ class BallisticRun : public Run {
     return line;
   }
 
-  ModelRecord record() const override {
+  ModelRecord own_record() const override {
     ModelRecord out{model, options_.rng_seed};
-    out.options = [this](RecordWriter& w) {
-      const BallisticOptions& o = options_;
-      w.count("particles", o.particles).integer("dimensions", o.dimensions).number("spacing", o.spacing).points("seeds", o.seeds);
-      if (o.direction.squaredNorm() > 0.0) w.point("direction", o.direction);
-      else w.text("direction", "random");
-      if (links.any()) w.text("links", to_string(links));
-    };
     out.statistics = [this](RecordWriter& w) {
       w.open("lines")
           .counts({{"launched", stats_.launched}, {"missed", stats_.missed}, {"far_steps", stats_.far_steps},

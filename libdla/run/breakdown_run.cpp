@@ -201,26 +201,24 @@ class BreakdownRun : public DlaRun {
     return line;
   }
 
-  ModelRecord record() const override {
+  void put_resolved(RunOptions& options) const override {
+    BreakdownRunOptions& o = options.get<BreakdownRunOptions>();
+    resolve_walk(o);
+    if (breakdown_.field == BreakdownField::walkers) o.breakdown.walkers = walkers_for(breakdown_);
+  }
+
+  ModelRecord own_record() const override {
     ModelRecord out{model, options_.rng_seed};
-    out.options = [this](RecordWriter& w) {
-      record_options(w);
-      const BreakdownOptions& b = breakdown_;
-      w.number("eta", b.eta).text("field", to_string(b.field));
-      if (b.field == BreakdownField::walkers) w.integer("walkers", walkers_for(b));
-      w.text("target", to_string(b.target.kind));
-      if (b.target.kind == TargetKind::point) w.point("target_point", b.target.point);
-      if (b.target.kind == TargetKind::plane)
-        w.text("target_plane_axis", to_string(b.target.axis)).number("target_plane_at", b.target.at);
-      if (b.target.kind == TargetKind::mesh)
-        w.text("target_mesh", target_mesh_name_)
-            .count("target_triangles", target_->mesh().triangles.size())
-            .text("target_repair", target_repair_.summary())
-            .flag("target_closed", target_repair_.closed);
-      if (b.target.kind != TargetKind::none) w.flag("stop_at_strike", b.stop_at_strike);
-    };
+    out.resolved = [this](RecordWriter& w) { w.points("seed_at", options_.seeds); };
     out.statistics = [this](RecordWriter& w) {
       if (constraint_) record_constraint(w);
+      if (target_)
+        w.open("target")
+            .text("mesh", target_mesh_name_)
+            .count("triangles", target_->mesh().triangles.size())
+            .text("repair", target_repair_.summary())
+            .flag("closed", target_repair_.closed)
+            .close();
       const WalkStats& s = stats_.walk;
       w.open("walk")
           .counts({{"walkers", s.walkers}, {"steps", s.steps}, {"near_steps", s.near_steps}, {"contacts", s.contacts},

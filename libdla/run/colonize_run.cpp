@@ -268,7 +268,7 @@ std::string closed_forecast(const std::vector<Vec3>& attractors, const Colonizat
 class ColonizeRun : public Run {
  public:
   ColonizeRun(const ColonizeRunOptions& o, const MeshReader& read)
-      : options_(o.colonization), attractor_options_(o.attractors) {
+      : options_(o.colonization) {
     files = resolve(o.files, nullptr, false);
     unit = "nodes";
     total = options_.max_nodes;
@@ -311,11 +311,7 @@ class ColonizeRun : public Run {
       check_closed_memory(attractors_.size());
       forecast_line = closed_forecast(attractors_, options_);
     }
-    attractors_from_ = o.attractors_from;
     attractor_count_ = attractors_.size();
-    vessel_file_ = o.stl;
-    collide_file_ = o.collide;
-    collision_ = o.collision;
     // The vessel, else the collision mesh, shows in the scene as glass, as a constraint mesh does.
     constraint = vessel_.get();
     scene_mesh = mesh ? &mesh->mesh() : nullptr;
@@ -334,49 +330,23 @@ class ColonizeRun : public Run {
     return line;
   }
 
-  ModelRecord record() const override {
+  //! Closed venation's influence, when none was given.
+  void put_resolved(RunOptions& options) const override {
+    options.get<ColonizeRunOptions>().colonization.influence = influence_of(options_);
+  }
+
+  ModelRecord own_record() const override {
     ModelRecord out{model, options_.rng_seed};
-    out.options = [this](RecordWriter& w) { record_options(w); };
+    out.resolved = [this](RecordWriter& w) { w.count("attractors", attractor_count_).points("root_at", roots_); };
     return out;
   }
 
  private:
-  void record_options(RecordWriter& out) const {
-    const ColonizationOptions& o = options_;
-    const AttractorOptions& a = attractor_options_;
-    out.count("max_nodes", o.max_nodes)
-        .count("max_iterations", o.max_iterations)
-        .number("spacing", o.spacing)
-        .number("kill_distance", o.kill_distance)
-        .number("influence", influence_of(o))
-        .text("venation", to_string(o.venation))
-        .number("noise_amplitude", o.noise_amplitude)
-        .number("noise_scale", o.noise_scale)
-        .point("tropism", o.tropism)
-        .integer("dimensions", o.dimensions)
-        .count("attractors", attractor_count_);
-    if (!attractors_from_.empty()) {
-      out.text("attractors_from", attractors_from_);
-    } else {
-      out.text("attractors_in", to_string(a.region));
-      if (a.region == AttractorRegion::sphere) out.point("attractor_center", a.center).number("attractor_radius", a.radius);
-      else if (a.region == AttractorRegion::box) out.points("attractor_box", {a.box_min, a.box_max});
-      if (a.paint) out.text("attractor_paint", to_string(*a.paint));
-    }
-    out.number("attractor_falloff", a.falloff).points("roots", roots_);
-    if (!vessel_file_.empty()) out.text("vessel", vessel_file_);
-    if (!collide_file_.empty()) out.text("collide", collide_file_).text("collision", to_string(collision_));
-  }
-
   ColonizationOptions options_, grown_with_;
-  AttractorOptions attractor_options_;
   std::unique_ptr<MeshConstraint> vessel_;
   std::unique_ptr<CollisionObject> collide_;
   std::vector<Vec3> attractors_, roots_;
-  // What the record says of the run's inputs.
-  std::string attractors_from_, vessel_file_, collide_file_;
-  std::size_t attractor_count_ = 0;
-  CollisionMode collision_ = CollisionMode::push;
+  std::size_t attractor_count_ = 0;  // the attractors_ growth takes away
 };
 
 }  // namespace

@@ -87,9 +87,11 @@ class DlaRun : public Run {
     return line;
   }
 
-  ModelRecord record() const override {
+  void put_resolved(RunOptions& options) const override { resolve_walk(options.get<DlaRunOptions>()); }
+
+  ModelRecord own_record() const override {
     ModelRecord out{model, options_.rng_seed};
-    out.options = [this](RecordWriter& w) { record_options(w); };
+    out.resolved = [this](RecordWriter& w) { w.points("seed_at", options_.seeds); };
     out.statistics = [this](RecordWriter& w) {
       if (constraint_) record_constraint(w);
       const WalkStats& s = stats_.walk;
@@ -160,24 +162,11 @@ class DlaRun : public Run {
     mesh_line = detail::mesh_line(mesh_name_, *constraint_, options_.spacing);
   }
 
-  void record_options(RecordWriter& out) const {
-    const DlaOptions& o = options_;
-    out.count("particles", o.particles)
-        .number("spacing", o.spacing)
-        .number("stickiness", o.stickiness)
-        .integer("dimensions", o.dimensions)
-        .points("seeds", o.seeds)
-        .text("spawn", to_string(o.spawn))
-        .text("spawn_axis", to_string(o.spawn_axis))
-        .number("disk_radius", o.disk_radius);
-    if (o.spawn_box) out.points("spawn_box", {o.spawn_box->min, o.spawn_box->max});
-    else out.raw("spawn_box", "null");
-    out.point("drift", o.drift);
-    if (o.fill > 0.0) out.number("fill", o.fill).number("fill_distance", o.fill_distance);
-    if (o.rotate_degrees != 0.0)
-      out.text("rotate_axis", to_string(o.rotate_axis)).number("rotate_degrees_per_1000", o.rotate_degrees);
-    out.number("min_step", o.min_step).text("index", to_string(o.index));
-    if (links.any()) out.text("links", to_string(links));
+  //! The count, the spacing and the spawn a mesh gives, in place of the defaults.
+  void resolve_walk(DlaRunOptions& o) const {
+    o.particles = options_.particles;
+    o.spacing = options_.spacing;
+    o.spawn = options_.spawn;
   }
 
   void record_constraint(RecordWriter& out) const {

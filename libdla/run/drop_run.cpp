@@ -85,26 +85,26 @@ namespace {
 //! Random-drop ballistic aggregation, in or around a mesh if one is given.
 class DropRun : public Run {
  public:
-  DropRun(const DropRunOptions& o, const MeshReader& read) : options_(o.drop), mesh_file_(o.stl) {
+  DropRun(const DropRunOptions& o, const MeshReader& read) : options_(o.drop) {
     if (o.spacing) options_.spacing = *o.spacing;
     if (o.seed_at) options_.seeds = *o.seed_at;
-    if (mesh_file_.empty()) {
+    if (o.stl.empty()) {
       files = resolve(o.files, nullptr, false);
     } else {
       // As for DLA: the spacing and the up axis from the mesh's box, one seed on the growing side.
-      const TriangleMesh mesh = read(mesh_file_, nullptr);
+      const TriangleMesh mesh = read(o.stl, nullptr);
       const Box box = bounding_box(mesh);
       if (!o.spacing) options_.spacing = default_spacing(box);
       files = resolve(o.files, &box, false);
       detail::require_in("spacing", options_.spacing, kMinSpacing, kMaxSpacing);
       const std::vector<TriangleMesh> entering = read_all(read, o.seeds.meshes);
-      named(mesh_file_, [&] {
+      named(o.stl, [&] {
         constraint_ = std::make_unique<MeshConstraint>(mesh, o.constraint, options_.spacing);
         if (!o.seed_at) options_.seeds = seeds_on(*constraint_, o.seeds, options_.rng_seed, entering);
         validate(options_, *constraint_);
       });
       if (!entering.empty() && o.scene_mesh) scene_mesh_ = with_entering(constraint_->mesh(), entering);
-      mesh_line = detail::mesh_line(mesh_file_, *constraint_, options_.spacing);
+      mesh_line = detail::mesh_line(o.stl, *constraint_, options_.spacing);
     }
     total = options_.seeds.size() + options_.particles;
     links = o.links;
@@ -131,9 +131,12 @@ class DropRun : public Run {
     return links_inside(cluster, links, threads, constraint_.get(), watch);
   }
 
-  ModelRecord record() const override {
+  //! The spacing a mesh gives.
+  void put_resolved(RunOptions& options) const override { options.get<DropRunOptions>().spacing = options_.spacing; }
+
+  ModelRecord own_record() const override {
     ModelRecord out{model, options_.rng_seed};
-    out.options = [this](RecordWriter& w) { record_options(w); };
+    out.resolved = [this](RecordWriter& w) { w.points("seed_at", options_.seeds); };
     out.statistics = [this](RecordWriter& w) {
       const DropStats& s = stats_;
       w.open("drops")
@@ -146,29 +149,7 @@ class DropRun : public Run {
   }
 
  private:
-  void record_options(RecordWriter& out) const {
-    const DropOptions& o = options_;
-    out.count("particles", o.particles)
-        .integer("dimensions", o.dimensions)
-        .number("spacing", o.spacing)
-        .number("stickiness", o.stickiness)
-        .points("seeds", o.seeds)
-        .text("zone", to_string(o.zone));
-    if (o.zone != DropZone::mesh) {
-      if (o.zone_radius > 0.0) out.number("zone_radius", o.zone_radius);
-      else out.text("zone_radius", "growing").number("zone_margin", o.zone_margin);
-    }
-    if (o.zone_box) out.points("zone_box", {o.zone_box->min, o.zone_box->max});
-    out.text("drop", to_string(o.bias));
-    if (constraint_)
-      out.text("mesh", mesh_file_)
-          .text("side", to_string(constraint_->options().side))
-          .text("constraint", to_string(constraint_->options().mode));
-    if (links.any()) out.text("links", to_string(links));
-  }
-
   DropOptions options_;
-  std::string mesh_file_;
   std::unique_ptr<MeshConstraint> constraint_;
   TriangleMesh scene_mesh_;  // the scene's mesh when it is more than the constraint's
   DropStats stats_;

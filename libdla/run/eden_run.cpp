@@ -91,19 +91,19 @@ namespace {
 //! An Eden cluster on a lattice, its mask a preset or drawn in a file.
 class EdenRun : public Run {
  public:
-  explicit EdenRun(const EdenRunOptions& o) : options_(eden_options(o)), mask_file_(o.mask_file) {
+  explicit EdenRun(const EdenRunOptions& o) : options_(eden_options(o)) {
     files = resolve(o.files, nullptr, false);
     links = o.links;
     unit = "sites";
     total = options_.sites;
     solid_forecast = {options_.sites, 1.0};  // lattice sites, a spacing apart
-    if (!mask_file_.empty()) {
-      const std::string text = read_input_file(mask_file_, "mask");
+    if (!o.mask_file.empty()) {
+      const std::string text = read_input_file(o.mask_file, "mask");
       try {
         options_.mask_offsets = parse_mask(text);
         validate(options_);
       } catch (const InvalidInput& e) {
-        throw InvalidInput(mask_file_ + ": " + e.what());
+        throw InvalidInput(o.mask_file + ": " + e.what());
       }
     }
   }
@@ -124,34 +124,28 @@ class EdenRun : public Run {
     return line;
   }
 
-  ModelRecord record() const override {
+  //! The lattice the dimensions give.
+  void put_resolved(RunOptions& options) const override {
+    EdenRunOptions& o = options.get<EdenRunOptions>();
+    o.lattice = options_.lattice;
+    o.dimensions = dimensions_of(options_.lattice);
+  }
+
+  ModelRecord own_record() const override {
     ModelRecord out{model, options_.rng_seed};
-    out.options = [this](RecordWriter& w) { record_options(w); };
+    if (options_.mode == EdenMode::drop)
+      out.resolved = [this](RecordWriter& w) {
+        std::string sites = "[";
+        for (const std::array<int, 3>& site : eden_mask(options_))
+          sites += (sites.size() > 1 ? ", [" : "[") + std::to_string(site[0]) + ", " + std::to_string(site[1]) + ", " +
+                   std::to_string(site[2]) + ']';
+        w.raw("mask_sites", sites + "]");
+      };
     return out;
   }
 
  private:
-  void record_options(RecordWriter& out) const {
-    const EdenOptions& o = options_;
-    out.count("sites", o.sites)
-        .text("lattice", to_string(o.lattice))
-        .integer("dimensions", dimensions_of(o.lattice))
-        .text("mode", to_string(o.mode));
-    if (o.mode == EdenMode::drop) {
-      if (mask_file_.empty()) out.text("mask", to_string(o.mask));
-      else out.text("mask_from", mask_file_);
-      std::string sites = "[";
-      for (const std::array<int, 3>& site : eden_mask(o))
-        sites += (sites.size() > 1 ? ", [" : "[") + std::to_string(site[0]) + ", " + std::to_string(site[1]) + ", " +
-                 std::to_string(site[2]) + ']';
-      out.raw("mask_sites", sites + "]").integer("mask_threshold", o.mask_threshold);
-    }
-    out.number("seed_radius", o.seed_radius).number("spacing", o.spacing);
-    if (links.any()) out.text("links", to_string(links));
-  }
-
   EdenOptions options_;
-  std::string mask_file_;
 };
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
+#include <cstdlib>
 #include <deque>
 #include <memory>
 #include <mutex>
@@ -156,6 +157,41 @@ const Model& model_for(std::type_index type) {
 
 const Model& model_of(const RunOptions& options) { return options.model(); }
 
+namespace {
+
+//! "1,2,3" as the JSON array [1, 2, 3]; "" as null; words that are not all numbers as text.
+std::string numbers_json(const std::string& words) {
+  if (words.empty()) return "null";
+  std::string list = "[";
+  for (std::size_t start = 0; start <= words.size();) {
+    const std::size_t comma = std::min(words.find(',', start), words.size());
+    const std::string item = words.substr(start, comma - start);
+    char* end = nullptr;
+    const double value = std::strtod(item.c_str(), &end);
+    if (item.empty() || end != item.c_str() + item.size()) return json::string(words);
+    list += (start ? ", " : "") + json::number(value);
+    start = comma + 1;
+  }
+  return list + "]";
+}
+
+}  // namespace
+
+void write_option(RecordWriter& out, const OptionDescription& about, const OptionValue& value) {
+  if (const bool* b = std::get_if<bool>(&value)) return void(out.flag(about.name, *b));
+  if (const std::int64_t* i = std::get_if<std::int64_t>(&value)) return void(out.integer(about.name, *i));
+  if (const double* d = std::get_if<double>(&value)) return void(out.number(about.name, *d));
+  if (const std::string* words = std::get_if<std::string>(&value)) {
+    if (about.kind == OptionKind::vector) return void(out.raw(about.name, numbers_json(*words)));
+    if (words->empty() && about.kind != OptionKind::word) return void(out.raw(about.name, "null"));
+    return void(out.text(about.name, *words));
+  }
+  std::string list = "[";
+  for (const std::string& item : std::get<std::vector<std::string>>(value))
+    list += (list.size() > 1 ? ", " : "") + (about.kind == OptionKind::points ? numbers_json(item) : json::string(item));
+  out.raw(about.name, list + "]");
+}
+
 const Model* find_model(std::string_view name) {
   for (const Model& model : models())
     if (model.name == name) return &model;
@@ -196,6 +232,12 @@ void require_input_files(const RunOptions& options) {
 
 }  // namespace
 
+ModelRecord Run::record() const {
+  ModelRecord out = own_record();
+  out.options = [this](RecordWriter& w) { write_described(w, options.model().option_table, options); };
+  return out;
+}
+
 std::unique_ptr<Run> prepare_run(const RunOptions& options, const MeshReader& read, const Resumed& resumed) {
   validate(options);
   require_input_files(options);
@@ -208,6 +250,8 @@ std::unique_ptr<Run> prepare_run(const RunOptions& options, const MeshReader& re
   std::shared_ptr<const Leaf> leaf = leaf_path.empty() ? nullptr : std::make_shared<const Leaf>(read_leaf(leaf_path));
   std::unique_ptr<Run> run = model.prepare(options, reader, resumed);
   run->model = model.name;
+  run->options = options;
+  run->put_resolved(run->options);
   run->leaf = std::move(leaf);
   const RadiusOptions& radius = run->files.look.radius;
   if (radius.model == RadiusModel::particle && !run->sizes_particles)

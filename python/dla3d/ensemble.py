@@ -81,10 +81,10 @@ def grow_one(model, options, rng_seed, save=None, formats=("csv",)):
     identity = hashlib.sha256()
     for array in (result.positions, result.parent, result.seed):
         identity.update(np.ascontiguousarray(array).tobytes())
-    # What the run measured and counted; its options are the same for every cluster, and its
-    # timings vary with the machine.
+    # What the run measured and counted; its options and what they resolved to say what was
+    # asked, and its timings vary with the machine.
     statistics = {k: v for k, v in _numbers(record).items()
-                  if k != "rng_seed" and not k.startswith(("options.", "look.", "timings."))}
+                  if k != "rng_seed" and not k.startswith(("options.", "resolved.", "look.", "timings."))}
     return {
         "rng_seed": rng_seed,
         "particles": len(result),

@@ -107,8 +107,12 @@ struct ModelRecord {
 
   std::string_view model;  //!< "model": the registry's name (Run::model): grow, colonize, eden, ...
   std::uint64_t rng_seed;
-  //! Writes the fields of "options": what grows the same structure again.
+  //! Writes the fields of "options": what grows the same structure again (a run's, by its
+  //! model's table: Run::record()).
   std::function<void(RecordWriter&)> options;
+  //! Writes the fields of "resolved", if any: what the options left to the inputs and the seed
+  //! and no option says, such as the seeds a mesh placed ("seed_at").
+  std::function<void(RecordWriter&)> resolved;
   //! Writes the model's own objects after "counts" ("walk", "drops", "lines"), if any.
   std::function<void(RecordWriter&)> statistics;
   //! Writes the model's own fields at the end of "measures" (DLA's "filled"), if any.
@@ -118,9 +122,9 @@ struct ModelRecord {
 };
 
 //! Writes the sidecar of a run that grew `cluster` to `path`: "generator", "version",
-//! "command", "complete", "stopped_by", then `model`'s part, "look", "counts", the model's
-//! statistics, "measures" and "timings". Throws IOError if the file cannot be written.
-//! Everything but the timings is the same for the same options and seed.
+//! "command", "complete", "stopped_by", then `model`'s part ("options", "resolved"), "look",
+//! "counts", the model's statistics, "measures" and "timings". Throws IOError if the file
+//! cannot be written. Everything but the timings is the same for the same options and seed.
 void write_run_report(const Cluster& cluster, const ModelRecord& model, const LookOptions& look,
                       const PovOptions& pov, const RunRecord& record, const std::string& path);
 

@@ -63,9 +63,16 @@ class Run {
   virtual std::vector<Link> make_links(const Cluster& cluster, const StageWatch& watch) const {
     return neighbour_links(cluster, links, threads, {}, kLoopSteps, watch);
   }
-  //! The model's part of the JSON record of the run: its options and statistics (the
-  //! statistics as growth left them).
-  virtual ModelRecord record() const = 0;
+  //! The model's part of the JSON record of the run: `options`, by its model's table, and
+  //! own_record().
+  ModelRecord record() const;
+  //! The model's own part of the record: what its options resolved to that they cannot say
+  //! (the seeds a mesh placed), its statistics as growth left them, its measures and timings.
+  virtual ModelRecord own_record() const = 0;
+  //! Puts in `options`, the ones this run was prepared from, what it resolved of those they
+  //! left to the inputs: the spacing a mesh gives, the default influence. prepare_run() makes
+  //! `options` so.
+  virtual void put_resolved(RunOptions& options) const { (void)options; }
   //! From the next grow() on, hands each particle to `feed` as it attaches (null: to none), if
   //! the model can; returns whether it will. DLA can.
   virtual bool feed_to(ParticleFeed* feed) {
@@ -74,6 +81,9 @@ class Run {
   }
 
   std::string_view model;          //!< its name in the registry (models()): grow, colonize, ...
+  //! The options it grows from, with what the inputs resolved in place (put_resolved()): the
+  //! record's "options", which grow the same structure again.
+  RunOptions options;
   //! The files, with the defaults the mesh gives resolved (the up axis, the radii).
   OutputOptions files;
   std::size_t total = 0;           //!< particles at most, for a progress bar
@@ -180,20 +190,17 @@ const Model& model_of(const RunOptions& options);
 //! The model called `name`, or null.
 const Model* find_model(std::string_view name);
 
+//! Writes `value`, option `about`'s, as a field of the JSON record: a vector or points as
+//! arrays of numbers, a list of files as an array of text, unset as null.
+void write_option(RecordWriter& out, const OptionDescription& about, const OptionValue& value);
+
 //! Writes each described option's value in `options` as a field of the JSON record: the
-//! record's "options" of a model described whole. An option that changes only how fast a run
-//! goes (threads) belongs in the record's timings, so that the same options give the same
-//! record.
+//! record's "options". An option that changes only how fast a run goes (threads) belongs in
+//! the record's timings, so that the same options give the same record.
 template <class Options>
 void write_described(RecordWriter& out, const OptionTable<Options>& table, const Options& options) {
-  for (const DescribedOption<Options>& row : table) {
-    if (row.about.speed_only) continue;
-    const OptionValue value = row.get(options);
-    if (const bool* b = std::get_if<bool>(&value)) out.flag(row.about.name, *b);
-    else if (const std::int64_t* i = std::get_if<std::int64_t>(&value)) out.integer(row.about.name, *i);
-    else if (const double* d = std::get_if<double>(&value)) out.number(row.about.name, *d);
-    else out.text(row.about.name, std::get<std::string>(value));
-  }
+  for (const DescribedOption<Options>& row : table)
+    if (!row.about.speed_only) write_option(out, row.about, row.get(options));
 }
 
 //! Sets up the run `options` ask for: validates them, reads the meshes with `read` (default
