@@ -36,9 +36,7 @@ const OptionTable<DlaRunOptions>& dla_run_option_table() {
                             &O::spawn));
     add(nested(dla_option_table(), &O::growth));
     add(OptionTable<O>{
-        with_alias(file("stl", &O::stl, kMeshFileForm, "Mesh constraint",
-                        "grow constrained by this mesh: STL, OFF, OBJ or PLY"),
-                   "mesh"),
+        detail::stl_option(&O::stl),
         excluding(parsed<O>(
             "text", OptionKind::text, "TEXT", "Mesh constraint",
             "grow in this text, extruded a quarter of its size (lines split at \\n): a mesh, as --stl's; one seed "
@@ -62,10 +60,7 @@ const OptionTable<DlaRunOptions>& dla_run_option_table() {
     });
     add(nested(constraint_option_table(), &O::constraint));
     add(nested(mesh_seeds_option_table(), &O::seeds));
-    add(OptionTable<O>{
-        flag("scene_mesh", &O::scene_mesh, "Mesh constraint", "show the mesh, as glass, in the POV-Ray scene",
-             "no_scene_mesh"),
-    });
+    t.push_back(detail::scene_mesh_option(&O::scene_mesh));
     return t;
   }();
   return table;

@@ -45,14 +45,11 @@ const OptionTable<DropRunOptions>& drop_run_option_table() {
                 [](const DropOptions& o) { return to_string(o.bias); }),
         },
         &O::drop));
-    add(OptionTable<O>{with_alias(file("stl", &O::stl, kMeshFileForm, "Mesh constraint",
-                                       "grow constrained by this mesh: STL, OFF, OBJ or PLY"),
-                                  "mesh")});
+    t.push_back(detail::stl_option(&O::stl));
     for (const DescribedOption<O>& row : nested(constraint_option_table(), &O::constraint))
       if (row.about.name != "shell") t.push_back(row);  // drops fall through space
     add(nested(mesh_seeds_option_table(), &O::seeds));
-    add(OptionTable<O>{flag("scene_mesh", &O::scene_mesh, "Mesh constraint",
-                            "show the mesh, as glass, in the POV-Ray scene", "no_scene_mesh")});
+    t.push_back(detail::scene_mesh_option(&O::scene_mesh));
     return t;
   }();
   return table;

@@ -95,6 +95,20 @@ DescribedOption<Options> spacing_option(double Options::*member, std::string_vie
   return real("spacing", member, closed(kMinSpacing, kMaxSpacing), "", group, help);
 }
 
+//! `stl` (alias `mesh`): the constraint mesh's file.
+template <class Options>
+DescribedOption<Options> stl_option(std::string Options::*member) {
+  return with_alias(
+      file("stl", member, kMeshFileForm, "Mesh constraint", "grow constrained by this mesh: STL, OFF, OBJ or PLY"),
+      "mesh");
+}
+
+//! `scene_mesh` (off: `no_scene_mesh`): the POV-Ray scene shows the constraint mesh.
+template <class Options>
+DescribedOption<Options> scene_mesh_option(bool Options::*member) {
+  return flag("scene_mesh", member, "Mesh constraint", "show the mesh, as glass, in the POV-Ray scene", "no_scene_mesh");
+}
+
 //! `seed_at`: the seeds' points, one a value.
 template <class Options, class Member>
 DescribedOption<Options> seed_at_option(Member Options::*member, std::string_view group) {
