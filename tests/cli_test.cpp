@@ -922,6 +922,20 @@ void expect_refused(const ScratchDir& dir, std::initializer_list<const char*> ca
   }
 }
 
+// A plane cluster of 10^8 particles reaches about 40,000 spacings from its seed. Two seeds
+// 60,000 spacings apart need the grid that far from the first: it holds them, and grows both.
+TEST(Cli, PlaneGrowthReachesAsFarAsTenToTheEightParticlesDo) {
+  ScratchDir dir;
+  const CliRun run = dla3d(dir, "-q --dimensions 2 --seed-at -30000,0,0 --seed-at 30000,0,0 -n 300 -o far --formats csv");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const dla::Cluster far = dla::read_csv(dir / "far.csv");
+  ASSERT_EQ(far.particles.size(), 302u);
+  std::array<int, 2> grown{0, 0};
+  for (std::size_t i = 2; i < far.particles.size(); ++i) ++grown[far.particles[i].seed];
+  EXPECT_GT(grown[0], 50);
+  EXPECT_GT(grown[1], 50);
+}
+
 TEST(Cli, RotateTurnsTheSpawnAndIsRefusedWithAMesh) {
   ScratchDir dir;
   const CliRun turned = dla3d(dir, "-q -o turned -n 500 --spawn disk --spawn-axis x --rotate z,90 --formats csv,json");

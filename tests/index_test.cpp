@@ -89,6 +89,30 @@ TEST(GridIndex, MatchesBruteForce2D) { dla::check_against_brute_force<dla::GridI
 TEST(KdTreeIndex, MatchesBruteForce3D) { dla::check_against_brute_force<dla::KdTreeIndex>(3); }
 TEST(KdTreeIndex, MatchesBruteForce2D) { dla::check_against_brute_force<dla::KdTreeIndex>(2); }
 
+// A plane cluster of 10^8 particles reaches about 40,000 spacings from its seed: the grid holds
+// clumps 60,000 spacings either side of the centre, and answers there as brute force does.
+TEST(GridIndex, HoldsAPlaneStructureOfTenToTheEightsReach) {
+  std::vector<dla::Particle> store;
+  dla::GridIndex index(store, 1.0, 2);
+  dla::BruteForceIndex brute(store, 1.0, 2);
+  dla::Rng rng(3);
+  const std::array<dla::Vec3, 3> clumps{dla::Vec3(60000, 0, 0), dla::Vec3(-60000, 1000, 0), dla::Vec3(0, -59000, 0)};
+  // As DLA does: the domain about the seeds' centre, then the particles, which grow it.
+  index.cover(dla::Vec3::Zero(), 100.0);
+  for (int i = 0; i < 300; ++i) {
+    store.push_back({clumps[i % 3] + 6.0 * rng.uniform() * dla::random_direction(rng, 2), -1, 0});
+    ASSERT_NO_THROW(index.insert(i)) << "particle " << i;
+    brute.insert(i);
+  }
+  for (int q = 0; q < 600; ++q) {
+    const dla::Vec3 x = clumps[q % 3] + 12.0 * rng.uniform() * dla::random_direction(rng, 2);
+    const dla::Probe expected = brute.probe(x), got = index.probe(x);
+    ASSERT_LE(got.distance, expected.distance * (1 + 1e-12));
+    if (expected.distance < 2.0) ASSERT_EQ(got.nearest, expected.nearest);
+    if (got.nearest >= 0) ASSERT_NEAR(got.distance, expected.distance, 1e-9);
+  }
+}
+
 // The gap update tests a block's row of 8 cells in floats first (detail::may_lower_gaps): every
 // cell the exact test in double lowers must be flagged, at random and a rounding below the gap,
 // and a cell clearly beyond its gap must not be.
