@@ -108,8 +108,12 @@ TEST(GridIndex, HoldsAPlaneStructureOfTenToTheEightsReach) {
     const dla::Vec3 x = clumps[q % 3] + 12.0 * rng.uniform() * dla::random_direction(rng, 2);
     const dla::Probe expected = brute.probe(x), got = index.probe(x);
     ASSERT_LE(got.distance, expected.distance * (1 + 1e-12));
-    if (expected.distance < 2.0) ASSERT_EQ(got.nearest, expected.nearest);
-    if (got.nearest >= 0) ASSERT_NEAR(got.distance, expected.distance, 1e-9);
+    if (expected.distance < 2.0) {
+      ASSERT_EQ(got.nearest, expected.nearest);
+    }
+    if (got.nearest >= 0) {
+      ASSERT_NEAR(got.distance, expected.distance, 1e-9);
+    }
   }
 }
 
@@ -210,8 +214,8 @@ namespace {
 // r and at least least(r), and on average at least `mean` of r.
 template <class Least>
 void expect_tight_bounds(double from, double span, std::initializer_list<double> covers, Least least,
-                         double mean) {
-  for (int dimensions : {3, 2}) {
+                         double mean, std::initializer_list<int> dimensions_list = {3, 2}) {
+  for (int dimensions : dimensions_list) {
     std::vector<dla::Particle> store{{dla::Vec3::Zero(), -1, 0}};
     dla::GridIndex grid(store, 1.0, dimensions);
     grid.insert(0);
@@ -259,6 +263,14 @@ TEST(GridIndex, BeyondTheNodeMapTheFarMapBounds) {
   // doubling, which makes the map again.
   expect_tight_bounds(100.0, 150.0, {300.0, 1200.0},
                       [](double r) { return std::max(r / 8, r - 64.0 * std::sqrt(3.0)); }, 0.7);
+}
+
+TEST(GridIndex, InThePlaneTheNodeMapReachesTwiceAsFar) {
+  // A node costs a square in the plane, not a cube: occupied cells lower the nodes within 31
+  // cells (124 spacings), not 16. At 70-120 spacings the node map, not the far map's whole
+  // blocks, bounds the distance: within a cell's diagonal, a node cell's and a node unit.
+  expect_tight_bounds(70.0, 50.0, {130.0, 600.0}, [](double r) { return r - 20.0 * std::sqrt(2.0) - 0.5; },
+                      0.9, {2});
 }
 
 TEST(GridIndex, BeyondTheFarMapsCapThePyramidBounds) {

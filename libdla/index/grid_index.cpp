@@ -49,7 +49,7 @@ void GridIndex::lay_out() {
   occupied_.reset(dims_);
   const int nodes = (cells_ >> kNodeShift) + 1;  // corners of the cells at both ends
   node_dims_ = {nodes, nodes, planar_ ? 1 : nodes};
-  nodes_.assign(static_cast<std::size_t>(nodes) * nodes * node_dims_[2], static_cast<std::uint8_t>(kNodeCap));
+  nodes_.assign(static_cast<std::size_t>(nodes) * nodes * node_dims_[2], static_cast<std::uint8_t>(node_cap_));
   far_.assign(heads_of_.size(), static_cast<std::uint8_t>(kFarCap));
   levels_.clear();
   for (int shift = 1; (cells_ >> shift) >= 4; ++shift) {
@@ -156,17 +156,17 @@ void GridIndex::lower_far(const Cell& c) {
 }
 
 void GridIndex::lower_nodes(const Cell& c) {
-  constexpr int most = 3 * (kNodeReach + 1) * (kNodeReach + 1);  // squared distances, in cells²
+  constexpr int most = 3 * (kMostNodeReach + 1) * (kMostNodeReach + 1);  // squared distances, in cells²
   static const std::array<std::uint8_t, most> units = [] {
     std::array<std::uint8_t, most> table{};
     for (int d2 = 0; d2 < most; ++d2)
-      table[d2] = static_cast<std::uint8_t>(std::min(static_cast<double>(kNodeCap), std::floor(std::sqrt(d2) * kNodeUnits)));
+      table[d2] = static_cast<std::uint8_t>(std::min(255.0, std::floor(std::sqrt(d2) * kNodeUnits)));
     return table;
   }();
   Cell low{0, 0, 0}, high{0, 0, 0};
   for (int a = 0; a < axes(); ++a) {
-    low[a] = std::max((c[a] - kNodeReach + (1 << kNodeShift) - 1) >> kNodeShift, 0);
-    high[a] = std::min((c[a] + 1 + kNodeReach) >> kNodeShift, node_dims_[a] - 1);
+    low[a] = std::max((c[a] - node_reach_ + (1 << kNodeShift) - 1) >> kNodeShift, 0);
+    high[a] = std::min((c[a] + 1 + node_reach_) >> kNodeShift, node_dims_[a] - 1);
   }
   // Whole cells along each axis between a node and the cell's box.
   const auto gap = [](int cell, int node) { return std::max({cell - node, node - cell - 1, 0}); };
@@ -174,11 +174,11 @@ void GridIndex::lower_nodes(const Cell& c) {
     const int gz = planar_ ? 0 : gap(c[2], z << kNodeShift);
     for (int y = low[1]; y <= high[1]; ++y) {
       const int gy = gap(c[1], y << kNodeShift), gyz2 = gy * gy + gz * gz;
-      if (gyz2 >= kNodeReach * kNodeReach) continue;
+      if (gyz2 >= node_reach_ * node_reach_) continue;
       std::uint8_t* row = &nodes_[node_index({0, y, z})];
       for (int x = low[0]; x <= high[0]; ++x) {
         const int gx = gap(c[0], x << kNodeShift);
-        const std::uint8_t value = units[static_cast<std::size_t>(gyz2 + gx * gx)];
+        const std::uint8_t value = std::min(units[static_cast<std::size_t>(gyz2 + gx * gx)], node_cap_);
         if (value < row[x]) store(row[x], value);
       }
     }

@@ -4,9 +4,9 @@
 //! allocated where they are needed, with an occupancy bit per cell, a gap map (per cell, a
 //! lower bound on the distance from the cell to the nearest particle, kept within four cells
 //! of the structure), a node map (every fourth cell corner, its distance to the nearest
-//! occupied cell, kept within sixteen cells), a far map (per block of 8 cells a side, the
-//! whole blocks to the nearest block holding a particle, kept within eight blocks) and a
-//! pyramid of coarser occupancy bits.
+//! occupied cell, kept within 16 cells, 31 in the plane), a far map (per block of 8 cells a
+//! side, the whole blocks to the nearest block holding a particle, kept within eight blocks)
+//! and a pyramid of coarser occupancy bits.
 //!
 //! Next to the structure a probe returns the exact nearest particle, walking the lists of the
 //! occupied cells of the 3x3x3 block about the point (the occupancy bits of a row of cells are
@@ -41,7 +41,11 @@ class GridIndex {
   //! exact. For models that ask only nearest() and bound() (drop.h, ballistic.h).
   GridIndex(const std::vector<Particle>& particles, double spacing, int dimensions, bool distance_maps = true)
       : particles_(particles), cell_(4.0 * spacing), planar_(dimensions == 2), distance_maps_(distance_maps),
-        max_cells_(planar_ ? 32768 : 2048) {}
+        max_cells_(planar_ ? 32768 : 2048),
+        node_reach_(planar_ ? 31 : 16),
+        node_cap_(static_cast<std::uint8_t>(node_reach_ * kNodeUnits)) {
+    static_assert(kMostNodeReach * kNodeUnits < 256, "a node's value fits in its byte");
+  }
 
   void reserve(std::size_t particles) { next_.reserve(particles); }
 
@@ -158,7 +162,7 @@ class GridIndex {
       while (lanes > 0)
         for (std::size_t i = 0; i < lanes;) {
           const std::int32_t id = at[i];
-          const double d2 = (position(id) - x).squaredNorm();
+          const double d2 = distance2(position(id), x);
           if (d2 <= r2) visit(id, d2);
           at[i] = next(id);
           if (at[i] < 0) at[i] = at[--lanes]; else ++i;
@@ -185,8 +189,7 @@ class GridIndex {
   static constexpr int kFarGap = kGapReach * kGapUnits;   // gap of cells beyond every reach
   static constexpr int kNodeShift = 2;                    // a node every 4 cells along each axis
   static constexpr int kNodeUnits = 8;                    // node map units per cell width
-  static constexpr int kNodeReach = 16;                   // cells an occupied cell lowers nodes within
-  static constexpr int kNodeCap = kNodeReach * kNodeUnits;  // value of nodes beyond every reach
+  static constexpr int kMostNodeReach = 31;               // a node's byte holds 31 cells' units
   static constexpr int kFarReach = 8;                     // blocks a block's first particle lowers the far map within
   static constexpr int kFarCap = kFarReach * kFarReach;   // far map value beyond every reach
 
@@ -288,6 +291,10 @@ class GridIndex {
   };
 
   int axes() const { return planar_ ? 2 : 3; }
+  //! |p - x|^2; in the plane, where z is 0, without it (the same value).
+  double distance2(const Vec3& p, const Vec3& x) const {
+    return planar_ ? (p.head<2>() - x.head<2>()).squaredNorm() : (p - x).squaredNorm();
+  }
   const Vec3& position(std::int32_t id) const { return particles_[static_cast<std::size_t>(id)].position; }
 
   //! Squared gap along each axis from x to the cells at offsets -1..1 from `home`;
@@ -339,7 +346,7 @@ class GridIndex {
       while (lanes > 0) {
         for (std::size_t i = 0; i < lanes;) {
           const std::int32_t id = at[i];
-          const double d2 = (position(id) - x).squaredNorm();
+          const double d2 = distance2(position(id), x);
           if (d2 < best2) {
             best2 = d2;
             best = id;
@@ -493,17 +500,20 @@ class GridIndex {
       const double low = f[a] - static_cast<double>(n0[a] << kNodeShift), high = low - (1 << kNodeShift);
       offset2[a] = {low * low, high * high};
     }
-    // The eight terms are independent (no chain of maxima through square roots).
+    // The eight terms are independent (no chain of maxima through square roots). In the
+    // plane the node cell has four corners.
+    const int corners = planar_ ? 4 : 8;
     std::array<double, 8> term;
+    term.fill(-std::numeric_limits<double>::infinity());
     int capped = 0;
-    for (int k = 0; k < 8; ++k) {
+    for (int k = 0; k < corners; ++k) {
       const int value = load(nodes_[first + (k & 1) + (k >> 1 & 1) * step_y + (k >> 2 & 1) * step_z]);
-      capped += value == kNodeCap;
+      capped += value == node_cap_;
       term[k] = value * (1.0 / kNodeUnits) -
                 std::sqrt(offset2[0][k & 1] + offset2[1][k >> 1 & 1] + offset2[2][k >> 2 & 1]);
     }
     const double best = std::max({term[0], term[1], term[2], term[3], term[4], term[5], term[6], term[7], 0.0});
-    if (capped == 8) {
+    if (capped == corners) {
       // A node lowered later would take the far map and the pyramid out of the answer: any
       // of them counts. Below its cap the far map's bound is within two block diagonals and
       // the pyramid seldom beats it, and at 10^7 the pyramid's bit is a miss in the caches.
@@ -515,7 +525,7 @@ class GridIndex {
         const Probe pyramid = pyramid_bound(f, c, reach);
         if (pyramid.distance > coarse.distance) coarse = pyramid;
       }
-      if (reach == Reach::set) node_box(n0, 1, kNodeCap, coarse);
+      if (reach == Reach::set) node_box(n0, 1, node_cap_, coarse);
       coarse.distance = std::max(coarse.distance, best * cell_);
       return coarse;
     }
@@ -561,7 +571,7 @@ class GridIndex {
     }
   }
 
-  //! Lowers every node within kNodeReach cells of cell c, newly occupied, to its distance from
+  //! Lowers every node within node_reach_ cells of cell c, newly occupied, to its distance from
   //! the cell's box, in kNodeUnits per cell, rounded down.
   void lower_nodes(const Cell& c);
 
@@ -618,6 +628,11 @@ class GridIndex {
   // ~40,000 (10,000 cells) at 10^8 and 65,536 spacings at ~2x10^8. The dense tables then take
   // ~1.5 GB in 3D and ~0.55 GB in 2D, beside the particles' 4.8 GB at 10^8.
   int max_cells_;
+  // Cells an occupied cell lowers nodes within. In the plane, a walk between far branches
+  // takes 10% fewer steps with 31 than with 16, and lowering the nodes costs little
+  // (docs/dev/performance-notes.md); in space it would cost seven times as much.
+  int node_reach_;
+  std::uint8_t node_cap_;  // value of nodes beyond every reach
   Vec3 center_ = Vec3::Zero();
   Vec3 origin_ = Vec3::Zero();
   int cells_ = 0;  // cells a side (z is one cell when planar); 0 until the first use
@@ -638,7 +653,7 @@ class GridIndex {
   HugePageVector<std::uint8_t> nodes_;      // per node (every 4th cell corner, x fastest):
                                             // distance to the nearest occupied cell's box,
                                             // rounded down, in cell widths / kNodeUnits;
-                                            // kNodeCap beyond reach
+                                            // node_cap_ beyond reach
   HugePageVector<std::uint8_t> far_;        // per block (x fastest): squared number of whole
                                             // blocks between it and the nearest block holding
                                             // a particle; kFarCap beyond reach
