@@ -9,11 +9,9 @@
 # base's beside the working tree, in ../<repo>-compare/<commit>/ (or under $DLA_COMPARE_DIR),
 # with the same flags, once, and kept for the next call.
 set -euo pipefail
-
-usage() {
-  sed -n 's/^#   \(bench\/compare.sh .*\)/usage: \1/p' "$0" >&2
-  exit 2
-}
+program=compare.sh
+# shellcheck source=bench/side_by_side.sh
+source "$(dirname "$0")/side_by_side.sh"
 
 pairs=3 seeds=5,7 dims=3,2 threads=1,2 work_build=
 while [ $# -gt 0 ]; do
@@ -32,9 +30,8 @@ done
 base_ref=$1; shift
 counts=("$@")
 [ ${#counts[@]} -gt 0 ] || counts=(100000 1000000)
-for word in "$pairs" ${seeds//,/ } ${dims//,/ } ${threads//,/ } "${counts[@]}"; do
-  [[ $word =~ ^[0-9]+$ ]] || { echo "compare.sh: '$word' is not a whole number" >&2; exit 2; }
-done
+# shellcheck disable=SC2086  # the comma lists split into words
+whole_numbers "$pairs" ${seeds//,/ } ${dims//,/ } ${threads//,/ } "${counts[@]}"
 [ "$pairs" -ge 1 ] || { echo "compare.sh: --pairs must be at least 1" >&2; exit 2; }
 
 repo=$(git -C "$(dirname "$0")/.." rev-parse --show-toplevel)
@@ -82,8 +79,6 @@ run_once() {  # BINARY PREFIX COUNT DIMS THREADS SEED -> seconds on stdout
     { echo "compare.sh: $1 failed: $(head -c 300 "$2.err")" >&2; exit 1; }
   awk -v a="$start" -v b="$EPOCHREALTIME" 'BEGIN { printf "%.2f", b - a }'
 }
-
-median() { tr ' ' '\n' | sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
 # A verdict only where the pairs agree: all but one pair on one side of 1, and the median
 # ratio beyond 3%.

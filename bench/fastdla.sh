@@ -10,11 +10,9 @@
 # FASTDLA_SOURCE is a folder holding fastDLA.cpp and fastDLA.hpp. dla3d writes only its JSON
 # record, fastDLA its binary coordinates, so the times are growth and one small write each.
 set -euo pipefail
-
-usage() {
-  sed -n 's/^#   \(bench\/fastdla.sh .*\)/usage: \1/p' "$0" >&2
-  exit 2
-}
+program=fastdla.sh
+# shellcheck source=bench/side_by_side.sh
+source "$(dirname "$0")/side_by_side.sh"
 
 pairs=3 threads=1 work_build=
 while [ $# -gt 0 ]; do
@@ -30,9 +28,7 @@ done
 [ $# -ge 2 ] || usage
 source_dir=$1; shift
 counts=("$@")
-for word in "$pairs" "$threads" "${counts[@]}"; do
-  [[ $word =~ ^[0-9]+$ ]] || { echo "fastdla.sh: '$word' is not a whole number" >&2; exit 2; }
-done
+whole_numbers "$pairs" "$threads" "${counts[@]}"
 [ "$pairs" -ge 1 ] || { echo "fastdla.sh: --pairs must be at least 1" >&2; exit 2; }
 if [ ! -f "$source_dir/fastDLA.cpp" ] || [ ! -f "$source_dir/fastDLA.hpp" ]; then
   echo "fastdla.sh: $source_dir holds no fastDLA.cpp and fastDLA.hpp (git clone https://github.com/mathsjames/fastDLA)" >&2
@@ -65,8 +61,6 @@ dla3d_once() {  # COUNT SEED
 fastdla_once() {  # COUNT SEED
   run_once fastDLA "$runs/fastDLA" "$1" "$runs/fastDLA.bin" "$2"
 }
-
-median() { tr ' ' '\n' | sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
 echo "dla3d $(git -C "$repo" rev-parse --short HEAD)$(git -C "$repo" diff --quiet HEAD || echo ', with changes'), $threads thread(s), against fastDLA on one"
 echo "speed-up = fastDLA's time / dla3d's; pairs alternate which runs first; seeds 1..$pairs"
